@@ -1,0 +1,28 @@
+// Moving a ray origin off a surface without a scene-scale epsilon: Waechter and Binder,
+// "A Fast and Robust Method for Avoiding Self-Intersection", Ray Tracing Gems ch. 6 (2019).
+// The offset is a few ulps in integer space, so it scales with the magnitude of the
+// coordinates; near the origin, where ulps are tiny, a small fixed offset is used instead.
+#ifndef PT_COMMON_RAY_OFFSET_GLSL
+#define PT_COMMON_RAY_OFFSET_GLSL
+
+const float OFFSET_ORIGIN = 1.0 / 32.0;     // below this magnitude use the float offset
+const float OFFSET_FLOAT_SCALE = 1.0 / 65536.0;
+const float OFFSET_INT_SCALE = 256.0;
+
+// p: point on the surface; n: geometric normal on the side the new ray leaves through.
+vec3 offsetRayOrigin(vec3 p, vec3 n) {
+    ivec3 of = ivec3(OFFSET_INT_SCALE * n);
+    vec3 pInt = vec3(
+        intBitsToFloat(floatBitsToInt(p.x) + (p.x < 0.0 ? -of.x : of.x)),
+        intBitsToFloat(floatBitsToInt(p.y) + (p.y < 0.0 ? -of.y : of.y)),
+        intBitsToFloat(floatBitsToInt(p.z) + (p.z < 0.0 ? -of.z : of.z)));
+    return vec3(
+        abs(p.x) < OFFSET_ORIGIN ? p.x + OFFSET_FLOAT_SCALE * n.x : pInt.x,
+        abs(p.y) < OFFSET_ORIGIN ? p.y + OFFSET_FLOAT_SCALE * n.y : pInt.y,
+        abs(p.z) < OFFSET_ORIGIN ? p.z + OFFSET_FLOAT_SCALE * n.z : pInt.z);
+}
+
+// Offset to the side of the surface that direction d points to.
+vec3 spawnOrigin(vec3 p, vec3 ng, vec3 d) { return offsetRayOrigin(p, dot(ng, d) >= 0.0 ? ng : -ng); }
+
+#endif

@@ -1,0 +1,59 @@
+// Counter-based random numbers: every value is a pure function of (pixel, sample index,
+// dimension, seed), so images do not depend on dispatch chunking or thread scheduling.
+// Hash: PCG4D (Jarzynski and Olano, "Hash Functions for GPU Rendering", JCGT 2020).
+#ifndef PT_COMMON_RNG_GLSL
+#define PT_COMMON_RNG_GLSL
+
+uvec4 pcg4d(uvec4 v) {
+    v = v * 1664525u + 1013904223u;
+    v.x += v.y * v.w;
+    v.y += v.z * v.x;
+    v.z += v.x * v.y;
+    v.w += v.y * v.z;
+    v ^= v >> 16u;
+    v.x += v.y * v.w;
+    v.y += v.z * v.x;
+    v.z += v.x * v.y;
+    v.w += v.y * v.z;
+    return v;
+}
+
+struct Rng {
+    uvec4 key; // (pixel x, pixel y, sample index, seed)
+};
+
+Rng rngCreate(uvec2 pixel, uint sampleIndex, uint seed) {
+    Rng r;
+    r.key = uvec4(pixel, sampleIndex, seed);
+    return r;
+}
+
+// A float in [0, 1 - 2^-24]: the top 24 bits, so 1.0 is never returned.
+float uintToUnitFloat(uint x) { return float(x >> 8u) * (1.0 / 16777216.0); }
+
+uvec4 rngHash(Rng r, uint dimension) {
+    return pcg4d(uvec4(r.key.xy, r.key.z ^ (dimension * 0x9E3779B9u), r.key.w + dimension));
+}
+
+// Random numbers are addressed, not drawn: dimension = camera dimensions, then a fixed block
+// per path vertex, so toggling a technique (NEE, RR) never reshuffles the numbers of others.
+const uint DIM_PIXEL = 0u;        // 2D: jitter inside the pixel
+const uint DIM_FIRST_BOUNCE = 2u;
+const uint DIM_BSDF_LOBE = 0u;    // 1D, offsets inside one vertex's block
+const uint DIM_BSDF_DIRECTION = 1u; // 2D
+const uint DIM_LIGHT_SELECT = 3u; // 1D
+const uint DIM_LIGHT_POINT = 4u;  // 2D
+const uint DIM_ROULETTE = 6u;     // 1D
+const uint DIMS_PER_BOUNCE = 7u;
+
+uint bounceDimension(uint bounce, uint offset) { return DIM_FIRST_BOUNCE + bounce * DIMS_PER_BOUNCE + offset; }
+
+float rng1(Rng r, uint dimension) { return uintToUnitFloat(rngHash(r, dimension).x); }
+
+// A 2D sample occupies dimensions d and d + 1; both values come from the hash of d.
+vec2 rng2(Rng r, uint dimension) {
+    uvec4 h = rngHash(r, dimension);
+    return vec2(uintToUnitFloat(h.x), uintToUnitFloat(h.y));
+}
+
+#endif

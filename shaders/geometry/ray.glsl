@@ -1,0 +1,9 @@
+#ifndef PT_GEOMETRY_RAY_GLSL
+#define PT_GEOMETRY_RAY_GLSL
+
+struct Ray {
+    vec3 origin;
+    vec3 direction; // not necessarily unit length for the intersectors; the integrator keeps it unit
+};
+
+#endif

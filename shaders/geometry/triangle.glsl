@@ -1,0 +1,70 @@
+// Watertight ray/triangle intersection: Woop, Benthin and Wald, "Watertight Ray/Triangle
+// Intersection", JCGT 2013. The ray is sheared so it runs along +z; edge functions are then
+// evaluated in 2D, and a point on a shared edge is accepted by both triangles, never by neither.
+// The paper's double-precision re-evaluation of exactly-zero edge functions is left out: with
+// it only one of two neighbours reports such a hit, without it both do, and neither leaves a gap.
+#ifndef PT_GEOMETRY_TRIANGLE_GLSL
+#define PT_GEOMETRY_TRIANGLE_GLSL
+#include "geometry/ray.glsl"
+
+// Per-ray constants of the shear transform, computed once per traversal.
+struct WatertightRay {
+    vec3 origin;
+    ivec3 axis; // kx, ky, kz: kz is the dominant direction axis
+    vec3 shear; // Sx, Sy, Sz
+};
+
+WatertightRay makeWatertightRay(Ray ray) {
+    WatertightRay w;
+    w.origin = ray.origin;
+    vec3 a = abs(ray.direction);
+    int kz = a.x > a.y ? (a.x > a.z ? 0 : 2) : (a.y > a.z ? 1 : 2);
+    int kx = kz == 2 ? 0 : kz + 1;
+    int ky = kx == 2 ? 0 : kx + 1;
+    // Swap kx and ky to keep the winding (and so the sign of the determinant) unchanged.
+    if (ray.direction[kz] < 0.0) {
+        int t = kx;
+        kx = ky;
+        ky = t;
+    }
+    w.axis = ivec3(kx, ky, kz);
+    float dz = ray.direction[kz];
+    w.shear = vec3(ray.direction[kx] / dz, ray.direction[ky] / dz, 1.0 / dz);
+    return w;
+}
+
+// Returns true on a hit with 0 < t < tMax; t and barycentrics (b1, b2) of p1 and p2.
+bool intersectTriangle(WatertightRay r, vec3 p0, vec3 p1, vec3 p2, float tMax, out float t, out vec2 bary) {
+    vec3 a3 = p0 - r.origin;
+    vec3 b3 = p1 - r.origin;
+    vec3 c3 = p2 - r.origin;
+    vec3 a = vec3(a3[r.axis.x], a3[r.axis.y], a3[r.axis.z]);
+    vec3 b = vec3(b3[r.axis.x], b3[r.axis.y], b3[r.axis.z]);
+    vec3 c = vec3(c3[r.axis.x], c3[r.axis.y], c3[r.axis.z]);
+    float ax = a.x - r.shear.x * a.z;
+    float ay = a.y - r.shear.y * a.z;
+    float bx = b.x - r.shear.x * b.z;
+    float by = b.y - r.shear.y * b.z;
+    float cx = c.x - r.shear.x * c.z;
+    float cy = c.y - r.shear.y * c.z;
+    float U = cx * by - cy * bx;
+    float V = ax * cy - ay * cx;
+    float W = bx * ay - by * ax;
+    t = 0.0;
+    bary = vec2(0.0);
+    if ((U < 0.0 || V < 0.0 || W < 0.0) && (U > 0.0 || V > 0.0 || W > 0.0)) return false;
+    float det = U + V + W;
+    if (det == 0.0) return false;
+    float az = r.shear.z * a.z;
+    float bz = r.shear.z * b.z;
+    float cz = r.shear.z * c.z;
+    float T = U * az + V * bz + W * cz;
+    // Compare T against the range scaled by det without dividing (sign-aware).
+    if (det < 0.0 ? (T >= 0.0 || T < tMax * det) : (T <= 0.0 || T > tMax * det)) return false;
+    float invDet = 1.0 / det;
+    t = T * invDet;
+    bary = vec2(V * invDet, W * invDet);
+    return t > 0.0 && t < tMax;
+}
+
+#endif

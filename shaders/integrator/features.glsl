@@ -1,0 +1,19 @@
+// What this pipeline was specialised for. The host sets these from the scene and the switches
+// (src/render/feature_set.cpp); code behind a false constant is removed when the pipeline is
+// created, so a scene pays nothing for features it does not use.
+#ifndef PT_INTEGRATOR_FEATURES_GLSL
+#define PT_INTEGRATOR_FEATURES_GLSL
+#include "shared/layout.h"
+
+layout(constant_id = SPEC_HAS_DIFFUSE) const bool HAS_DIFFUSE = true;
+layout(constant_id = SPEC_HAS_MIRROR) const bool HAS_MIRROR = true;
+layout(constant_id = SPEC_HAS_DIELECTRIC) const bool HAS_DIELECTRIC = true;
+layout(constant_id = SPEC_HAS_ABSORPTION) const bool HAS_ABSORPTION = true;
+layout(constant_id = SPEC_HAS_SHADING_NORMALS) const bool HAS_SHADING_NORMALS = true;
+layout(constant_id = SPEC_HAS_EMITTERS) const bool HAS_EMITTERS = true;
+layout(constant_id = SPEC_USE_NEE) const bool USE_NEE = true;
+layout(constant_id = SPEC_USE_MIS) const bool USE_MIS = true;
+layout(constant_id = SPEC_USE_RR) const bool USE_RR = true;
+layout(constant_id = SPEC_COSINE_SAMPLING) const bool COSINE_SAMPLING = true;
+
+#endif

@@ -1,0 +1,115 @@
+// Unidirectional path tracing: next event estimation, BSDF sampling, multiple importance
+// sampling with the power heuristic, and Russian roulette; each switchable by specialization.
+// Depth counts ray segments including the camera ray (Mitsuba 3's max_depth): emitters seen
+// directly need depth 1, direct lighting depth 2.
+#ifndef PT_INTEGRATOR_PATH_GLSL
+#define PT_INTEGRATOR_PATH_GLSL
+#include "common/math.glsl"
+#include "common/rng.glsl"
+#include "common/ray_offset.glsl"
+#include "geometry/interaction.glsl"
+#include "lights/triangle_lights.glsl"
+#include "bsdf/lambert.glsl"
+#include "bsdf/mirror.glsl"
+#include "bsdf/dielectric.glsl"
+#include "integrator/features.glsl"
+
+// Shadow rays stop this fraction short of the (offset) light point, the receiver's own offset
+// having already moved the origin off its surface.
+const float SHADOW_RAY_FAR = 0.9999;
+
+// Direct light at a diffuse vertex by sampling the light table.
+vec3 estimateDirect(SurfaceInteraction si, Frame frame, vec3 woLocal, vec3 albedo, Rng rng, uint depth) {
+    float uSelect = rng1(rng, bounceDimension(depth, DIM_LIGHT_SELECT));
+    vec2 uPoint = rng2(rng, bounceDimension(depth, DIM_LIGHT_POINT));
+    LightSample ls = sampleLight(si.p, uSelect, uPoint);
+    if (ls.pdf <= 0.0 || maxComponent(ls.radiance) <= 0.0) return vec3(0.0);
+    vec3 wiLocal = toLocal(frame, ls.wi);
+    vec3 fCos = lambertEval(albedo, woLocal, wiLocal);
+    if (maxComponent(fCos) <= 0.0) return vec3(0.0);
+    // Offset both ends of the shadow ray off their surfaces, then stop just short of the light.
+    vec3 origin = spawnOrigin(si.p, si.ng, ls.wi);
+    vec3 target = offsetRayOrigin(ls.point, dot(ls.normal, ls.wi) < 0.0 ? ls.normal : -ls.normal);
+    Ray shadow;
+    shadow.origin = origin;
+    shadow.direction = target - origin;
+    if (traceAny(shadow, SHADOW_RAY_FAR)) return vec3(0.0);
+    float weight = USE_MIS ? powerHeuristic(ls.pdf, lambertPdf(woLocal, wiLocal)) : 1.0;
+    return fCos * ls.radiance * (weight / ls.pdf);
+}
+
+vec3 tracePath(Ray ray, Rng rng) {
+    vec3 L = vec3(0.0);
+    vec3 beta = vec3(1.0);
+    float etaScale = 1.0;
+    bool prevDelta = true; // the camera ray counts as specular: emitters it sees are added fully
+    float prevPdfBsdf = 0.0;
+    for (uint depth = 1u;; ++depth) {
+        Hit hit;
+        if (!traceClosest(ray, FLOAT_MAX, hit)) {
+            L += beta * scene.background;
+            break;
+        }
+        SurfaceInteraction si = makeInteraction(ray, hit);
+        GpuMaterial mat = sceneMaterials.v[si.materialIndex];
+        bool doubleSided = (mat.flags & MATERIAL_FLAG_DOUBLE_SIDED) != 0u;
+
+        // Beer-Lambert absorption along the segment just travelled inside a dielectric.
+        if (HAS_ABSORPTION && mat.type == MATERIAL_DIELECTRIC && !si.frontFace && (mat.flags & MATERIAL_FLAG_ABSORBING) != 0u)
+            beta *= exp(-mat.sigmaA * hit.t);
+
+        // Emission found by the BSDF-sampled ray, weighted against light sampling.
+        if (HAS_EMITTERS && si.lightIndex != NO_LIGHT) {
+            vec3 Le = emittedRadiance(mat, si.frontFace);
+            if (!USE_NEE || prevDelta) {
+                L += beta * Le;
+            } else if (USE_MIS) {
+                float pdfLight = lightPdf(si.lightIndex, hit.t, dot(si.ng, ray.direction));
+                L += beta * Le * powerHeuristic(prevPdfBsdf, pdfLight);
+            }
+        }
+        if (depth >= scene.maxDepth) break;
+
+        vec3 wo = -ray.direction;
+        BsdfSample bs = invalidBsdfSample();
+        if (HAS_DIELECTRIC && mat.type == MATERIAL_DIELECTRIC) {
+            Frame frame = makeFrame(dot(si.ns, wo) < 0.0 ? -si.ns : si.ns);
+            float uLobe = rng1(rng, bounceDimension(depth, DIM_BSDF_LOBE));
+            bs = dielectricSample(mat.baseColor, mat.ior, si.frontFace, frame, toLocal(frame, wo), uLobe);
+        } else {
+            // Opaque surfaces: one-sided ones are black from behind; double-sided ones flip.
+            if (!si.frontFace && !doubleSided) break;
+            Frame frame = makeFrame(si.frontFace ? si.ns : -si.ns);
+            if (!si.frontFace) si.ng = -si.ng;
+            vec3 woLocal = toLocal(frame, wo);
+            if (HAS_MIRROR && mat.type == MATERIAL_MIRROR) {
+                bs = mirrorSample(mat.baseColor, frame, woLocal);
+            } else if (HAS_DIFFUSE && mat.type == MATERIAL_DIFFUSE) {
+                if (HAS_EMITTERS && USE_NEE && scene.numLights > 0u)
+                    L += beta * estimateDirect(si, frame, woLocal, mat.baseColor, rng, depth);
+                bs = lambertSample(mat.baseColor, frame, woLocal, rng2(rng, bounceDimension(depth, DIM_BSDF_DIRECTION)));
+            }
+        }
+        if (!bs.valid || maxComponent(bs.weight) <= 0.0) break;
+        beta *= bs.weight;
+        etaScale *= bs.etaScale;
+        prevDelta = bs.isDelta;
+        prevPdfBsdf = bs.pdf;
+
+        // Russian roulette on throughput with the radiance scaling of refractions undone, so a
+        // path inside glass is not killed just for having entered it (pbrt-v4's etaScale).
+        if (USE_RR && depth >= scene.rrStartDepth) {
+            float m = maxComponent(beta * etaScale);
+            if (m < 1.0) {
+                float q = max(0.0, 1.0 - m);
+                if (rng1(rng, bounceDimension(depth, DIM_ROULETTE)) < q) break;
+                beta /= 1.0 - q;
+            }
+        }
+        ray.origin = spawnOrigin(si.p, si.ng, bs.wi);
+        ray.direction = bs.wi;
+    }
+    return L;
+}
+
+#endif

@@ -1,0 +1,41 @@
+#version 460
+// The megakernel: each invocation owns one pixel and adds push.sampleCount samples to its sums.
+// Samples are added one at a time, in sample-index order, to the running float32 sum, so the
+// result is the same however the samples are split over dispatches.
+#extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_buffer_reference : require
+#extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
+#include "shared/layout.h"
+#include "integrator/features.glsl"
+#include "integrator/camera.glsl"
+#include "integrator/path.glsl"
+
+layout(local_size_x_id = SPEC_LOCAL_SIZE_X, local_size_y_id = SPEC_LOCAL_SIZE_Y) in;
+
+layout(push_constant) uniform PushBlock { GpuRenderPush push; };
+
+void main() {
+    uvec2 local = gl_GlobalInvocationID.xy;
+    if (any(greaterThanEqual(local, push.tileSize))) return;
+    bindScene(push.sceneParams);
+    uvec2 pixel = push.tileOrigin + local;
+    if (any(greaterThanEqual(pixel, scene.imageSize))) return;
+    uint index = pixel.y * scene.imageSize.x + pixel.x;
+    Vec4Ref accumulation = Vec4Ref(scene.accumulation);
+    vec4 sum = accumulation.v[2u * index];
+    vec4 sumSquares = accumulation.v[2u * index + 1u];
+    for (uint s = 0u; s < push.sampleCount; ++s) {
+        Rng rng = rngCreate(pixel, push.sampleStart + s, scene.seed);
+        vec2 jitter = rng2(rng, DIM_PIXEL); // box filter: uniform over the pixel
+        Ray ray = cameraRay(scene.camera, vec2(pixel) + jitter, scene.imageSize);
+        vec3 L = tracePath(ray, rng);
+        if (allFinite(L)) {
+            sum.rgb += L;
+            sumSquares.rgb += L * L;
+        } else {
+            sum.w += 1.0; // dropped: counted, contributes zero
+        }
+    }
+    accumulation.v[2u * index] = sum;
+    accumulation.v[2u * index + 1u] = sumSquares;
+}

@@ -1,0 +1,185 @@
+// The one definition of everything the GPU sees: buffer records, push constants,
+// specialization-constant ids and enums. Included by C++ (src/) and by GLSL (shaders/).
+// Layout rule: std430, every struct a multiple of 16 bytes, vec3 always followed by a
+// 4-byte scalar so C++ (glm) and GLSL agree without padding surprises; the C++ side
+// checks every size with static_assert.
+#ifndef PT_SHADERS_SHARED_LAYOUT_H
+#define PT_SHADERS_SHARED_LAYOUT_H
+
+#ifdef __cplusplus
+#include <cstdint>
+#include <glm/glm.hpp>
+namespace pt::gpu {
+using vec2 = glm::vec2;
+using vec3 = glm::vec3;
+using vec4 = glm::vec4;
+using uvec2 = glm::uvec2;
+using uint = std::uint32_t;
+using uint64_t = std::uint64_t;
+#define PT_CHECK_SIZE(type, bytes) static_assert(sizeof(type) == (bytes), #type " must match its GLSL std430 size")
+#else
+#define PT_CHECK_SIZE(type, bytes)
+#endif
+
+// ---- Material types (GpuMaterial::type) ----
+#define MATERIAL_DIFFUSE 0u
+#define MATERIAL_MIRROR 1u
+#define MATERIAL_DIELECTRIC 2u
+
+// ---- Material flags ----
+#define MATERIAL_FLAG_DOUBLE_SIDED 1u // back faces shade (and emit) like front faces
+#define MATERIAL_FLAG_ABSORBING 2u    // dielectric interior has Beer-Lambert absorption
+
+// ---- Triangle flags ----
+#define TRIANGLE_FLAG_SHADING_NORMALS 1u // interpolate n0..n2; otherwise use the geometric normal
+
+#define NO_LIGHT 0xffffffffu
+
+// ---- Specialization constants: what the scene (and the switches) need ----
+#define SPEC_LOCAL_SIZE_X 0
+#define SPEC_LOCAL_SIZE_Y 1
+#define SPEC_HAS_DIFFUSE 2
+#define SPEC_HAS_MIRROR 3
+#define SPEC_HAS_DIELECTRIC 4
+#define SPEC_HAS_ABSORPTION 5
+#define SPEC_HAS_SHADING_NORMALS 6
+#define SPEC_HAS_EMITTERS 7
+#define SPEC_USE_NEE 8
+#define SPEC_USE_MIS 9
+#define SPEC_USE_RR 10
+#define SPEC_COSINE_SAMPLING 11
+#define SPEC_COUNT 12
+
+// A triangle as the intersector reads it: world-space vertices plus the ids it needs at a hit.
+struct GpuTriangle {
+    vec3 p0;
+    uint materialIndex;
+    vec3 p1;
+    uint lightIndex; // index into the light table, or NO_LIGHT
+    vec3 p2;
+    uint flags; // TRIANGLE_FLAG_*
+};
+PT_CHECK_SIZE(GpuTriangle, 48);
+
+// Per-vertex shading data, read only at the closest hit.
+struct GpuTriangleShading {
+    vec3 n0;
+    float u0;
+    vec3 n1;
+    float u1;
+    vec3 n2;
+    float u2;
+    vec3 v; // v0, v1, v2
+    uint pad;
+};
+PT_CHECK_SIZE(GpuTriangleShading, 64);
+
+// Binary BVH node. Interior: count == 0, children at leftOrFirst and leftOrFirst + 1.
+// Leaf: triangles [leftOrFirst, leftOrFirst + count) of the (BVH-ordered) triangle array.
+struct GpuBvhNode {
+    vec3 lo;
+    uint leftOrFirst;
+    vec3 hi;
+    uint count;
+};
+PT_CHECK_SIZE(GpuBvhNode, 32);
+
+struct GpuMaterial {
+    vec3 baseColor; // diffuse albedo, mirror/dielectric tint
+    uint type;      // MATERIAL_*
+    vec3 emission;  // emitted radiance (front side; both sides if double-sided)
+    uint flags;     // MATERIAL_FLAG_*
+    vec3 sigmaA;    // Beer-Lambert absorption coefficient inside a dielectric (1/length)
+    float ior;      // interior index of refraction over exterior
+};
+PT_CHECK_SIZE(GpuMaterial, 48);
+
+// One emissive triangle in the light-selection table.
+struct GpuLight {
+    uint triangleIndex; // into the BVH-ordered triangle array
+    float pmf;          // probability of choosing this light
+    float area;
+    float pad;
+};
+PT_CHECK_SIZE(GpuLight, 16);
+
+struct GpuCamera {
+    vec3 origin;
+    float tanHalfFovY;
+    vec3 right; // unit, image x
+    float aspect; // width / height
+    vec3 up; // unit, image y (up)
+    float pad0;
+    vec3 forward; // unit, view direction
+    float pad1;
+};
+PT_CHECK_SIZE(GpuCamera, 64);
+
+// Per-render constants, in a buffer reached through its device address.
+struct GpuSceneParams {
+    // Device addresses of the scene arrays (buffer device address: no 128 MiB binding limit).
+    uint64_t triangles;   // GpuTriangle[]
+    uint64_t shading;     // GpuTriangleShading[]
+    uint64_t nodes;       // GpuBvhNode[]
+    uint64_t materials;   // GpuMaterial[]
+    uint64_t lights;      // GpuLight[]
+    uint64_t lightCdf;    // float[numLights + 1]
+    uint64_t accumulation; // vec4[2 * pixels]: (sum rgb, dropped count), (sum of squares rgb, 0)
+    uint64_t pad0;
+    GpuCamera camera;
+    vec3 background; // radiance of rays that escape
+    uint numLights;
+    uvec2 imageSize;
+    uint maxDepth;     // ray segments including the camera ray (Mitsuba's convention)
+    uint rrStartDepth; // Russian roulette starts after this many segments
+    uint seed;
+    uint numTriangles;
+    uint numNodes;
+    uint pad1;
+};
+PT_CHECK_SIZE(GpuSceneParams, 64 + 64 + 48);
+
+// Push constants of the render kernel: which pixels and which sample indices this dispatch adds.
+struct GpuRenderPush {
+    uint64_t sceneParams; // device address of GpuSceneParams
+    uvec2 tileOrigin;
+    uvec2 tileSize;
+    uint sampleStart; // global index of the first sample added to each pixel
+    uint sampleCount;
+    uint pad0;
+};
+PT_CHECK_SIZE(GpuRenderPush, 40);
+
+// ---- Test kernels (shaders/tests) ----
+#define TEST_MODE_COSINE_HEMISPHERE 0u
+#define TEST_MODE_UNIFORM_HEMISPHERE 1u
+#define TEST_MODE_LIGHT_SAMPLE 2u
+#define TEST_MODE_LIGHT_PDF 3u
+#define TEST_MODE_TRACE_BVH 4u
+#define TEST_MODE_TRACE_BRUTE_FORCE 5u
+
+struct GpuTestRay {
+    vec3 origin;
+    float tMax;
+    vec3 direction;
+    float pad;
+};
+PT_CHECK_SIZE(GpuTestRay, 32);
+
+struct GpuTestPush {
+    uint64_t sceneParams;
+    uint64_t inputs; // mode-dependent: GpuTestRay[] or vec4[] directions
+    uint64_t outputs; // mode-dependent: vec4[]
+    uint mode;
+    uint count;
+    vec3 point;   // shading point for light tests
+    uint seed;
+    vec3 normal;  // shading normal for hemisphere tests (world space)
+    uint pad;
+};
+PT_CHECK_SIZE(GpuTestPush, 64);
+
+#ifdef __cplusplus
+} // namespace pt::gpu
+#endif
+#endif

@@ -1,0 +1,72 @@
+#version 460
+// Test kernel: runs the production sampling, light and traversal code on inputs the host
+// chooses, so host-side tests (tests/gpu/) can check samplers against their pdfs and the BVH
+// against brute force with exactly the arithmetic the renderer uses.
+#extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_buffer_reference : require
+#extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
+#include "shared/layout.h"
+#include "integrator/path.glsl"
+
+layout(local_size_x = 64) in;
+layout(push_constant) uniform PushBlock { GpuTestPush push; };
+
+void main() {
+    uint i = gl_GlobalInvocationID.x;
+    if (i >= push.count) return;
+    if (push.sceneParams != 0ul) bindScene(push.sceneParams);
+    Vec4Ref outputs = Vec4Ref(push.outputs);
+    Rng rng = rngCreate(uvec2(i, i >> 16u), 0u, push.seed);
+    vec2 u = rng2(rng, 0u);
+    if (push.mode == TEST_MODE_COSINE_HEMISPHERE || push.mode == TEST_MODE_UNIFORM_HEMISPHERE) {
+        vec3 w = push.mode == TEST_MODE_COSINE_HEMISPHERE ? sampleCosineHemisphere(u) : sampleUniformHemisphere(u);
+        float pdf = push.mode == TEST_MODE_COSINE_HEMISPHERE ? cosineHemispherePdf(w.z) : uniformHemispherePdf(w.z);
+        outputs.v[i] = vec4(w, pdf);
+    } else if (push.mode == TEST_MODE_LIGHT_SAMPLE) {
+        LightSample ls = sampleLight(push.point, rng1(rng, 2u), rng2(rng, 3u));
+        outputs.v[i] = vec4(ls.wi, ls.pdf);
+    } else if (push.mode == TEST_MODE_LIGHT_PDF) {
+        // pdf of direction inputs[i] as the integrator computes it when a BSDF ray hits a light.
+        Ray ray;
+        ray.origin = push.point;
+        ray.direction = normalize(Vec4Ref(push.inputs).v[i].xyz);
+        Hit hit;
+        float pdf = 0.0;
+        if (traceClosest(ray, FLOAT_MAX, hit)) {
+            GpuTriangle tri = sceneTriangles.v[hit.triangle];
+            vec3 ng = normalize(cross(tri.p1 - tri.p0, tri.p2 - tri.p0));
+            if (tri.lightIndex != NO_LIGHT) pdf = lightPdf(tri.lightIndex, hit.t, dot(ng, ray.direction));
+        }
+        outputs.v[i] = vec4(pdf);
+    } else if (push.mode == TEST_MODE_TRACE_BVH || push.mode == TEST_MODE_TRACE_BRUTE_FORCE) {
+        GpuTestRay tr = TestRayRef(push.inputs).v[i];
+        Ray ray;
+        ray.origin = tr.origin;
+        ray.direction = tr.direction;
+        Hit hit;
+        bool found = false;
+        if (push.mode == TEST_MODE_TRACE_BVH) {
+            found = traceClosest(ray, tr.tMax, hit);
+            // The any-hit query must agree with the closest-hit one about whether anything is there.
+            bool any = traceAny(ray, tr.tMax);
+            if (any != found) found = false, hit.t = -2.0;
+        } else {
+            WatertightRay wray = makeWatertightRay(ray);
+            hit.t = tr.tMax;
+            hit.triangle = 0u;
+            hit.bary = vec2(0.0);
+            for (uint k = 0u; k < scene.numTriangles; ++k) {
+                GpuTriangle tri = sceneTriangles.v[k];
+                float t;
+                vec2 bary;
+                if (intersectTriangle(wray, tri.p0, tri.p1, tri.p2, hit.t, t, bary)) {
+                    hit.t = t;
+                    hit.triangle = k;
+                    hit.bary = bary;
+                    found = true;
+                }
+            }
+        }
+        outputs.v[i] = found ? vec4(hit.t, uintBitsToFloat(hit.triangle), hit.bary) : vec4(hit.t == -2.0 ? -2.0 : -1.0, 0.0, 0.0, 0.0);
+    }
+}

@@ -1,0 +1,58 @@
+#pragma once
+#include <glm/glm.hpp>
+#include <cstdint>
+#include <limits>
+#include <span>
+#include <vector>
+
+namespace pt {
+
+struct Aabb {
+    glm::vec3 lo{ std::numeric_limits<float>::infinity() };
+    glm::vec3 hi{ -std::numeric_limits<float>::infinity() };
+    void grow(const glm::vec3& p);
+    void grow(const Aabb& b);
+    glm::vec3 centroid() const;  // meaningless for empty boxes
+    float surfaceArea() const;   // 0 for empty boxes
+    bool empty() const;
+};
+
+// Flattened node, depth-first order. Interior node: count == 0, its two children are
+// nodes[leftOrFirst] and nodes[leftOrFirst + 1] (always adjacent, and always at a larger index
+// than their parent). Leaf: count > 0 primitives primOrder[leftOrFirst .. leftOrFirst + count).
+// The root is nodes[0]. For zero primitives nodes is empty (no node with an empty box exists).
+// Layout is 32 bytes, two std430-compatible vec3+uint pairs, so it can be uploaded as is.
+struct BvhNode {
+    glm::vec3 lo;
+    uint32_t leftOrFirst;
+    glm::vec3 hi;
+    uint32_t count;
+};
+static_assert(sizeof(BvhNode) == 32, "BvhNode is uploaded verbatim to the GPU");
+
+struct BvhBuildOptions {
+    int bins = 16;             // clamped to [2, 128]
+    int maxLeafSize = 4;       // clamped to >= 1; never exceeded
+    float traversalCost = 1.0f;
+    float intersectCost = 1.0f;
+    int threads = 0;           // 0 = hardware concurrency; the result does not depend on it
+};
+
+struct Bvh {
+    std::vector<BvhNode> nodes;
+    std::vector<uint32_t> primOrder; // leaf ranges index this; primOrder[i] = original primitive index
+    // SAH cost of the tree relative to the root area:
+    //   (sum over interior nodes traversalCost * area + sum over leaves intersectCost * count * area) / rootArea
+    // If the root box has zero area every node is counted with the root's area.
+    double sahCost = 0;
+    int maxDepth = 0;          // edges on the longest root-to-leaf path (0 for a single leaf);
+                               // a push-far-child traversal needs at most this many stack entries
+    double buildSeconds = 0;
+};
+
+// Builds over arbitrary primitives given their bounds (triangles now, spheres later).
+// Bounds must be finite; they may be flat or points. Throws std::length_error above 2^31-1 prims.
+// The output (nodes, primOrder, sahCost, maxDepth) is identical for every options.threads value.
+Bvh buildBvh(std::span<const Aabb> primBounds, const BvhBuildOptions& options = {});
+
+} // namespace pt

@@ -1,0 +1,87 @@
+// pt: a path tracer on Vulkan compute. Subcommands: render, devices.
+#include "app/options.h"
+#include "app/render_command.h"
+#include "gpu/vulkan_context.h"
+
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+#include <cstdlib>
+#include <exception>
+#include <string>
+
+namespace {
+
+int listDevices() {
+    auto devices = pt::VulkanContext::listDevices();
+    if (devices.empty()) {
+        std::fprintf(stderr, "pt: error: no Vulkan device found (install mesa-vulkan-drivers for lavapipe, or a GPU driver)\n");
+        return 1;
+    }
+    for (const auto& d : devices)
+        std::printf("%u: %s (%s, %s, Vulkan %u.%u)%s%s\n", d.index, d.name.c_str(), d.type.c_str(), d.driver.c_str(),
+            VK_API_VERSION_MAJOR(d.apiVersion), VK_API_VERSION_MINOR(d.apiVersion), d.usable ? "" : " unusable: ",
+            d.whyNotUsable.c_str());
+    return 0;
+}
+
+bool onOff(const std::string& v) { return v == "on"; }
+
+} // namespace
+
+int main(int argc, char** argv) {
+    CLI::App app{"pt: a physically based path tracer on Vulkan compute shaders"};
+    app.require_subcommand(1);
+    pt::RenderOptions o;
+    std::string nee = "on", mis = "on", rr = "on", sampling = "cosine";
+
+    CLI::App* render = app.add_subcommand("render", "Render a scene (glTF .gltf/.glb; none: the built-in Cornell box) to EXR and PNG");
+    render->add_option("scene", o.scene, "Scene file");
+    render->add_option("-o,--output", o.output, "Output EXR (default out/<scene>.exr); a tonemapped PNG is written beside it");
+    auto* sppOpt = render->add_option("--spp", o.spp, "Samples per pixel (default 64)")->check(CLI::Range(1u, 1u << 30));
+    auto* timeOpt = render->add_option("--time", o.seconds, "Render for this many seconds instead of a fixed spp")->check(CLI::Range(0.001, 1e7));
+    sppOpt->excludes(timeOpt);
+    render->add_option("--width", o.width, "Image width (default: the scene's, else 512)")->check(CLI::Range(1, 1 << 30));
+    render->add_option("--height", o.height, "Image height (default: the scene's, else from the camera aspect)")->check(CLI::Range(1, 1 << 30));
+    render->add_option("--max-depth", o.maxDepth, "Ray segments per path including the camera ray (1: emitters only, 2: direct light); default 16")
+        ->check(CLI::Range(1u, 65536u));
+    render->add_option("--rr-start", o.integrator.rrStartDepth, "Russian roulette starts after this many segments (default 3)");
+    render->add_option("--seed", o.integrator.seed, "Random seed (default 0)");
+    render->add_option("--nee", nee, "Next event estimation (light sampling): on|off")->check(CLI::IsMember({"on", "off"}));
+    render->add_option("--mis", mis, "Multiple importance sampling of light and BSDF samples: on|off")->check(CLI::IsMember({"on", "off"}));
+    render->add_option("--rr", rr, "Russian roulette: on|off")->check(CLI::IsMember({"on", "off"}));
+    render->add_option("--sampling", sampling, "BSDF direction sampling: cosine|uniform")->check(CLI::IsMember({"cosine", "uniform"}));
+    render->add_option("--camera", o.camera, "Index of the camera to render (default 0)");
+    render->add_option("--device", o.device, "Use the first Vulkan device whose name contains this (see 'pt devices')");
+    render->add_option("--reference", o.reference, "Reference EXR: log relMSE after every pass");
+    render->add_option("--error-log", o.errorLog, "CSV of spp, seconds, relMSE after every pass (needs --reference)");
+    render->add_option("--exposure", o.exposure, "Exposure in stops for the PNG");
+    render->add_option("--tile", o.tileSize, "Split each pass into tiles of this many pixels square (same image)");
+    render->add_option("--pass-spp", o.passSpp, "Samples per pass (default: passes of about half a second; same image)");
+    render->add_flag("--validation", o.validation, "Enable the Vulkan validation layer; fail if it reports anything");
+    render->add_flag("-q,--quiet", o.quiet, "Only print the summary line and errors");
+
+    CLI::App* devices = app.add_subcommand("devices", "List Vulkan devices");
+
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        return app.exit(e);
+    }
+    if (const char* v = std::getenv("PT_VALIDATION"); v && std::string(v) == "1") o.validation = true;
+    o.integrator.nee = onOff(nee);
+    o.integrator.mis = onOff(mis);
+    o.integrator.rr = onOff(rr);
+    o.integrator.sampling = sampling == "cosine" ? pt::DirectionSampling::Cosine : pt::DirectionSampling::Uniform;
+    if (!o.errorLog.empty() && o.reference.empty()) {
+        std::fprintf(stderr, "pt: error: --error-log needs --reference\n");
+        return 2;
+    }
+    try {
+        if (*devices) return listDevices();
+        return pt::runRender(o);
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "pt: error: %s\n", e.what());
+        return 1;
+    }
+}

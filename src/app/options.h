@@ -1,0 +1,29 @@
+#pragma once
+// Parsed command line of `pt render`.
+#include "render/integrator_settings.h"
+
+#include <optional>
+#include <string>
+
+namespace pt {
+
+struct RenderOptions {
+    std::string scene; // empty: the built-in Cornell box
+    std::string output; // .exr; a tonemapped .png is written beside it
+    std::optional<uint32_t> spp;
+    std::optional<double> seconds;
+    std::optional<int> width, height;
+    std::optional<uint32_t> maxDepth;
+    int camera = 0;
+    std::string device;
+    std::string reference;
+    std::string errorLog;
+    uint32_t tileSize = 0; // 0: whole image per dispatch
+    uint32_t passSpp = 0;  // 0: choose passes of about half a second
+    bool validation = false;
+    bool quiet = false;
+    float exposure = 0.0f;
+    IntegratorSettings integrator;
+};
+
+} // namespace pt

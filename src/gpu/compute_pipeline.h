@@ -1,0 +1,39 @@
+#pragma once
+// A compute pipeline from embedded SPIR-V, with push constants only (every buffer is reached
+// through its device address) and specialization constants chosen per scene.
+#include "gpu/vulkan_context.h"
+
+#include <cstdint>
+#include <span>
+#include <utility>
+#include <vector>
+
+namespace pt {
+
+struct SpecializationConstant {
+    uint32_t id;
+    uint32_t value; // booleans are 0 or 1, as VkBool32
+};
+
+class ComputePipeline {
+public:
+    ComputePipeline(VulkanContext& context, std::span<const uint32_t> spirv, uint32_t pushConstantBytes,
+        const std::vector<SpecializationConstant>& constants, const char* name);
+    ~ComputePipeline();
+    ComputePipeline(const ComputePipeline&) = delete;
+    ComputePipeline& operator=(const ComputePipeline&) = delete;
+
+    VkPipeline handle() const { return pipeline_; }
+    VkPipelineLayout layout() const { return layout_; }
+    double creationSeconds() const { return creationSeconds_; }
+
+    void bindAndPush(VkCommandBuffer cmd, const void* pushData, uint32_t bytes) const;
+
+private:
+    VulkanContext& context_;
+    VkPipelineLayout layout_ = VK_NULL_HANDLE;
+    VkPipeline pipeline_ = VK_NULL_HANDLE;
+    double creationSeconds_ = 0;
+};
+
+} // namespace pt

@@ -1,0 +1,276 @@
+#include "gpu/vulkan_context.h"
+
+#include "gpu/vulkan_error.h"
+
+#include <algorithm>
+#include <cstring>
+#include <regex>
+
+namespace pt {
+namespace {
+
+const char* kValidationLayer = "VK_LAYER_KHRONOS_validation";
+
+const char* deviceTypeName(VkPhysicalDeviceType type) {
+    switch (type) {
+    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return "discrete GPU";
+    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return "integrated GPU";
+    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return "virtual GPU";
+    case VK_PHYSICAL_DEVICE_TYPE_CPU: return "CPU";
+    default: return "other";
+    }
+}
+
+// Preference order when no --device is given: a real GPU first, lavapipe last.
+int deviceTypeRank(VkPhysicalDeviceType type) {
+    switch (type) {
+    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return 4;
+    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return 3;
+    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return 2;
+    case VK_PHYSICAL_DEVICE_TYPE_CPU: return 1;
+    default: return 0;
+    }
+}
+
+VkInstance createInstance(bool validation) {
+    if (validation) {
+        uint32_t count = 0;
+        vkEnumerateInstanceLayerProperties(&count, nullptr);
+        std::vector<VkLayerProperties> layers(count);
+        vkEnumerateInstanceLayerProperties(&count, layers.data());
+        bool found = std::any_of(layers.begin(), layers.end(),
+            [](const VkLayerProperties& l) { return std::strcmp(l.layerName, kValidationLayer) == 0; });
+        if (!found)
+            throw std::runtime_error("Vulkan validation requested but VK_LAYER_KHRONOS_validation is not installed "
+                                     "(apt-get install vulkan-validationlayers)");
+    }
+    VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
+    app.pApplicationName = "pt";
+    app.apiVersion = VK_API_VERSION_1_2;
+    std::vector<const char*> extensions;
+    std::vector<const char*> layers;
+    if (validation) {
+        extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
+        layers.push_back(kValidationLayer);
+    }
+    VkInstanceCreateInfo info{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
+    info.pApplicationInfo = &app;
+    info.enabledExtensionCount = static_cast<uint32_t>(extensions.size());
+    info.ppEnabledExtensionNames = extensions.data();
+    info.enabledLayerCount = static_cast<uint32_t>(layers.size());
+    info.ppEnabledLayerNames = layers.data();
+    VkInstance instance = VK_NULL_HANDLE;
+    VkResult result = vkCreateInstance(&info, nullptr, &instance);
+    if (result == VK_ERROR_INCOMPATIBLE_DRIVER || result == VK_ERROR_INITIALIZATION_FAILED)
+        throw std::runtime_error("no Vulkan driver found (install mesa-vulkan-drivers for lavapipe, or a GPU driver)");
+    vkCheck(result, "creating the Vulkan instance");
+    return instance;
+}
+
+std::vector<VkPhysicalDevice> enumerateDevices(VkInstance instance) {
+    uint32_t count = 0;
+    vkCheck(vkEnumeratePhysicalDevices(instance, &count, nullptr), "listing Vulkan devices");
+    std::vector<VkPhysicalDevice> devices(count);
+    vkCheck(vkEnumeratePhysicalDevices(instance, &count, devices.data()), "listing Vulkan devices");
+    return devices;
+}
+
+int findComputeQueueFamily(VkPhysicalDevice device) {
+    uint32_t count = 0;
+    vkGetPhysicalDeviceQueueFamilyProperties(device, &count, nullptr);
+    std::vector<VkQueueFamilyProperties> families(count);
+    vkGetPhysicalDeviceQueueFamilyProperties(device, &count, families.data());
+    for (uint32_t i = 0; i < count; ++i)
+        if (families[i].queueFlags & VK_QUEUE_COMPUTE_BIT) return static_cast<int>(i);
+    return -1;
+}
+
+DeviceInfo describeDevice(VkPhysicalDevice device, uint32_t index) {
+    VkPhysicalDeviceDriverProperties driver{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES};
+    VkPhysicalDeviceProperties2 props{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
+    props.pNext = &driver;
+    vkGetPhysicalDeviceProperties2(device, &props);
+    VkPhysicalDeviceVulkan12Features features12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
+    VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
+    features.pNext = &features12;
+    if (props.properties.apiVersion >= VK_API_VERSION_1_2) vkGetPhysicalDeviceFeatures2(device, &features);
+
+    DeviceInfo info;
+    info.index = index;
+    info.name = props.properties.deviceName;
+    info.type = deviceTypeName(props.properties.deviceType);
+    info.driver = std::string(driver.driverName) + " " + driver.driverInfo;
+    info.apiVersion = props.properties.apiVersion;
+    if (props.properties.apiVersion < VK_API_VERSION_1_2) info.whyNotUsable = "needs Vulkan 1.2";
+    else if (!features12.bufferDeviceAddress) info.whyNotUsable = "no bufferDeviceAddress";
+    else if (!features.features.shaderInt64) info.whyNotUsable = "no shaderInt64";
+    else if (findComputeQueueFamily(device) < 0) info.whyNotUsable = "no compute queue";
+    info.usable = info.whyNotUsable.empty();
+    return info;
+}
+
+// Mesa's lavapipe before 24 compiles our branches into much slower code (shared/LAVAPIPE.md).
+bool driverIsSlowLavapipe(VkPhysicalDevice device) {
+    VkPhysicalDeviceDriverProperties driver{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES};
+    VkPhysicalDeviceProperties2 props{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
+    props.pNext = &driver;
+    vkGetPhysicalDeviceProperties2(device, &props);
+    if (driver.driverID != VK_DRIVER_ID_MESA_LLVMPIPE) return false;
+    std::smatch m;
+    std::string text = driver.driverInfo;
+    if (!std::regex_search(text, m, std::regex(R"(Mesa (\d+)\.)"))) return false;
+    return std::stoi(m[1].str()) < 24;
+}
+
+} // namespace
+
+std::vector<DeviceInfo> VulkanContext::listDevices() {
+    VkInstance instance = createInstance(false);
+    std::vector<DeviceInfo> result;
+    try {
+        auto devices = enumerateDevices(instance);
+        for (uint32_t i = 0; i < devices.size(); ++i) result.push_back(describeDevice(devices[i], i));
+    } catch (...) {
+        vkDestroyInstance(instance, nullptr);
+        throw;
+    }
+    vkDestroyInstance(instance, nullptr);
+    return result;
+}
+
+VulkanContext::VulkanContext(const ContextOptions& options) {
+    instance_ = createInstance(options.validation);
+    try {
+        if (options.validation) {
+            auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
+                vkGetInstanceProcAddr(instance_, "vkCreateDebugUtilsMessengerEXT"));
+            VkDebugUtilsMessengerCreateInfoEXT info{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
+            info.messageSeverity =
+                VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
+            info.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT |
+                               VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
+                               VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
+            info.pfnUserCallback = &VulkanContext::debugCallback;
+            info.pUserData = this;
+            if (create) vkCheck(create(instance_, &info, nullptr, &messenger_), "creating the validation messenger");
+        }
+
+        // Pick a device: the first match for --device, else the best-ranked usable one.
+        auto devices = enumerateDevices(instance_);
+        if (devices.empty())
+            throw std::runtime_error("no Vulkan device found (install mesa-vulkan-drivers for lavapipe, or a GPU driver)");
+        int best = -1;
+        int bestRank = -1;
+        std::string rejected;
+        for (uint32_t i = 0; i < devices.size(); ++i) {
+            DeviceInfo info = describeDevice(devices[i], i);
+            if (!options.deviceSubstring.empty() && info.name.find(options.deviceSubstring) == std::string::npos) continue;
+            if (!info.usable) {
+                rejected += (rejected.empty() ? "" : "; ") + info.name + ": " + info.whyNotUsable;
+                continue;
+            }
+            VkPhysicalDeviceProperties p;
+            vkGetPhysicalDeviceProperties(devices[i], &p);
+            int rank = deviceTypeRank(p.deviceType);
+            if (!options.deviceSubstring.empty()) rank = 100 - static_cast<int>(i); // first match wins
+            if (rank > bestRank) {
+                best = static_cast<int>(i);
+                bestRank = rank;
+            }
+        }
+        if (best < 0) {
+            if (!options.deviceSubstring.empty())
+                throw std::runtime_error("no usable Vulkan device matches --device '" + options.deviceSubstring +
+                                         "'" + (rejected.empty() ? "" : " (" + rejected + ")") + "; see 'pt devices'");
+            throw std::runtime_error("no usable Vulkan device (" + rejected + ")");
+        }
+        physicalDevice_ = devices[best];
+        info_ = describeDevice(physicalDevice_, static_cast<uint32_t>(best));
+        slowLavapipe_ = driverIsSlowLavapipe(physicalDevice_);
+        vkGetPhysicalDeviceProperties(physicalDevice_, &properties_);
+        vkGetPhysicalDeviceMemoryProperties(physicalDevice_, &memoryProperties_);
+        queueFamily_ = static_cast<uint32_t>(findComputeQueueFamily(physicalDevice_));
+
+        float priority = 1.0f;
+        VkDeviceQueueCreateInfo queueInfo{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
+        queueInfo.queueFamilyIndex = queueFamily_;
+        queueInfo.queueCount = 1;
+        queueInfo.pQueuePriorities = &priority;
+        VkPhysicalDeviceVulkan12Features features12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
+        features12.bufferDeviceAddress = VK_TRUE;
+        VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
+        features.pNext = &features12;
+        features.features.shaderInt64 = VK_TRUE;
+        VkDeviceCreateInfo deviceInfo{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
+        deviceInfo.pNext = &features;
+        deviceInfo.queueCreateInfoCount = 1;
+        deviceInfo.pQueueCreateInfos = &queueInfo;
+        vkCheck(vkCreateDevice(physicalDevice_, &deviceInfo, nullptr, &device_), "creating the Vulkan device");
+        vkGetDeviceQueue(device_, queueFamily_, 0, &queue_);
+
+        VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+        poolInfo.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
+        poolInfo.queueFamilyIndex = queueFamily_;
+        vkCheck(vkCreateCommandPool(device_, &poolInfo, nullptr, &commandPool_), "creating a command pool");
+        VkFenceCreateInfo fenceInfo{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+        vkCheck(vkCreateFence(device_, &fenceInfo, nullptr, &fence_), "creating a fence");
+    } catch (...) {
+        this->~VulkanContext();
+        throw;
+    }
+}
+
+VulkanContext::~VulkanContext() {
+    if (device_) {
+        vkDeviceWaitIdle(device_);
+        if (fence_) vkDestroyFence(device_, fence_, nullptr);
+        if (commandPool_) vkDestroyCommandPool(device_, commandPool_, nullptr);
+        vkDestroyDevice(device_, nullptr);
+        device_ = VK_NULL_HANDLE;
+    }
+    if (messenger_) {
+        auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
+            vkGetInstanceProcAddr(instance_, "vkDestroyDebugUtilsMessengerEXT"));
+        if (destroy) destroy(instance_, messenger_, nullptr);
+        messenger_ = VK_NULL_HANDLE;
+    }
+    if (instance_) {
+        vkDestroyInstance(instance_, nullptr);
+        instance_ = VK_NULL_HANDLE;
+    }
+}
+
+void VulkanContext::submitAndWait(const std::function<void(VkCommandBuffer)>& record) {
+    VkCommandBufferAllocateInfo alloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+    alloc.commandPool = commandPool_;
+    alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+    alloc.commandBufferCount = 1;
+    VkCommandBuffer cmd = VK_NULL_HANDLE;
+    vkCheck(vkAllocateCommandBuffers(device_, &alloc, &cmd), "allocating a command buffer");
+    struct Free {
+        VkDevice d;
+        VkCommandPool p;
+        VkCommandBuffer c;
+        ~Free() { vkFreeCommandBuffers(d, p, 1, &c); }
+    } guard{device_, commandPool_, cmd};
+    VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+    begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+    vkCheck(vkBeginCommandBuffer(cmd, &begin), "recording commands");
+    record(cmd);
+    vkCheck(vkEndCommandBuffer(cmd), "recording commands");
+    VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+    submit.commandBufferCount = 1;
+    submit.pCommandBuffers = &cmd;
+    vkCheck(vkResetFences(device_, 1, &fence_), "resetting a fence");
+    vkCheck(vkQueueSubmit(queue_, 1, &submit, fence_), "submitting work to the GPU");
+    vkCheck(vkWaitForFences(device_, 1, &fence_, VK_TRUE, UINT64_MAX), "waiting for the GPU");
+}
+
+VKAPI_ATTR VkBool32 VKAPI_CALL VulkanContext::debugCallback(VkDebugUtilsMessageSeverityFlagBitsEXT,
+    VkDebugUtilsMessageTypeFlagsEXT, const VkDebugUtilsMessengerCallbackDataEXT* data, void* user) {
+    auto* self = static_cast<VulkanContext*>(user);
+    if (self->validationMessages_++ == 0 && data && data->pMessage) self->firstValidationMessage_ = data->pMessage;
+    return VK_FALSE;
+}
+
+} // namespace pt

@@ -1,0 +1,80 @@
+#include "render/feature_set.h"
+
+#include "shared/layout.h"
+
+#include <sstream>
+
+namespace pt {
+
+std::string IntegratorSettings::describe() const {
+    std::ostringstream s;
+    s << "nee=" << (nee ? "on" : "off") << " mis=" << (mis ? "on" : "off") << " rr=" << (rr ? "on" : "off")
+      << " sampling=" << (sampling == DirectionSampling::Cosine ? "cosine" : "uniform") << " max-depth=" << maxDepth
+      << " rr-start=" << rrStartDepth << " seed=" << seed;
+    return s.str();
+}
+
+FeatureSet FeatureSet::all(const IntegratorSettings& settings) {
+    FeatureSet f;
+    f.nee = settings.nee;
+    f.mis = settings.nee && settings.mis;
+    f.rr = settings.rr;
+    f.cosineSampling = settings.sampling == DirectionSampling::Cosine;
+    return f;
+}
+
+FeatureSet computeFeatures(const FlatScene& scene, const IntegratorSettings& settings) {
+    FeatureSet f;
+    f.diffuse = f.mirror = f.dielectric = f.absorption = f.shadingNormals = false;
+    for (const auto& m : scene.materials) {
+        f.diffuse |= m.type == MATERIAL_DIFFUSE;
+        f.mirror |= m.type == MATERIAL_MIRROR;
+        f.dielectric |= m.type == MATERIAL_DIELECTRIC;
+        f.absorption |= m.type == MATERIAL_DIELECTRIC && (m.flags & MATERIAL_FLAG_ABSORBING) != 0u;
+    }
+    for (const auto& t : scene.triangles) f.shadingNormals |= (t.flags & TRIANGLE_FLAG_SHADING_NORMALS) != 0u;
+    f.emitters = !scene.lights.lights.empty();
+    // Light sampling needs something to sample and a surface that can use it (diffuse only today).
+    f.nee = settings.nee && f.emitters && f.diffuse;
+    f.mis = f.nee && settings.mis;
+    f.rr = settings.rr;
+    f.cosineSampling = settings.sampling == DirectionSampling::Cosine;
+    return f;
+}
+
+std::vector<SpecializationConstant> FeatureSet::constants(uint32_t localSizeX, uint32_t localSizeY) const {
+    return {
+        {SPEC_LOCAL_SIZE_X, localSizeX},
+        {SPEC_LOCAL_SIZE_Y, localSizeY},
+        {SPEC_HAS_DIFFUSE, diffuse},
+        {SPEC_HAS_MIRROR, mirror},
+        {SPEC_HAS_DIELECTRIC, dielectric},
+        {SPEC_HAS_ABSORPTION, absorption},
+        {SPEC_HAS_SHADING_NORMALS, shadingNormals},
+        {SPEC_HAS_EMITTERS, emitters},
+        {SPEC_USE_NEE, nee},
+        {SPEC_USE_MIS, mis},
+        {SPEC_USE_RR, rr},
+        {SPEC_COSINE_SAMPLING, cosineSampling},
+    };
+}
+
+std::string FeatureSet::describe() const {
+    std::string s;
+    auto add = [&](bool on, const char* name) {
+        if (on) s += (s.empty() ? "" : " ") + std::string(name);
+    };
+    add(diffuse, "diffuse");
+    add(mirror, "mirror");
+    add(dielectric, "dielectric");
+    add(absorption, "absorption");
+    add(shadingNormals, "shading-normals");
+    add(emitters, "emitters");
+    add(nee, "nee");
+    add(mis, "mis");
+    add(rr, "rr");
+    s += cosineSampling ? " cosine-sampling" : " uniform-sampling";
+    return s;
+}
+
+} // namespace pt

@@ -1,0 +1,33 @@
+#pragma once
+// Which parts of the megakernel a scene and its switches need. Everything else is removed by
+// specialization constants when the pipeline is created (shaders/integrator/features.glsl).
+#include "gpu/compute_pipeline.h"
+#include "render/flat_scene.h"
+#include "render/integrator_settings.h"
+
+#include <string>
+#include <vector>
+
+namespace pt {
+
+struct FeatureSet {
+    bool diffuse = true;
+    bool mirror = true;
+    bool dielectric = true;
+    bool absorption = true;
+    bool shadingNormals = true;
+    bool emitters = true;
+    bool nee = true;
+    bool mis = true;
+    bool rr = true;
+    bool cosineSampling = true;
+
+    // Every feature on: the unspecialised kernel, for comparison and for tests.
+    static FeatureSet all(const IntegratorSettings& settings);
+    std::vector<SpecializationConstant> constants(uint32_t localSizeX, uint32_t localSizeY) const;
+    std::string describe() const; // e.g. "diffuse mirror nee mis rr cosine"
+};
+
+FeatureSet computeFeatures(const FlatScene& scene, const IntegratorSettings& settings);
+
+} // namespace pt

@@ -1,0 +1,104 @@
+#include "render/flat_scene.h"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace pt {
+namespace {
+
+gpu::GpuMaterial toGpu(const Material& m) {
+    gpu::GpuMaterial g{};
+    g.baseColor = m.baseColor;
+    g.emission = m.emission;
+    g.ior = m.ior;
+    g.flags = m.doubleSided ? MATERIAL_FLAG_DOUBLE_SIDED : 0u;
+    switch (m.type) {
+    case MaterialType::Diffuse: g.type = MATERIAL_DIFFUSE; break;
+    case MaterialType::Mirror: g.type = MATERIAL_MIRROR; break;
+    case MaterialType::Dielectric: g.type = MATERIAL_DIELECTRIC; break;
+    }
+    // glTF's KHR_materials_volume: transmittance attenuationColor after attenuationDistance,
+    // so sigma_a = -ln(color) / distance; an infinite distance means no absorption.
+    if (m.type == MaterialType::Dielectric && std::isfinite(m.attenuationDistance) && m.attenuationColor != glm::vec3(1.0f)) {
+        glm::vec3 c = glm::max(m.attenuationColor, glm::vec3(1e-30f));
+        g.sigmaA = -glm::log(glm::min(c, glm::vec3(1.0f))) / m.attenuationDistance;
+        g.flags |= MATERIAL_FLAG_ABSORBING;
+    }
+    return g;
+}
+
+bool finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+} // namespace
+
+FlatScene flattenScene(const Scene& scene, const BvhBuildOptions& bvhOptions) {
+    FlatScene flat;
+    for (const Material& m : scene.materials) flat.materials.push_back(toGpu(m));
+
+    // Gather valid triangles in scene order; zero-area ones can never be hit and would only
+    // cost traversal time (and break light sampling if emissive).
+    std::vector<gpu::GpuTriangle> triangles;
+    std::vector<gpu::GpuTriangleShading> shading;
+    std::vector<Aabb> bounds;
+    triangles.reserve(scene.triangleCount());
+    for (const Mesh& mesh : scene.meshes) {
+        if (mesh.material >= scene.materials.size())
+            throw std::runtime_error(scene.source + ": mesh '" + mesh.name + "' uses a material that does not exist");
+        for (const glm::uvec3& t : mesh.triangles) {
+            gpu::GpuTriangle tri{};
+            tri.p0 = mesh.positions.at(t.x);
+            tri.p1 = mesh.positions.at(t.y);
+            tri.p2 = mesh.positions.at(t.z);
+            const glm::vec3 n = glm::cross(tri.p1 - tri.p0, tri.p2 - tri.p0);
+            if (!finite(n) || glm::dot(n, n) == 0.0f || !finite(tri.p0) || !finite(tri.p1) || !finite(tri.p2)) {
+                flat.degenerateTriangles++;
+                continue;
+            }
+            tri.materialIndex = mesh.material;
+            tri.lightIndex = NO_LIGHT;
+            gpu::GpuTriangleShading sh{};
+            if (!mesh.normals.empty()) {
+                sh.n0 = mesh.normals[t.x];
+                sh.n1 = mesh.normals[t.y];
+                sh.n2 = mesh.normals[t.z];
+                // Zero normals mark invalid input (see the loaders): use the geometric normal.
+                if (sh.n0 != glm::vec3(0.0f) && sh.n1 != glm::vec3(0.0f) && sh.n2 != glm::vec3(0.0f))
+                    tri.flags |= TRIANGLE_FLAG_SHADING_NORMALS;
+            }
+            if (!mesh.uvs.empty()) {
+                sh.u0 = mesh.uvs[t.x].x;
+                sh.u1 = mesh.uvs[t.y].x;
+                sh.u2 = mesh.uvs[t.z].x;
+                sh.v = glm::vec3(mesh.uvs[t.x].y, mesh.uvs[t.y].y, mesh.uvs[t.z].y);
+            }
+            Aabb box;
+            box.grow(tri.p0);
+            box.grow(tri.p1);
+            box.grow(tri.p2);
+            triangles.push_back(tri);
+            shading.push_back(sh);
+            bounds.push_back(box);
+        }
+    }
+
+    Bvh bvh = buildBvh(bounds, bvhOptions);
+    if (bvh.maxDepth >= kMaxTraversalDepth)
+        throw std::runtime_error(scene.source + ": BVH depth " + std::to_string(bvh.maxDepth) + " exceeds the traversal stack (" +
+                                 std::to_string(kMaxTraversalDepth) + ")");
+    flat.bvhSeconds = bvh.buildSeconds;
+    flat.sahCost = bvh.sahCost;
+    flat.bvhDepth = bvh.maxDepth;
+    flat.nodes.reserve(bvh.nodes.size());
+    for (const BvhNode& n : bvh.nodes) flat.nodes.push_back({n.lo, n.leftOrFirst, n.hi, n.count});
+    flat.triangles.reserve(triangles.size());
+    flat.shading.reserve(triangles.size());
+    for (uint32_t original : bvh.primOrder) {
+        flat.triangles.push_back(triangles[original]);
+        flat.shading.push_back(shading[original]);
+    }
+    flat.lights = buildLightTable(flat.triangles, scene.materials);
+    return flat;
+}
+
+} // namespace pt

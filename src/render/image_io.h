@@ -1,0 +1,43 @@
+#pragma once
+
+#include <filesystem>
+#include <map>
+#include <string>
+
+#include "render/image.h"
+
+namespace pt {
+
+// Free-form key/value pairs stored in the EXR header (render settings, seed,
+// sample count, ...) so an output file documents how it was produced.
+using ImageMetadata = std::map<std::string, std::string>;
+
+// Writes float32 R,G,B,A with ZIP compression. Each metadata entry becomes a
+// string attribute named "pt:<key>", or "<key>" verbatim if the key already
+// contains ':' (i.e. it is already namespaced). The file is written to a
+// temporary name in the same directory and renamed into place, so readers
+// never see a half-written file.
+// Throws std::runtime_error("<path>: <problem>") on any failure.
+void writeExr(const std::filesystem::path& path, const Image& image,
+              const ImageMetadata& metadata);
+
+// Reads the data window of a scanline or tiled EXR of any pixel type.
+// Channels R,G,B,A are used; a missing A reads as 1, missing R/G/B as 0, and
+// a file with only a Y (luminance) channel is expanded to grey R=G=B=Y.
+// If metadata is given, it receives every string attribute of the header;
+// the "pt:" prefix added by writeExr is stripped, so writeExr -> readExr
+// round-trips keys (except keys that themselves start with "pt:").
+// Throws std::runtime_error("<path>: <problem>") on missing, corrupt or
+// truncated files; never lets an OpenEXR exception escape.
+Image readExr(const std::filesystem::path& path,
+              ImageMetadata* metadata = nullptr);
+
+// Display-referred preview: multiplies by 2^exposureStops, clamps to [0,1],
+// applies the piecewise sRGB OETF and writes 8-bit RGB (alpha dropped).
+// Pixels with any non-finite R,G,B become magenta (255,0,255) so NaN/Inf
+// bugs are visible. Written via temporary file + rename like writeExr.
+// Throws std::runtime_error("<path>: <problem>").
+void writePng(const std::filesystem::path& path, const Image& image,
+              float exposureStops = 0.0f);
+
+}  // namespace pt

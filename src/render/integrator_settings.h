@@ -1,0 +1,22 @@
+#pragma once
+#include <cstdint>
+#include <string>
+
+namespace pt {
+
+enum class DirectionSampling { Uniform, Cosine };
+
+// The integrator switches (the course's RendererParams) and limits.
+struct IntegratorSettings {
+    bool nee = true; // next event estimation (light sampling)
+    bool mis = true; // multiple importance sampling between light and BSDF samples (needs NEE)
+    bool rr = true;  // Russian roulette
+    DirectionSampling sampling = DirectionSampling::Cosine;
+    uint32_t maxDepth = 16;    // ray segments including the camera ray (Mitsuba 3's max_depth)
+    uint32_t rrStartDepth = 3; // Russian roulette only after this many segments
+    uint32_t seed = 0;
+
+    std::string describe() const;
+};
+
+} // namespace pt

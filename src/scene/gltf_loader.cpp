@@ -1,0 +1,452 @@
+#include "scene/gltf_loader.h"
+
+#include "scene/scene_error.h"
+
+#include <tiny_gltf.h>
+
+#include <glm/gtc/matrix_inverse.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
+#include <glm/gtc/type_ptr.hpp>
+
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+
+namespace pt {
+namespace {
+
+constexpr int kMaxNodeDepth = 1024;
+
+// Textures are not modelled yet: accept image data without decoding it, so a scene with
+// textures still loads (the unsupported list says what was ignored).
+bool skipImage(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*) {
+    return true;
+}
+
+bool finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+class GltfImporter {
+public:
+    GltfImporter(const tinygltf::Model& model, std::string file) : model_(model), file_(std::move(file)) {}
+
+    Scene run() {
+        scene_.source = file_;
+        readHints();
+        convertMaterials();
+        std::vector<int> roots = rootNodes();
+        std::vector<bool> onPath(model_.nodes.size(), false);
+        for (int root : roots) visitNode(root, glm::mat4(1.0f), onPath, 0);
+        if (scene_.triangleCount() == 0)
+            fail("no renderable geometry (the scene has no triangle primitives)");
+        noteUnsupportedExtensions();
+        std::vector<std::string> notes;
+        for (const auto& [what, count] : unsupportedCounts_)
+            notes.push_back(count > 1 ? what + " (x" + std::to_string(count) + ")" : what);
+        scene_.unsupported = notes;
+        return std::move(scene_);
+    }
+
+private:
+    [[noreturn]] void fail(const std::string& problem) const { throw SceneError(file_, problem); }
+    void unsupported(const std::string& what) { unsupportedCounts_[what]++; }
+
+    // ---- settings carried in scenes[].extras (width, height, max_depth) ----
+    void readHints() {
+        int sceneIndex = model_.defaultScene >= 0 ? model_.defaultScene : 0;
+        if (sceneIndex >= static_cast<int>(model_.scenes.size())) return;
+        const tinygltf::Value& extras = model_.scenes[sceneIndex].extras;
+        if (!extras.IsObject()) return;
+        auto intHint = [&](const char* key, std::optional<int>& out, int lo, int hi) {
+            if (!extras.Has(key)) return;
+            const tinygltf::Value& v = extras.Get(key);
+            if (!v.IsNumber()) return;
+            double d = v.GetNumberAsDouble();
+            if (!(d >= lo && d <= hi)) fail(std::string("scene extras: ") + key + " " + std::to_string(d) + " is out of range");
+            out = static_cast<int>(d);
+        };
+        intHint("width", scene_.hints.width, 1, 1 << 16);
+        intHint("height", scene_.hints.height, 1, 1 << 16);
+        intHint("max_depth", scene_.hints.maxDepth, 1, 1 << 16);
+    }
+
+    // ---- materials ----
+    static double number(const tinygltf::Value& obj, const char* key, double fallback) {
+        if (!obj.IsObject() || !obj.Has(key)) return fallback;
+        const tinygltf::Value& v = obj.Get(key);
+        return v.IsNumber() ? v.GetNumberAsDouble() : fallback;
+    }
+    static glm::vec3 color(const tinygltf::Value& obj, const char* key, glm::vec3 fallback) {
+        if (!obj.IsObject() || !obj.Has(key)) return fallback;
+        const tinygltf::Value& v = obj.Get(key);
+        if (!v.IsArray() || v.ArrayLen() < 3) return fallback;
+        glm::vec3 c;
+        for (int i = 0; i < 3; ++i) c[i] = v.Get(i).IsNumber() ? static_cast<float>(v.Get(i).GetNumberAsDouble()) : fallback[i];
+        return c;
+    }
+    static const tinygltf::Value* extension(const tinygltf::Material& m, const char* name) {
+        auto it = m.extensions.find(name);
+        return it == m.extensions.end() ? nullptr : &it->second;
+    }
+
+    void convertMaterials() {
+        for (size_t i = 0; i < model_.materials.size(); ++i) {
+            const tinygltf::Material& src = model_.materials[i];
+            const std::string label = "material " + std::to_string(i) + (src.name.empty() ? "" : " '" + src.name + "'");
+            Material m;
+            m.name = src.name.empty() ? "material " + std::to_string(i) : src.name;
+            m.doubleSided = src.doubleSided;
+            const auto& pbr = src.pbrMetallicRoughness;
+            for (int c = 0; c < 3; ++c) m.baseColor[c] = pbr.baseColorFactor.size() > 2 ? static_cast<float>(pbr.baseColorFactor[c]) : 1.0f;
+            for (int c = 0; c < 3; ++c) m.emission[c] = src.emissiveFactor.size() > 2 ? static_cast<float>(src.emissiveFactor[c]) : 0.0f;
+            if (const auto* e = extension(src, "KHR_materials_emissive_strength"))
+                m.emission *= static_cast<float>(number(*e, "emissiveStrength", 1.0));
+            if (!finite(m.baseColor) || !finite(m.emission) || glm::any(glm::lessThan(m.emission, glm::vec3(0))))
+                fail(label + ": base colour and emission must be finite and non-negative");
+            m.baseColor = glm::clamp(m.baseColor, 0.0f, 1.0f);
+
+            const double metallic = pbr.metallicFactor;
+            const double roughness = pbr.roughnessFactor;
+            double transmission = 0;
+            if (const auto* e = extension(src, "KHR_materials_transmission")) transmission = number(*e, "transmissionFactor", 0.0);
+            if (const auto* e = extension(src, "KHR_materials_ior")) m.ior = static_cast<float>(number(*e, "ior", 1.5));
+            if (!(m.ior >= 1.0f && m.ior < 10.0f)) fail(label + ": ior " + std::to_string(m.ior) + " must be in [1, 10)");
+            double specular = 1.0;
+            if (const auto* e = extension(src, "KHR_materials_specular")) specular = number(*e, "specularFactor", 1.0);
+
+            if (transmission > 0.0) {
+                m.type = MaterialType::Dielectric;
+                if (transmission < 1.0) unsupported("partial transmission (rendered as full)");
+                if (roughness > 1e-3) unsupported("rough transmission (rendered as smooth glass)");
+                if (const auto* e = extension(src, "KHR_materials_volume")) {
+                    m.attenuationColor = color(*e, "attenuationColor", glm::vec3(1.0f));
+                    m.attenuationDistance = static_cast<float>(number(*e, "attenuationDistance", INFINITY));
+                    if (!(m.attenuationDistance > 0) || !finite(m.attenuationColor) ||
+                        glm::any(glm::lessThan(m.attenuationColor, glm::vec3(0))))
+                        fail(label + ": KHR_materials_volume attenuation must be positive");
+                } else {
+                    unsupported("thin-walled transmission (rendered as a solid dielectric)");
+                }
+            } else if (metallic > 0.0) {
+                m.type = MaterialType::Mirror;
+                if (metallic < 1.0) unsupported("partly metallic materials (rendered as metal)");
+                if (roughness > 1e-3) unsupported("rough metal (rendered as a mirror)");
+            } else {
+                m.type = MaterialType::Diffuse;
+                if (specular > 0.0 && !m.emissive()) unsupported("dielectric specular layer (rendered as Lambertian; set KHR_materials_specular specularFactor 0)");
+            }
+            if (pbr.baseColorTexture.index >= 0 || pbr.metallicRoughnessTexture.index >= 0 || src.normalTexture.index >= 0 ||
+                src.emissiveTexture.index >= 0)
+                unsupported("textures (ignored)");
+            if (src.alphaMode == "MASK" || src.alphaMode == "BLEND") unsupported("alpha " + src.alphaMode + " (rendered opaque)");
+            scene_.materials.push_back(m);
+        }
+    }
+
+    uint32_t defaultMaterial() {
+        if (defaultMaterial_ < 0) {
+            Material m;
+            m.name = "glTF default";
+            m.baseColor = glm::vec3(1.0f); // the glTF default material: white, metallic 1, roughness 1
+            m.type = MaterialType::Diffuse;
+            unsupported("primitives without a material (rendered white Lambertian)");
+            defaultMaterial_ = static_cast<int>(scene_.materials.size());
+            scene_.materials.push_back(m);
+        }
+        return static_cast<uint32_t>(defaultMaterial_);
+    }
+
+    // ---- node hierarchy ----
+    std::vector<int> rootNodes() {
+        std::vector<int> roots;
+        if (!model_.scenes.empty()) {
+            int s = model_.defaultScene >= 0 ? model_.defaultScene : 0;
+            if (s >= static_cast<int>(model_.scenes.size())) fail("default scene " + std::to_string(s) + " does not exist");
+            roots = model_.scenes[s].nodes;
+        } else {
+            // No scene: every node that is nobody's child is a root.
+            std::vector<bool> isChild(model_.nodes.size(), false);
+            for (const auto& n : model_.nodes)
+                for (int c : n.children)
+                    if (c >= 0 && c < static_cast<int>(isChild.size())) isChild[c] = true;
+            for (size_t i = 0; i < model_.nodes.size(); ++i)
+                if (!isChild[i]) roots.push_back(static_cast<int>(i));
+            if (roots.empty() && !model_.nodes.empty()) fail("node hierarchy is cyclic (every node is a child)");
+        }
+        return roots;
+    }
+
+    glm::mat4 localTransform(const tinygltf::Node& node, int index) {
+        glm::mat4 m(1.0f);
+        if (node.matrix.size() == 16) {
+            for (int i = 0; i < 16; ++i) glm::value_ptr(m)[i] = static_cast<float>(node.matrix[i]);
+        } else {
+            glm::vec3 t(0.0f), s(1.0f);
+            glm::quat r(1.0f, 0.0f, 0.0f, 0.0f);
+            if (node.translation.size() == 3) t = glm::vec3(node.translation[0], node.translation[1], node.translation[2]);
+            if (node.scale.size() == 3) s = glm::vec3(node.scale[0], node.scale[1], node.scale[2]);
+            if (node.rotation.size() == 4)
+                r = glm::normalize(glm::quat(static_cast<float>(node.rotation[3]), static_cast<float>(node.rotation[0]),
+                    static_cast<float>(node.rotation[1]), static_cast<float>(node.rotation[2])));
+            m = glm::translate(glm::mat4(1.0f), t) * glm::mat4_cast(r) * glm::scale(glm::mat4(1.0f), s);
+        }
+        for (int i = 0; i < 16; ++i)
+            if (!std::isfinite(glm::value_ptr(m)[i])) fail("node " + std::to_string(index) + ": transform is not finite");
+        return m;
+    }
+
+    void visitNode(int index, const glm::mat4& parent, std::vector<bool>& onPath, int depth) {
+        if (index < 0 || index >= static_cast<int>(model_.nodes.size())) fail("node index " + std::to_string(index) + " out of range");
+        if (onPath[index]) fail("node hierarchy is cyclic (node " + std::to_string(index) + " is its own ancestor)");
+        if (depth > kMaxNodeDepth) fail("node hierarchy deeper than " + std::to_string(kMaxNodeDepth));
+        const tinygltf::Node& node = model_.nodes[index];
+        glm::mat4 world = parent * localTransform(node, index);
+        if (node.mesh >= 0) {
+            if (node.mesh >= static_cast<int>(model_.meshes.size())) fail("node " + std::to_string(index) + ": mesh index out of range");
+            addMesh(model_.meshes[node.mesh], node.mesh, world);
+        }
+        if (node.camera >= 0) addCamera(node.camera, world);
+        onPath[index] = true;
+        for (int child : node.children) visitNode(child, world, onPath, depth + 1);
+        onPath[index] = false;
+    }
+
+    // ---- accessors ----
+    // Checks that `count` elements of `elementBytes` each, `stride` apart, fit in the buffer
+    // view and the buffer, and returns a pointer to the first one.
+    const unsigned char* accessorData(int accessorIndex, const std::string& what, size_t& count, size_t& stride,
+        int& componentType, int& type) {
+        if (accessorIndex < 0 || accessorIndex >= static_cast<int>(model_.accessors.size()))
+            fail(what + ": accessor " + std::to_string(accessorIndex) + " out of range");
+        const tinygltf::Accessor& acc = model_.accessors[accessorIndex];
+        const std::string label = what + " (accessor " + std::to_string(accessorIndex) + ")";
+        if (acc.sparse.isSparse) fail(label + ": sparse accessors are not supported");
+        if (acc.bufferView < 0 || acc.bufferView >= static_cast<int>(model_.bufferViews.size()))
+            fail(label + ": missing or out-of-range bufferView");
+        const tinygltf::BufferView& view = model_.bufferViews[acc.bufferView];
+        if (view.buffer < 0 || view.buffer >= static_cast<int>(model_.buffers.size())) fail(label + ": buffer index out of range");
+        const tinygltf::Buffer& buffer = model_.buffers[view.buffer];
+        int componentBytes = tinygltf::GetComponentSizeInBytes(static_cast<uint32_t>(acc.componentType));
+        int components = tinygltf::GetNumComponentsInType(static_cast<uint32_t>(acc.type));
+        if (componentBytes <= 0 || components <= 0) fail(label + ": invalid componentType or type");
+        const uint64_t elementBytes = static_cast<uint64_t>(componentBytes) * components;
+        stride = view.byteStride ? view.byteStride : elementBytes;
+        count = acc.count;
+        if (count == 0) fail(label + ": count is 0");
+        const uint64_t viewEnd = static_cast<uint64_t>(view.byteOffset) + view.byteLength;
+        if (view.byteOffset > buffer.data.size() || viewEnd > buffer.data.size())
+            fail(label + ": bufferView exceeds its buffer (" + std::to_string(buffer.data.size()) + " bytes)");
+        if (count > view.byteLength / std::max<uint64_t>(1, stride) + 1)
+            fail(label + ": count " + std::to_string(count) + " exceeds the bufferView");
+        const uint64_t last = static_cast<uint64_t>(acc.byteOffset) + (count - 1) * stride + elementBytes;
+        if (last > view.byteLength) fail(label + ": count " + std::to_string(count) + " exceeds the bufferView");
+        componentType = acc.componentType;
+        type = acc.type;
+        return buffer.data.data() + view.byteOffset + acc.byteOffset;
+    }
+
+    template <int N>
+    std::vector<glm::vec<N, float>> readVectors(int accessorIndex, const std::string& what, bool allowNormalizedInts) {
+        size_t count, stride;
+        int componentType, type;
+        const unsigned char* data = accessorData(accessorIndex, what, count, stride, componentType, type);
+        const int expectedType = N == 2 ? TINYGLTF_TYPE_VEC2 : TINYGLTF_TYPE_VEC3;
+        if (type != expectedType) fail(what + " (accessor " + std::to_string(accessorIndex) + "): expected VEC" + std::to_string(N));
+        std::vector<glm::vec<N, float>> out(count);
+        for (size_t i = 0; i < count; ++i) {
+            const unsigned char* e = data + i * stride;
+            for (int c = 0; c < N; ++c) {
+                float v;
+                if (componentType == TINYGLTF_COMPONENT_TYPE_FLOAT) std::memcpy(&v, e + 4 * c, 4);
+                else if (allowNormalizedInts && componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE) v = e[c] / 255.0f;
+                else if (allowNormalizedInts && componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT) {
+                    uint16_t s;
+                    std::memcpy(&s, e + 2 * c, 2);
+                    v = s / 65535.0f;
+                } else
+                    fail(what + " (accessor " + std::to_string(accessorIndex) + "): unsupported component type " + std::to_string(componentType));
+                out[i][c] = v;
+            }
+        }
+        return out;
+    }
+
+    std::vector<uint32_t> readIndices(int accessorIndex, const std::string& what) {
+        size_t count, stride;
+        int componentType, type;
+        const unsigned char* data = accessorData(accessorIndex, what, count, stride, componentType, type);
+        if (type != TINYGLTF_TYPE_SCALAR) fail(what + ": indices must be SCALAR");
+        std::vector<uint32_t> out(count);
+        for (size_t i = 0; i < count; ++i) {
+            const unsigned char* e = data + i * stride;
+            switch (componentType) {
+            case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: out[i] = e[0]; break;
+            case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+                uint16_t v;
+                std::memcpy(&v, e, 2);
+                out[i] = v;
+                break;
+            }
+            case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: std::memcpy(&out[i], e, 4); break;
+            default: fail(what + ": index component type must be unsigned byte, short or int");
+            }
+        }
+        return out;
+    }
+
+    // ---- meshes ----
+    void addMesh(const tinygltf::Mesh& mesh, int meshIndex, const glm::mat4& world) {
+        const glm::mat3 normalMatrix = glm::inverseTranspose(glm::mat3(world));
+        // A mirroring transform turns counter-clockwise into clockwise: swap to keep front faces.
+        const bool mirrored = glm::determinant(glm::mat3(world)) < 0.0f;
+        for (size_t p = 0; p < mesh.primitives.size(); ++p) {
+            const tinygltf::Primitive& prim = mesh.primitives[p];
+            const std::string label = "mesh " + std::to_string(meshIndex) + (mesh.name.empty() ? "" : " '" + mesh.name + "'") +
+                                      " primitive " + std::to_string(p);
+            int mode = prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
+            if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP && mode != TINYGLTF_MODE_TRIANGLE_FAN) {
+                unsupported("point and line primitives (skipped)");
+                continue;
+            }
+            auto pos = prim.attributes.find("POSITION");
+            if (pos == prim.attributes.end()) fail(label + ": no POSITION attribute");
+            Mesh out;
+            out.name = mesh.name.empty() ? "mesh " + std::to_string(meshIndex) : mesh.name;
+            out.positions = readVectors<3>(pos->second, label + " POSITION", false);
+            for (size_t i = 0; i < out.positions.size(); ++i)
+                if (!finite(out.positions[i]))
+                    fail(label + " POSITION: vertex " + std::to_string(i) + " is non-finite (NaN or Inf)");
+            for (auto& v : out.positions) v = glm::vec3(world * glm::vec4(v, 1.0f));
+            for (size_t i = 0; i < out.positions.size(); ++i)
+                if (!finite(out.positions[i])) fail(label + ": vertex " + std::to_string(i) + " overflows after transformation");
+            if (auto n = prim.attributes.find("NORMAL"); n != prim.attributes.end()) {
+                out.normals = readVectors<3>(n->second, label + " NORMAL", false);
+                if (out.normals.size() != out.positions.size()) fail(label + ": NORMAL count differs from POSITION count");
+                // Invalid normals become zero: the triangle then shades with its geometric normal.
+                for (auto& v : out.normals) {
+                    glm::vec3 w = normalMatrix * v;
+                    float len = glm::length(w);
+                    v = (std::isfinite(len) && len > 0.0f) ? w / len : glm::vec3(0.0f);
+                }
+            }
+            if (auto t = prim.attributes.find("TEXCOORD_0"); t != prim.attributes.end()) {
+                out.uvs = readVectors<2>(t->second, label + " TEXCOORD_0", true);
+                if (out.uvs.size() != out.positions.size()) fail(label + ": TEXCOORD_0 count differs from POSITION count");
+            }
+            std::vector<uint32_t> indices;
+            if (prim.indices >= 0) {
+                indices = readIndices(prim.indices, label + " indices");
+                for (size_t i = 0; i < indices.size(); ++i)
+                    if (indices[i] >= out.positions.size())
+                        fail(label + ": index " + std::to_string(indices[i]) + " at position " + std::to_string(i) +
+                             " is out of range (" + std::to_string(out.positions.size()) + " vertices)");
+            } else {
+                indices.resize(out.positions.size());
+                for (size_t i = 0; i < indices.size(); ++i) indices[i] = static_cast<uint32_t>(i);
+            }
+            auto addTriangle = [&](uint32_t a, uint32_t b, uint32_t c) {
+                out.triangles.push_back(mirrored ? glm::uvec3(a, c, b) : glm::uvec3(a, b, c));
+            };
+            if (mode == TINYGLTF_MODE_TRIANGLES) {
+                if (indices.size() % 3 != 0) unsupported("triangle lists whose length is not a multiple of 3 (tail dropped)");
+                for (size_t i = 0; i + 2 < indices.size(); i += 3) addTriangle(indices[i], indices[i + 1], indices[i + 2]);
+            } else if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
+                for (size_t i = 0; i + 2 < indices.size(); ++i)
+                    if (i % 2 == 0) addTriangle(indices[i], indices[i + 1], indices[i + 2]);
+                    else addTriangle(indices[i + 1], indices[i], indices[i + 2]);
+            } else {
+                for (size_t i = 1; i + 1 < indices.size(); ++i) addTriangle(indices[0], indices[i], indices[i + 1]);
+            }
+            if (prim.material >= static_cast<int>(model_.materials.size())) fail(label + ": material index out of range");
+            out.material = prim.material >= 0 ? static_cast<uint32_t>(prim.material) : defaultMaterial();
+            if (!out.triangles.empty()) scene_.meshes.push_back(std::move(out));
+        }
+    }
+
+    // ---- cameras ----
+    void addCamera(int cameraIndex, const glm::mat4& world) {
+        if (cameraIndex >= static_cast<int>(model_.cameras.size())) fail("camera index " + std::to_string(cameraIndex) + " out of range");
+        const tinygltf::Camera& cam = model_.cameras[cameraIndex];
+        if (cam.type != "perspective") {
+            unsupported("orthographic cameras (skipped)");
+            return;
+        }
+        const double yfov = cam.perspective.yfov;
+        if (!(yfov > 0.0 && yfov < M_PI))
+            fail("camera " + std::to_string(cameraIndex) + ": yfov " + std::to_string(yfov) + " must be in (0, pi)");
+        Camera c;
+        c.name = cam.name.empty() ? "camera " + std::to_string(cameraIndex) : cam.name;
+        c.position = glm::vec3(world * glm::vec4(0, 0, 0, 1));
+        glm::vec3 forward = glm::mat3(world) * glm::vec3(0, 0, -1);
+        glm::vec3 up = glm::mat3(world) * glm::vec3(0, 1, 0);
+        if (glm::length(forward) == 0.0f || glm::length(glm::cross(forward, up)) == 0.0f)
+            fail("camera " + std::to_string(cameraIndex) + ": degenerate camera transform");
+        c.forward = glm::normalize(forward);
+        c.up = glm::normalize(up - glm::dot(up, c.forward) * c.forward);
+        c.yfov = static_cast<float>(yfov);
+        c.aspectRatio = cam.perspective.aspectRatio > 0 ? static_cast<float>(cam.perspective.aspectRatio) : 0.0f;
+        scene_.cameras.push_back(c);
+    }
+
+    void noteUnsupportedExtensions() {
+        static const std::set<std::string> supported = {"KHR_materials_emissive_strength", "KHR_materials_ior",
+            "KHR_materials_specular", "KHR_materials_transmission", "KHR_materials_volume"};
+        for (const auto& e : model_.extensionsUsed)
+            if (!supported.count(e)) unsupported("extension " + e);
+    }
+
+    const tinygltf::Model& model_;
+    std::string file_;
+    Scene scene_;
+    int defaultMaterial_ = -1;
+    std::map<std::string, int> unsupportedCounts_;
+};
+
+std::string firstLine(const std::string& s) {
+    std::string line = s.substr(0, s.find('\n'));
+    while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) line.pop_back();
+    return line;
+}
+
+Scene importModel(bool ok, const tinygltf::Model& model, const std::string& err, const std::string& displayName) {
+    if (!ok)
+        throw SceneError(displayName, "invalid glTF: " + (err.empty() ? std::string("unknown error") : firstLine(err)));
+    return GltfImporter(model, displayName).run();
+}
+
+} // namespace
+
+Scene loadGltfFile(const std::filesystem::path& path) {
+    const std::string name = path.string();
+    std::error_code ec;
+    if (!std::filesystem::exists(path, ec)) throw SceneError(name, "file not found");
+    if (std::filesystem::is_directory(path, ec)) throw SceneError(name, "is a directory, not a glTF file");
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw SceneError(name, "cannot open for reading");
+    char magic[4] = {};
+    in.read(magic, 4);
+    const bool binary = in.gcount() == 4 && std::memcmp(magic, "glTF", 4) == 0;
+    if (!binary && path.extension() == ".glb") throw SceneError(name, "not a binary glTF file (bad magic)");
+    if (in.gcount() == 0) throw SceneError(name, "empty file");
+
+    tinygltf::TinyGLTF loader;
+    loader.SetImageLoader(&skipImage, nullptr);
+    tinygltf::Model model;
+    std::string err, warn;
+    bool ok = binary ? loader.LoadBinaryFromFile(&model, &err, &warn, name) : loader.LoadASCIIFromFile(&model, &err, &warn, name);
+    return importModel(ok, model, err, name);
+}
+
+Scene loadGltfText(std::string_view text, const std::string& displayName, const std::filesystem::path& baseDir) {
+    tinygltf::TinyGLTF loader;
+    loader.SetImageLoader(&skipImage, nullptr);
+    tinygltf::Model model;
+    std::string err, warn;
+    bool ok = loader.LoadASCIIFromString(&model, &err, &warn, text.data(), static_cast<unsigned int>(text.size()), baseDir.string());
+    return importModel(ok, model, err, displayName);
+}
+
+} // namespace pt

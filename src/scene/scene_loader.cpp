@@ -1,0 +1,19 @@
+#include "scene/scene_loader.h"
+
+#include "scene/default_scene.h"
+#include "scene/gltf_loader.h"
+#include "scene/scene_error.h"
+
+#include <algorithm>
+
+namespace pt {
+
+Scene loadScene(const std::filesystem::path& path) {
+    if (path.empty()) return loadDefaultScene();
+    std::string ext = path.extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    if (ext == ".gltf" || ext == ".glb") return loadGltfFile(path);
+    throw SceneError(path.string(), "unknown scene format '" + ext + "' (expected .gltf or .glb)");
+}
+
+} // namespace pt
