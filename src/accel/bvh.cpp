@@ -1,25 +1,31 @@
 // Binned SAH BVH builder (after Wald 2007, "On fast construction of SAH-based bounding volume
-// hierarchies").
+// hierarchies"), with an exact SAH sweep for small nodes.
 //
 // Structure of a build:
 //  1. Top phase (one thread, but binning of big nodes is split over threads): nodes are split
 //     depth-first until a node has at most kTaskPrims primitives; such a node becomes a task.
 //  2. Task phase: every task builds its subtree into its own node vector, in parallel.
 //  3. Assembly: top nodes first, then every task's nodes in task order, indices remapped.
-// The split decisions only depend on the primitives, and the decomposition into tasks only on
-// fixed constants, so nodes and primOrder are bit-identical for every thread count.
+// Split decisions depend only on the primitives, and the decomposition into tasks only on fixed
+// constants, so nodes and primOrder are bit-identical for every thread count.
 #include "bvh.h"
 
 #include <algorithm>
 #include <array>
 #include <atomic>
 #include <chrono>
-#include <cmath>
+#include <cstring>
 #include <exception>
 #include <mutex>
 #include <stdexcept>
 #include <thread>
-#include <cstdio>
+
+#if defined(__SSE2__) || defined(_M_X64)
+#include <emmintrin.h>
+#define PT_BVH_SSE 1
+#else
+#define PT_BVH_SSE 0
+#endif
 
 namespace pt {
 
@@ -35,8 +41,8 @@ void Aabb::grow(const Aabb& b)
     hi = glm::max(hi, b.hi);
 }
 
-// Halves first so that huge finite coordinates cannot overflow to infinity.
-glm::vec3 Aabb::centroid() const { return lo * 0.5f + hi * 0.5f; }
+// Same formula as the builder's centroids ((lo + hi) * 0.5, not contractible into an FMA).
+glm::vec3 Aabb::centroid() const { return (lo + hi) * 0.5f; }
 
 float Aabb::surfaceArea() const
 {
@@ -58,91 +64,116 @@ constexpr uint32_t kTaskPrims = 4096;
 // integer sums, which are exact, so the result does not depend on how the range was chunked.
 constexpr uint32_t kParallelBinPrims = 32768;
 // Nodes with at most this many primitives use an exact SAH sweep instead of binning (see
-// sweepSplit). At most 255 (order indices are bytes).
+// sweepSplit). At most 255 (sort indices are bytes).
 constexpr int kSweepPrims = 16;
 // Node indices are uint32_t and a tree over N prims has up to 2N-1 nodes.
 constexpr size_t kMaxPrims = (size_t(1) << 31) - 1;
+constexpr float kInf = std::numeric_limits<float>::infinity();
 
 // Working copy of a primitive, permuted in place (contiguous memory is much faster to bin and
-// partition than gathering through an index array). binKeys caches the bin of every axis from the
-// last binning pass, so the partition uses exactly the classification the SAH was evaluated on
-// (no recomputation that could round differently).
-struct PrimRef {
-    glm::vec3 lo;
+// partition than gathering through an index array). Laid out as two 16-byte rows so a box loads
+// as two SIMD registers; lane 3 of those registers carries prim / binKeys and is never used as a
+// coordinate. binKeys caches each axis' bin from the last binning pass, so the partition uses
+// exactly the classification the SAH was evaluated on, with no recomputation that could round
+// differently.
+struct alignas(16) PrimRef {
+    float lo[3];
     uint32_t prim;
-    glm::vec3 hi;
+    float hi[3];
     uint32_t binKeys;
 };
+static_assert(sizeof(PrimRef) == 32);
 
-inline glm::vec3 centroidOf(const PrimRef& r) { return r.lo * 0.5f + r.hi * 0.5f; }
+// Minimal 4-lane float vector: SSE2 where available, else a scalar twin with the same semantics
+// (min/max return the second operand when unordered, like minps/maxps), so results match.
+struct V4 {
+#if PT_BVH_SSE
+    __m128 v;
+#else
+    float v[4];
+#endif
+};
 
-// Local inline helpers for the hot loops (the exported Aabb::grow is not reliably inlined).
-inline void growBox(Aabb& b, const PrimRef& r)
+#if PT_BVH_SSE
+inline V4 splat(float f) { return { _mm_set1_ps(f) }; }
+inline V4 set3(float x, float y, float z) { return { _mm_set_ps(0.0f, z, y, x) }; }
+inline V4 loadRow(const void* p) { return { _mm_load_ps(static_cast<const float*>(p)) }; }
+inline void store(float* p, V4 a) { _mm_storeu_ps(p, a.v); }
+inline V4 vmin(V4 a, V4 b) { return { _mm_min_ps(a.v, b.v) }; }
+inline V4 vmax(V4 a, V4 b) { return { _mm_max_ps(a.v, b.v) }; }
+inline V4 vadd(V4 a, V4 b) { return { _mm_add_ps(a.v, b.v) }; }
+inline V4 vsub(V4 a, V4 b) { return { _mm_sub_ps(a.v, b.v) }; }
+inline V4 vmul(V4 a, V4 b) { return { _mm_mul_ps(a.v, b.v) }; }
+// Zeroes lane 3 (which holds integer payload bits) before arithmetic on it.
+inline V4 xyz(V4 a) { return { _mm_and_ps(a.v, _mm_castsi128_ps(_mm_set_epi32(0, -1, -1, -1))) }; }
+inline void truncToInt(V4 a, int32_t out[4]) { _mm_storeu_si128(reinterpret_cast<__m128i*>(out), _mm_cvttps_epi32(a.v)); }
+#else
+template <class F>
+inline V4 lanes(V4 a, V4 b, F f)
 {
-    b.lo = glm::min(b.lo, r.lo);
-    b.hi = glm::max(b.hi, r.hi);
+    V4 r;
+    for (int i = 0; i < 4; ++i) r.v[i] = f(a.v[i], b.v[i]);
+    return r;
 }
-
-inline void growPoint(Aabb& b, const glm::vec3& p)
+inline V4 splat(float f) { return { { f, f, f, f } }; }
+inline V4 set3(float x, float y, float z) { return { { x, y, z, 0.0f } }; }
+inline V4 loadRow(const void* p)
 {
-    b.lo = glm::min(b.lo, p);
-    b.hi = glm::max(b.hi, p);
+    V4 r;
+    std::memcpy(r.v, p, sizeof r.v);
+    return r;
 }
+inline void store(float* p, V4 a) { std::memcpy(p, a.v, sizeof a.v); }
+inline V4 vmin(V4 a, V4 b) { return lanes(a, b, [](float x, float y) { return x < y ? x : y; }); }
+inline V4 vmax(V4 a, V4 b) { return lanes(a, b, [](float x, float y) { return x > y ? x : y; }); }
+inline V4 vadd(V4 a, V4 b) { return lanes(a, b, [](float x, float y) { return x + y; }); }
+inline V4 vsub(V4 a, V4 b) { return lanes(a, b, [](float x, float y) { return x - y; }); }
+inline V4 vmul(V4 a, V4 b) { return lanes(a, b, [](float x, float y) { return x * y; }); }
+inline V4 xyz(V4 a)
+{
+    a.v[3] = 0.0f;
+    return a;
+}
+inline void truncToInt(V4 a, int32_t out[4])
+{
+    for (int i = 0; i < 4; ++i) out[i] = int32_t(a.v[i]);
+}
+#endif
 
-struct WorkItem {
-    uint32_t slot;  // index of this node in the node vector being filled (bounds already set)
-    uint32_t begin; // primitive range [begin, end) in the PrimRef array
-    uint32_t end;
-    int depth;
-    Aabb centroidBounds;
-};
+inline V4 loadLo(const PrimRef& r) { return loadRow(&r.lo[0]); }
+inline V4 loadHi(const PrimRef& r) { return loadRow(&r.hi[0]); }
+inline V4 centroidOf(V4 lo, V4 hi) { return vmul(vadd(xyz(lo), xyz(hi)), splat(0.5f)); }
 
-// Plain box without default member initialisers: a Bins object is created per node, and
-// initialising all kMaxBins * 3 boxes there (instead of only the used ones) would dominate the
-// cost of small nodes.
-struct BinBox {
-    glm::vec3 lo;
-    glm::vec3 hi;
-};
+struct Box4 {
+    V4 lo = splat(kInf);
+    V4 hi = splat(-kInf);
 
-struct Bins {
-    std::array<std::array<BinBox, kMaxBins>, 3> bounds;
-    std::array<std::array<uint32_t, kMaxBins>, 3> count;
-
-    void reset(int bins)
+    void grow(V4 plo, V4 phi)
     {
-        const float inf = std::numeric_limits<float>::infinity();
-        for (int a = 0; a < 3; ++a)
-            for (int i = 0; i < bins; ++i) {
-                bounds[a][i] = BinBox{ glm::vec3(inf), glm::vec3(-inf) };
-                count[a][i] = 0;
-            }
+        lo = vmin(lo, plo);
+        hi = vmax(hi, phi);
     }
-    void merge(const Bins& o, int bins)
+    void grow(V4 p) { grow(p, p); }
+    void grow(const Box4& b) { grow(b.lo, b.hi); }
+    void grow(const PrimRef& r) { grow(loadLo(r), loadHi(r)); }
+    // Only meaningful for non-empty boxes.
+    float area() const
     {
-        for (int a = 0; a < 3; ++a)
-            for (int i = 0; i < bins; ++i) {
-                bounds[a][i].lo = glm::min(bounds[a][i].lo, o.bounds[a][i].lo);
-                bounds[a][i].hi = glm::max(bounds[a][i].hi, o.bounds[a][i].hi);
-                count[a][i] += o.count[a][i];
-            }
+        float d[4];
+        store(d, vsub(hi, lo));
+        return 2.0f * (d[0] * d[1] + d[1] * d[2] + d[2] * d[0]);
     }
-};
-
-// Maps a centroid coordinate to a bin. An axis with zero centroid extent gets scale 0, which puts
-// every primitive in bin 0, so that axis never yields a split with two non-empty sides.
-struct BinMapping {
-    glm::vec3 origin;
-    glm::vec3 scale;
-    float lastBin; // bins - 1
-
-    // Branch-free clamp; written so that a NaN (0 * inf for a denormal extent) lands in bin 0.
-    int index(float c, float o, float sc) const
+    glm::vec3 lo3() const
     {
-        float t = (c - o) * sc;
-        t = t > 0.0f ? t : 0.0f;
-        t = t < lastBin ? t : lastBin;
-        return int(t);
+        float f[4];
+        store(f, lo);
+        return { f[0], f[1], f[2] };
+    }
+    glm::vec3 hi3() const
+    {
+        float f[4];
+        store(f, hi);
+        return { f[0], f[1], f[2] };
     }
 };
 
@@ -152,10 +183,50 @@ inline float boxArea(const glm::vec3& lo, const glm::vec3& hi)
     return 2.0f * (d.x * d.y + d.y * d.z + d.z * d.x);
 }
 
+struct WorkItem {
+    uint32_t slot;  // index of this node in the node vector being filled (bounds already set)
+    uint32_t begin; // primitive range [begin, end) in the PrimRef array
+    uint32_t end;
+    int depth;
+};
+
+struct Bins {
+    // Plain V4 arrays, not Box4: a Bins object is created per node, and default-initialising all
+    // 3 * kMaxBins boxes (instead of resetting the `bins` used ones) would dominate small nodes.
+    std::array<std::array<V4, kMaxBins>, 3> lo;
+    std::array<std::array<V4, kMaxBins>, 3> hi;
+    std::array<std::array<uint32_t, kMaxBins>, 3> count;
+
+    void reset(int bins)
+    {
+        for (int a = 0; a < 3; ++a)
+            for (int i = 0; i < bins; ++i) {
+                lo[a][i] = splat(kInf);
+                hi[a][i] = splat(-kInf);
+                count[a][i] = 0;
+            }
+    }
+    void add(int axis, int bin, V4 plo, V4 phi)
+    {
+        lo[axis][bin] = vmin(lo[axis][bin], plo);
+        hi[axis][bin] = vmax(hi[axis][bin], phi);
+        ++count[axis][bin];
+    }
+    void merge(const Bins& o, int bins)
+    {
+        for (int a = 0; a < 3; ++a)
+            for (int i = 0; i < bins; ++i) {
+                lo[a][i] = vmin(lo[a][i], o.lo[a][i]);
+                hi[a][i] = vmax(hi[a][i], o.hi[a][i]);
+                count[a][i] += o.count[a][i];
+            }
+    }
+};
+
 struct Split {
     int axis = -1; // -1: no split separates the primitives
     int bin = 0;   // left side = bins [0, bin)
-    float cost = std::numeric_limits<float>::infinity(); // sum of area * count, not normalised
+    float cost = kInf; // sum of area * count of both sides, not normalised
     uint32_t imbalance = 0;
 };
 
@@ -195,6 +266,15 @@ void parallelFor(int threads, size_t count, Fn&& fn)
     if (error) std::rethrow_exception(error);
 }
 
+// Fixed chunking for flat parallel loops (independent of the thread count on purpose).
+size_t chunkCount(size_t n) { return std::max<size_t>(1, std::min<size_t>(64, n / 16384)); }
+
+std::pair<uint32_t, uint32_t> chunkRange(uint32_t begin, uint32_t end, size_t chunks, size_t c)
+{
+    const uint64_t n = end - begin;
+    return { uint32_t(begin + n * c / chunks), uint32_t(begin + n * (c + 1) / chunks) };
+}
+
 class Builder {
 public:
     Builder(std::span<const Aabb> primBounds, const BvhBuildOptions& o)
@@ -209,40 +289,26 @@ public:
 
     void run(Bvh& out)
     {
-#ifdef BVH_PROFILE
-        auto tp = std::chrono::steady_clock::now();
-#define PROF(x) { auto t2 = std::chrono::steady_clock::now(); fprintf(stderr, "%s %.1f ms  ", x, std::chrono::duration<double>(t2 - tp).count() * 1e3); tp = t2; }
-#else
-#define PROF(x)
-#endif
         const uint32_t n = uint32_t(input_.size());
         refs_.resize(n);
 
-        // Root bounds, computed over fixed chunks (exact min/max, so order-independent).
-        WorkItem root{ 0, 0, n, 0, Aabb{} };
-        Aabb rootBounds;
+        // Root bounds over fixed chunks (exact min/max, so the merge order does not matter).
+        const WorkItem root{ 0, 0, n, 0 };
+        Box4 rootBounds;
         {
             const size_t chunks = chunkCount(n);
-            std::vector<Aabb> cb(chunks), bb(chunks);
+            std::vector<Box4> bb(chunks);
             parallelFor(threads_, chunks, [&](size_t c) {
                 const auto [b, e] = chunkRange(0, n, chunks, c);
                 for (uint32_t i = b; i < e; ++i) {
-                    const Aabb& src = input_[i];
-                    refs_[i] = PrimRef{ src.lo, i, src.hi, 0 };
-                    growBox(bb[c], refs_[i]);
-                    growPoint(cb[c], centroidOf(refs_[i]));
+                    const Aabb& s = input_[i];
+                    refs_[i] = PrimRef{ { s.lo.x, s.lo.y, s.lo.z }, i, { s.hi.x, s.hi.y, s.hi.z }, 0 };
+                    bb[c].grow(refs_[i]);
                 }
             });
-            for (size_t c = 0; c < chunks; ++c) {
-                rootBounds.grow(bb[c]);
-                root.centroidBounds.grow(cb[c]);
-            }
+            for (size_t c = 0; c < chunks; ++c) rootBounds.grow(bb[c]);
         }
-
-        PROF("root");
-        std::vector<BvhNode> nodes;
-        nodes.reserve(2 * size_t(std::min(n, kTaskPrims * 4)));
-        nodes.push_back(BvhNode{ rootBounds.lo, 0, rootBounds.hi, 0 });
+        std::vector<BvhNode> nodes{ BvhNode{ rootBounds.lo3(), 0, rootBounds.hi3(), 0 } };
 
         // Phase 1: top of the tree, depth-first, deferring small nodes as tasks.
         std::vector<WorkItem> tasks;
@@ -259,12 +325,11 @@ public:
             }
         }
 
-        PROF("phase1");
-        // Phase 2: build every task's subtree into its own vector; local node 0 is the task root.
+        // Phase 2: every task's subtree goes into its own vector; local node 0 is the task root.
         std::vector<std::vector<BvhNode>> local(tasks.size());
         std::vector<int> localDepth(tasks.size(), 0);
         {
-            // Biggest first for load balance; the order of execution does not affect the output.
+            // Biggest first for load balance; execution order does not affect the output.
             std::vector<uint32_t> order(tasks.size());
             for (uint32_t i = 0; i < order.size(); ++i) order[i] = i;
             std::stable_sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
@@ -286,8 +351,7 @@ public:
             });
         }
 
-        PROF("phase2");
-        // Phase 3: top nodes, then task subtrees in task order (which is depth-first order).
+        // Phase 3: top nodes, then the task subtrees in task order (which is depth-first order).
         std::vector<size_t> base(tasks.size());
         size_t total = nodes.size();
         for (size_t t = 0; t < tasks.size(); ++t) {
@@ -307,7 +371,6 @@ public:
             std::vector<BvhNode>().swap(local[t]);
         });
 
-        PROF("phase3");
         out.primOrder.resize(n);
         {
             const size_t chunks = chunkCount(n);
@@ -318,22 +381,12 @@ public:
         }
         std::vector<PrimRef>().swap(refs_);
 
-        PROF("order");
         out.sahCost = sahCost(nodes, n);
-        PROF("sah");
         out.maxDepth = maxDepth;
         out.nodes = std::move(nodes);
     }
 
 private:
-    // Fixed chunking for flat parallel loops; independent of the thread count on purpose.
-    static size_t chunkCount(size_t n) { return std::max<size_t>(1, std::min<size_t>(64, n / 16384)); }
-    static std::pair<uint32_t, uint32_t> chunkRange(uint32_t begin, uint32_t end, size_t chunks, size_t c)
-    {
-        const uint64_t n = end - begin;
-        return { uint32_t(begin + n * c / chunks), uint32_t(begin + n * (c + 1) / chunks) };
-    }
-
     double sahCost(const std::vector<BvhNode>& nodes, uint32_t primCount) const
     {
         const auto area = [](const BvhNode& nd) {
@@ -355,66 +408,64 @@ private:
         return double(traversalCost_) * double(interior) + double(intersectCost_) * primCount;
     }
 
-    void binRange(uint32_t begin, uint32_t end, const BinMapping& map, Bins& bins)
+    // Relative SAH cost of a split whose children's sum of area * count is `cost`. A zero-area node
+    // (points or a line) makes every split free, and then only the leaf size limit splits it.
+    float splitCost(float cost, float nodeArea) const
+    {
+        return traversalCost_ + intersectCost_ * (nodeArea > 0.0f ? cost / nodeArea : 0.0f);
+    }
+
+    // Bins [begin, end) on all three axes and caches every primitive's bins in binKeys.
+    // An axis with zero centroid extent has scale 0: everything lands in bin 0 and the axis never
+    // offers a split. The clamp is written so that a NaN (0 * inf for a denormal extent) gives 0.
+    void binRange(uint32_t begin, uint32_t end, V4 origin, V4 scale, Bins& bins)
     {
         bins.reset(bins_);
-        // Axes written out: glm's operator[] is a switch, which is slow in this loop.
-        const glm::vec3 o = map.origin, sc = map.scale;
-        const auto add = [&](int axis, int k, const PrimRef& r) {
-            BinBox& b = bins.bounds[axis][k];
-            b.lo = glm::min(b.lo, r.lo);
-            b.hi = glm::max(b.hi, r.hi);
-            ++bins.count[axis][k];
-        };
+        const V4 zero = splat(0.0f), last = splat(float(bins_ - 1));
         for (uint32_t i = begin; i < end; ++i) {
             PrimRef& r = refs_[i];
-            const glm::vec3 c = centroidOf(r);
-            const int kx = map.index(c.x, o.x, sc.x);
-            const int ky = map.index(c.y, o.y, sc.y);
-            const int kz = map.index(c.z, o.z, sc.z);
-            add(0, kx, r);
-            add(1, ky, r);
-            add(2, kz, r);
-            r.binKeys = uint32_t(kx) | uint32_t(ky) << 8 | uint32_t(kz) << 16;
+            const V4 lo = loadLo(r), hi = loadHi(r);
+            const V4 t = vmin(vmax(vmul(vsub(centroidOf(lo, hi), origin), scale), zero), last);
+            int32_t k[4];
+            truncToInt(t, k);
+            bins.add(0, k[0], lo, hi);
+            bins.add(1, k[1], lo, hi);
+            bins.add(2, k[2], lo, hi);
+            r.binKeys = uint32_t(k[0]) | uint32_t(k[1]) << 8 | uint32_t(k[2]) << 16;
         }
     }
 
     Split findSplit(const Bins& bins) const
     {
-        const float inf = std::numeric_limits<float>::infinity();
         Split best;
         std::array<float, kMaxBins> rightArea;
         std::array<uint32_t, kMaxBins> rightCount;
         for (int a = 0; a < 3; ++a) {
-            const auto& bb = bins.bounds[a];
             const auto& bc = bins.count[a];
-            glm::vec3 lo(inf), hi(-inf);
+            Box4 acc;
             uint32_t cnt = 0;
             float area = 0.0f;
             for (int i = bins_ - 1; i >= 1; --i) {
                 if (bc[i] != 0) {
-                    lo = glm::min(lo, bb[i].lo);
-                    hi = glm::max(hi, bb[i].hi);
+                    acc.grow(bins.lo[a][i], bins.hi[a][i]);
                     cnt += bc[i];
-                    area = boxArea(lo, hi);
+                    area = acc.area();
                 }
                 rightArea[i] = area;
                 rightCount[i] = cnt;
             }
-            lo = glm::vec3(inf);
-            hi = glm::vec3(-inf);
+            acc = Box4{};
             cnt = 0;
             for (int i = 1; i < bins_; ++i) {
                 // An empty bin i-1 gives the same partition as the split before it: skip it.
                 if (bc[i - 1] == 0) continue;
                 if (rightCount[i] == 0) break;
-                lo = glm::min(lo, bb[i - 1].lo);
-                hi = glm::max(hi, bb[i - 1].hi);
+                acc.grow(bins.lo[a][i - 1], bins.hi[a][i - 1]);
                 cnt += bc[i - 1];
-                const float cost = boxArea(lo, hi) * float(cnt) + rightArea[i] * float(rightCount[i]);
+                const float cost = acc.area() * float(cnt) + rightArea[i] * float(rightCount[i]);
                 const uint32_t imbalance = cnt > rightCount[i] ? cnt - rightCount[i] : rightCount[i] - cnt;
                 // Ties (e.g. all-zero areas of flat, collinear input) go to the most balanced split
-                // so that degenerate input still gives a logarithmic depth.
+                // so that degenerate input still gets a logarithmic depth.
                 if (cost < best.cost || (cost == best.cost && imbalance < best.imbalance)) {
                     best.axis = a;
                     best.bin = i;
@@ -426,95 +477,100 @@ private:
         return best;
     }
 
-    // Hoare partition on the cached bin key; accumulates the children's bounds on the way so no
-    // further pass is needed. Every element is classified and accumulated exactly once.
-    uint32_t partition(uint32_t begin, uint32_t end, int axis, int splitBin, Aabb& lb, Aabb& lcb, Aabb& rb, Aabb& rcb)
+    // Branch-free Lomuto partition on the cached bin key (which side an element goes to is
+    // unpredictable, so a branchy partition pays a mispredict for about every other element).
+    uint32_t partition(uint32_t begin, uint32_t end, int axis, int splitBin)
     {
         const int shift = 8 * axis;
-        const auto isLeft = [&](const PrimRef& r) { return int((r.binKeys >> shift) & 0xffu) < splitBin; };
-        uint32_t i = begin, j = end;
-        for (;;) {
-            while (i < j && isLeft(refs_[i])) {
-                growBox(lb, refs_[i]);
-                growPoint(lcb, centroidOf(refs_[i]));
-                ++i;
-            }
-            while (i < j && !isLeft(refs_[j - 1])) {
-                growBox(rb, refs_[j - 1]);
-                growPoint(rcb, centroidOf(refs_[j - 1]));
-                --j;
-            }
-            if (i >= j) break;
-            std::swap(refs_[i], refs_[j - 1]);
-            growBox(lb, refs_[i]);
-            growPoint(lcb, centroidOf(refs_[i]));
-            growBox(rb, refs_[j - 1]);
-            growPoint(rcb, centroidOf(refs_[j - 1]));
-            ++i;
-            --j;
-        }
-        return i;
-    }
-
-    void rangeBounds(uint32_t begin, uint32_t end, Aabb& b, Aabb& cb) const
-    {
+        uint32_t l = begin;
         for (uint32_t i = begin; i < end; ++i) {
-            growBox(b, refs_[i]);
-            growPoint(cb, centroidOf(refs_[i]));
+            const PrimRef t = refs_[i];
+            refs_[i] = refs_[l];
+            refs_[l] = t;
+            l += uint32_t(int((t.binKeys >> shift) & 0xffu) < splitBin);
         }
+        return l;
     }
 
-    void makeLeaf(std::vector<BvhNode>& nodes, const WorkItem& item, int& maxDepth)
+    // Centroid bounds of a range: exact min/max, so chunking for big ranges does not matter.
+    Box4 centroidBounds(uint32_t begin, uint32_t end)
     {
-        nodes[item.slot].leftOrFirst = item.begin;
-        nodes[item.slot].count = item.end - item.begin;
-        maxDepth = std::max(maxDepth, item.depth);
+        const auto pass = [&](uint32_t b, uint32_t e) {
+            Box4 cb;
+            for (uint32_t i = b; i < e; ++i) cb.grow(centroidOf(loadLo(refs_[i]), loadHi(refs_[i])));
+            return cb;
+        };
+        const size_t chunks = std::min<size_t>(size_t(threads_), 8);
+        if (end - begin < kParallelBinPrims || chunks < 2) return pass(begin, end);
+        std::vector<Box4> partial(chunks);
+        parallelFor(threads_, chunks, [&](size_t c) {
+            const auto [b, e] = chunkRange(begin, end, chunks, c);
+            partial[c] = pass(b, e);
+        });
+        for (size_t c = 1; c < chunks; ++c) partial[0].grow(partial[c]);
+        return partial[0];
     }
 
     // Exact SAH for small nodes: every object partition along each axis, in centroid order (ties
     // in range order, so it is deterministic). Binning has a fixed cost per node (resetting and
-    // sweeping 3 * bins bins) that would dominate here, where most of the nodes are; the exact
-    // sweep is cheaper and finds better splits. Also handles identical centroids: all costs tie
-    // and the most balanced split (the range median) wins. Returns false if a leaf is better.
-    bool sweepSplit(const WorkItem& item, float nodeArea, Aabb& lb, Aabb& lcb, Aabb& rb, Aabb& rcb, uint32_t& mid)
+    // sweeping 3 * bins bins) that would dominate down here, where most of the nodes are; the
+    // exact sweep is cheaper and finds better splits. Identical centroids need no special case:
+    // all costs tie and the most balanced split (the range median) wins. Returns false for a leaf.
+    bool sweepSplit(const WorkItem& item, float nodeArea, Box4& lb, Box4& rb, uint32_t& mid)
     {
         const int n = int(item.end - item.begin);
-        const float inf = std::numeric_limits<float>::infinity();
+        if (n == 2) {
+            // The most common case, short-cut: the same decision and order as the general code
+            // below (every axis offers the same partition, so axis 0 wins the tie).
+            PrimRef& a = refs_[item.begin];
+            PrimRef& b = refs_[item.begin + 1];
+            Box4 ba, bb;
+            ba.grow(a);
+            bb.grow(b);
+            if (maxLeaf_ >= 2 && intersectCost_ * 2.0f <= splitCost(ba.area() + bb.area(), nodeArea)) return false;
+            float ca[4], cb[4];
+            store(ca, centroidOf(ba.lo, ba.hi));
+            store(cb, centroidOf(bb.lo, bb.hi));
+            if (cb[0] < ca[0]) {
+                std::swap(a, b);
+                std::swap(ba, bb);
+            }
+            lb = ba;
+            rb = bb;
+            mid = item.begin + 1;
+            return true;
+        }
         std::array<PrimRef, kSweepPrims> tmp;
         std::array<std::array<float, kSweepPrims>, 3> cen;
         std::array<std::array<uint8_t, kSweepPrims>, 3> order;
         std::array<float, kSweepPrims> rightArea;
         for (int i = 0; i < n; ++i) {
             tmp[i] = refs_[item.begin + i];
-            const glm::vec3 c = centroidOf(tmp[i]);
-            cen[0][i] = c.x;
-            cen[1][i] = c.y;
-            cen[2][i] = c.z;
+            float c[4];
+            store(c, centroidOf(loadLo(tmp[i]), loadHi(tmp[i])));
+            for (int a = 0; a < 3; ++a) cen[a][i] = c[a];
         }
-        int bestAxis = 0, bestK = 0;
-        float bestCost = inf;
-        int bestImbalance = 0;
+        int bestAxis = 0, bestK = 0, bestImbalance = 0;
+        float bestCost = kInf;
         for (int a = 0; a < 3; ++a) {
             auto& o = order[a];
             const auto& key = cen[a];
-            for (int i = 0; i < n; ++i) { // stable insertion sort
-                const uint8_t v = uint8_t(i);
-                int j = i;
-                for (; j > 0 && key[o[j - 1]] > key[v]; --j) o[j] = o[j - 1];
-                o[j] = v;
+            // Sort by rank counting: O(n^2) but branch-free, which beats a comparison sort at
+            // these sizes (its branches are unpredictable). Ties are ranked by range position.
+            for (int i = 0; i < n; ++i) {
+                int rank = 0;
+                for (int j = 0; j < n; ++j) rank += int(key[j] < key[i]) | (int(key[j] == key[i]) & int(j < i));
+                o[rank] = uint8_t(i);
             }
-            glm::vec3 lo(inf), hi(-inf);
+            Box4 acc;
             for (int k = n - 1; k >= 1; --k) {
-                lo = glm::min(lo, tmp[o[k]].lo);
-                hi = glm::max(hi, tmp[o[k]].hi);
-                rightArea[k] = boxArea(lo, hi);
+                acc.grow(tmp[o[k]]);
+                rightArea[k] = acc.area();
             }
-            lo = glm::vec3(inf);
-            hi = glm::vec3(-inf);
+            acc = Box4{};
             for (int k = 1; k < n; ++k) {
-                lo = glm::min(lo, tmp[o[k - 1]].lo);
-                hi = glm::max(hi, tmp[o[k - 1]].hi);
-                const float cost = boxArea(lo, hi) * float(k) + rightArea[k] * float(n - k);
+                acc.grow(tmp[o[k - 1]]);
+                const float cost = acc.area() * float(k) + rightArea[k] * float(n - k);
                 const int imbalance = std::abs(2 * k - n);
                 if (cost < bestCost || (cost == bestCost && imbalance < bestImbalance)) {
                     bestAxis = a;
@@ -527,25 +583,60 @@ private:
         if (uint32_t(n) <= maxLeaf_ && intersectCost_ * float(n) <= splitCost(bestCost, nodeArea)) return false;
         const auto& o = order[bestAxis];
         for (int j = 0; j < n; ++j) {
-            const PrimRef& r = tmp[o[j]];
-            refs_[item.begin + j] = r;
-            if (j < bestK) {
-                growBox(lb, r);
-                growPoint(lcb, centroidOf(r));
-            } else {
-                growBox(rb, r);
-                growPoint(rcb, centroidOf(r));
-            }
+            refs_[item.begin + j] = tmp[o[j]];
+            (j < bestK ? lb : rb).grow(tmp[o[j]]);
         }
         mid = item.begin + uint32_t(bestK);
         return true;
     }
 
-    // Relative SAH cost of a split whose children's sum of area * count is `cost`. A zero-area node
-    // (points or a line) makes every split free, and then only the leaf size limit splits it.
-    float splitCost(float cost, float nodeArea) const
+    // Binned SAH for bigger nodes (binning in parallel for the biggest). Returns false for a leaf.
+    bool binnedSplit(const WorkItem& item, float nodeArea, Box4& lb, Box4& rb, uint32_t& mid)
     {
-        return traversalCost_ + intersectCost_ * (nodeArea > 0.0f ? cost / nodeArea : 0.0f);
+        const uint32_t n = item.end - item.begin;
+        const Box4 cb = centroidBounds(item.begin, item.end);
+        float lo[4], hi[4];
+        store(lo, cb.lo);
+        store(hi, cb.hi);
+        float sc[3];
+        for (int a = 0; a < 3; ++a) {
+            const float extent = hi[a] - lo[a];
+            sc[a] = extent > 0.0f ? float(bins_) / extent : 0.0f;
+        }
+        if (sc[0] > 0.0f || sc[1] > 0.0f || sc[2] > 0.0f) {
+            const V4 origin = set3(lo[0], lo[1], lo[2]), scale = set3(sc[0], sc[1], sc[2]);
+            Bins bins;
+            const size_t chunks = std::min<size_t>(size_t(threads_), 8);
+            if (n >= kParallelBinPrims && chunks > 1) {
+                std::vector<Bins> partial(chunks);
+                parallelFor(threads_, chunks, [&](size_t c) {
+                    const auto [b, e] = chunkRange(item.begin, item.end, chunks, c);
+                    binRange(b, e, origin, scale, partial[c]);
+                });
+                bins = partial[0];
+                for (size_t c = 1; c < chunks; ++c) bins.merge(partial[c], bins_);
+            } else {
+                binRange(item.begin, item.end, origin, scale, bins);
+            }
+            const Split split = findSplit(bins);
+            if (split.axis >= 0) {
+                if (n <= maxLeaf_ && intersectCost_ * float(n) <= splitCost(split.cost, nodeArea)) return false;
+                mid = partition(item.begin, item.end, split.axis, split.bin);
+                // The children's boxes are the unions of their bins: every primitive's whole box
+                // went into the bin its cached key names, so these are exact and tight.
+                for (int i = 0; i < bins_; ++i)
+                    if (bins.count[split.axis][i] != 0)
+                        (i < split.bin ? lb : rb).grow(bins.lo[split.axis][i], bins.hi[split.axis][i]);
+                return true; // both sides are non-empty: findSplit only offers such splits
+            }
+        }
+        if (n <= maxLeaf_) return false;
+        // All centroids equal (or binning could not separate them): halve the range so that
+        // leaves stay within maxLeafSize and the depth stays logarithmic.
+        mid = item.begin + n / 2;
+        for (uint32_t i = item.begin; i < mid; ++i) lb.grow(refs_[i]);
+        for (uint32_t i = mid; i < item.end; ++i) rb.grow(refs_[i]);
+        return true;
     }
 
     // Decides leaf or split for one node; on a split appends the two children (adjacent) and
@@ -553,59 +644,27 @@ private:
     void processNode(std::vector<BvhNode>& nodes, const WorkItem& item, std::vector<WorkItem>& stack, int& maxDepth)
     {
         const uint32_t n = item.end - item.begin;
-        if (n <= 1) return makeLeaf(nodes, item, maxDepth);
-        const float nodeArea = boxArea(nodes[item.slot].lo, nodes[item.slot].hi);
-
-        Aabb lb, lcb, rb, rcb;
+        Box4 lb, rb;
         uint32_t mid = item.begin;
-        if (n <= kSweepPrims) {
-            if (!sweepSplit(item, nodeArea, lb, lcb, rb, rcb, mid)) return makeLeaf(nodes, item, maxDepth);
-        } else {
-            const glm::vec3 extent = item.centroidBounds.hi - item.centroidBounds.lo;
-            Split split;
-            if (extent.x > 0.0f || extent.y > 0.0f || extent.z > 0.0f) {
-                const auto scaleOf = [&](float e) { return e > 0.0f ? float(bins_) / e : 0.0f; };
-                const BinMapping map{ item.centroidBounds.lo,
-                                      glm::vec3(scaleOf(extent.x), scaleOf(extent.y), scaleOf(extent.z)), float(bins_ - 1) };
-                Bins bins;
-                const size_t chunks = std::min<size_t>(size_t(threads_), 8);
-                if (n >= kParallelBinPrims && chunks > 1) {
-                    std::vector<Bins> partial(chunks);
-                    parallelFor(threads_, chunks, [&](size_t c) {
-                        const auto [b, e] = chunkRange(item.begin, item.end, chunks, c);
-                        binRange(b, e, map, partial[c]);
-                    });
-                    bins = partial[0];
-                    for (size_t c = 1; c < chunks; ++c) bins.merge(partial[c], bins_);
-                } else {
-                    binRange(item.begin, item.end, map, bins);
-                }
-                split = findSplit(bins);
-            }
-            if (split.axis >= 0) {
-                if (n <= maxLeaf_ && intersectCost_ * float(n) <= splitCost(split.cost, nodeArea))
-                    return makeLeaf(nodes, item, maxDepth);
-                mid = partition(item.begin, item.end, split.axis, split.bin, lb, lcb, rb, rcb);
-            } else if (n <= maxLeaf_) {
-                return makeLeaf(nodes, item, maxDepth);
-            }
-            if (mid == item.begin || mid == item.end) {
-                // All centroids equal (or binning could not separate them): halve the range so
-                // leaves stay within maxLeafSize and the depth stays logarithmic.
-                mid = item.begin + n / 2;
-                lb = lcb = rb = rcb = Aabb{};
-                rangeBounds(item.begin, mid, lb, lcb);
-                rangeBounds(mid, item.end, rb, rcb);
-            }
+        bool split = false;
+        if (n > 1) {
+            const float nodeArea = boxArea(nodes[item.slot].lo, nodes[item.slot].hi);
+            split = n <= uint32_t(kSweepPrims) ? sweepSplit(item, nodeArea, lb, rb, mid)
+                                               : binnedSplit(item, nodeArea, lb, rb, mid);
         }
-
+        if (!split) {
+            nodes[item.slot].leftOrFirst = item.begin;
+            nodes[item.slot].count = n;
+            maxDepth = std::max(maxDepth, item.depth);
+            return;
+        }
         const uint32_t left = uint32_t(nodes.size());
-        nodes.push_back(BvhNode{ lb.lo, 0, lb.hi, 0 });
-        nodes.push_back(BvhNode{ rb.lo, 0, rb.hi, 0 });
+        nodes.push_back(BvhNode{ lb.lo3(), 0, lb.hi3(), 0 });
+        nodes.push_back(BvhNode{ rb.lo3(), 0, rb.hi3(), 0 });
         nodes[item.slot].leftOrFirst = left;
         nodes[item.slot].count = 0;
-        stack.push_back(WorkItem{ left + 1, mid, item.end, item.depth + 1, rcb });
-        stack.push_back(WorkItem{ left, item.begin, mid, item.depth + 1, lcb });
+        stack.push_back(WorkItem{ left + 1, mid, item.end, item.depth + 1 });
+        stack.push_back(WorkItem{ left, item.begin, mid, item.depth + 1 });
     }
 
     std::span<const Aabb> input_;

@@ -45,7 +45,7 @@ int main(int argc, char** argv) {
     render->add_option("--height", o.height, "Image height (default: the scene's, else from the camera aspect)")->check(CLI::Range(1, 1 << 30));
     render->add_option("--max-depth", o.maxDepth, "Ray segments per path including the camera ray (1: emitters only, 2: direct light); default 16")
         ->check(CLI::Range(1u, 65536u));
-    render->add_option("--rr-start", o.integrator.rrStartDepth, "Russian roulette starts after this many segments (default 3)");
+    render->add_option("--rr-start", o.integrator.rrStartDepth, "Russian roulette starts after this many segments (default 5)");
     render->add_option("--seed", o.integrator.seed, "Random seed (default 0)");
     render->add_option("--nee", nee, "Next event estimation (light sampling): on|off")->check(CLI::IsMember({"on", "off"}));
     render->add_option("--mis", mis, "Multiple importance sampling of light and BSDF samples: on|off")->check(CLI::IsMember({"on", "off"}));

@@ -13,7 +13,7 @@ struct IntegratorSettings {
     bool rr = true;  // Russian roulette
     DirectionSampling sampling = DirectionSampling::Cosine;
     uint32_t maxDepth = 16;    // ray segments including the camera ray (Mitsuba 3's max_depth)
-    uint32_t rrStartDepth = 3; // Russian roulette only after this many segments
+    uint32_t rrStartDepth = 5; // Russian roulette only after this many segments (Mitsuba 3 default)
     uint32_t seed = 0;
 
     std::string describe() const;

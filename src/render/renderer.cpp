@@ -27,49 +27,20 @@ gpu::GpuCamera toGpuCamera(const Camera& camera, int width, int height) {
     return c;
 }
 
-namespace {
-
-template <class T> GpuBuffer makeBuffer(VulkanContext& ctx, const std::vector<T>& data, const char* name) {
-    GpuBuffer buffer(ctx, sizeof(T) * data.size(), name);
-    buffer.upload(data.data(), sizeof(T) * data.size());
-    return buffer;
-}
-
-} // namespace
 
 Renderer::Renderer(VulkanContext& context, const FlatScene& scene, const FeatureSet& features,
     const IntegratorSettings& settings, const Camera& camera, const FilmSettings& film)
     : context_(context), film_(film) {
     validateImageSize(film.width, film.height);
-    triangles_ = makeBuffer(context, scene.triangles, "triangles");
-    shading_ = makeBuffer(context, scene.shading, "shading");
-    nodes_ = makeBuffer(context, scene.nodes, "bvh nodes");
-    materials_ = makeBuffer(context, scene.materials, "materials");
-    lights_ = makeBuffer(context, scene.lights.lights, "lights");
-    lightCdf_ = makeBuffer(context, scene.lights.cdf, "light cdf");
-    const size_t pixels = size_t(film.width) * film.height;
-    accumulation_ = GpuBuffer(context, pixels * 2 * sizeof(glm::vec4), "accumulation");
-    accumulation_.fillZero();
-
     gpu::GpuSceneParams params{};
-    params.triangles = triangles_.address();
-    params.shading = shading_.address();
-    params.nodes = nodes_.address();
-    params.materials = materials_.address();
-    params.lights = lights_.address();
-    params.lightCdf = lightCdf_.address();
-    params.accumulation = accumulation_.address();
     params.camera = toGpuCamera(camera, film.width, film.height);
     params.background = film.background;
-    params.numLights = static_cast<uint32_t>(scene.lights.lights.size());
     params.imageSize = glm::uvec2(film.width, film.height);
     params.maxDepth = settings.maxDepth;
     params.rrStartDepth = settings.rrStartDepth;
     params.seed = settings.seed;
-    params.numTriangles = static_cast<uint32_t>(scene.triangles.size());
-    params.numNodes = static_cast<uint32_t>(scene.nodes.size());
-    params_ = GpuBuffer(context, sizeof(params), "scene params");
-    params_.upload(&params, sizeof(params));
+    const size_t pixels = size_t(film.width) * film.height;
+    gpuScene_ = std::make_unique<GpuScene>(context, scene, params, pixels * 2 * sizeof(glm::vec4));
 
     pipeline_ = std::make_unique<ComputePipeline>(context, std::span<const uint32_t>(pt_render_spv),
         static_cast<uint32_t>(sizeof(gpu::GpuRenderPush)), features.constants(localSize_, localSize_), "render");
@@ -84,7 +55,7 @@ void Renderer::addSamples(uint32_t count, uint32_t tileSize) {
     const uint32_t th = tileSize ? std::min(tileSize, h) : h;
     const uint32_t start = samples_;
     const ComputePipeline& pipeline = *pipeline_;
-    const VkDeviceAddress paramsAddress = params_.address();
+    const VkDeviceAddress paramsAddress = gpuScene_->paramsAddress();
     const uint32_t local = localSize_;
     context_.submitAndWait([&](VkCommandBuffer cmd) {
         for (uint32_t y = 0; y < h; y += th)
@@ -111,7 +82,7 @@ void Renderer::addSamples(uint32_t count, uint32_t tileSize) {
 Renderer::Readback Renderer::read() const {
     const size_t pixels = size_t(film_.width) * film_.height;
     std::vector<glm::vec4> sums(pixels * 2);
-    accumulation_.download(sums.data(), sums.size() * sizeof(glm::vec4));
+    gpuScene_->accumulation().download(sums.data(), sums.size() * sizeof(glm::vec4));
     Readback r;
     r.mean.width = r.varianceOfMean.width = film_.width;
     r.mean.height = r.varianceOfMean.height = film_.height;

@@ -3,6 +3,7 @@
 // dispatches the megakernel to add samples to every pixel's float32 sums.
 #include "gpu/compute_pipeline.h"
 #include "gpu/gpu_buffer.h"
+#include "render/gpu_scene.h"
 #include "gpu/vulkan_context.h"
 #include "render/feature_set.h"
 #include "render/flat_scene.h"
@@ -51,7 +52,7 @@ private:
     VulkanContext& context_;
     FilmSettings film_;
     uint32_t samples_ = 0;
-    GpuBuffer triangles_, shading_, nodes_, materials_, lights_, lightCdf_, accumulation_, params_;
+    std::unique_ptr<GpuScene> gpuScene_;
     std::unique_ptr<ComputePipeline> pipeline_;
     uint32_t localSize_ = 8;
 };

@@ -1,0 +1,38 @@
+#include "render/gpu_scene.h"
+
+namespace pt {
+namespace {
+
+template <class T> GpuBuffer makeBuffer(VulkanContext& ctx, const std::vector<T>& data, const char* name) {
+    GpuBuffer buffer(ctx, sizeof(T) * data.size(), name);
+    buffer.upload(data.data(), sizeof(T) * data.size());
+    return buffer;
+}
+
+} // namespace
+
+GpuScene::GpuScene(VulkanContext& context, const FlatScene& scene, gpu::GpuSceneParams params, VkDeviceSize accumulationBytes) {
+    triangles_ = makeBuffer(context, scene.triangles, "triangles");
+    shading_ = makeBuffer(context, scene.shading, "shading");
+    nodes_ = makeBuffer(context, scene.nodes, "bvh nodes");
+    materials_ = makeBuffer(context, scene.materials, "materials");
+    lights_ = makeBuffer(context, scene.lights.lights, "lights");
+    lightCdf_ = makeBuffer(context, scene.lights.cdf, "light cdf");
+    accumulation_ = GpuBuffer(context, accumulationBytes, "accumulation");
+    if (accumulationBytes > 0) accumulation_.fillZero();
+
+    params.triangles = triangles_.address();
+    params.shading = shading_.address();
+    params.nodes = nodes_.address();
+    params.materials = materials_.address();
+    params.lights = lights_.address();
+    params.lightCdf = lightCdf_.address();
+    params.accumulation = accumulation_.address();
+    params.numLights = static_cast<uint32_t>(scene.lights.lights.size());
+    params.numTriangles = static_cast<uint32_t>(scene.triangles.size());
+    params.numNodes = static_cast<uint32_t>(scene.nodes.size());
+    params_ = GpuBuffer(context, sizeof(params), "scene params");
+    params_.upload(&params, sizeof(params));
+}
+
+} // namespace pt

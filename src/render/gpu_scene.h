@@ -1,0 +1,24 @@
+#pragma once
+// A flattened scene in device memory, plus the GpuSceneParams block that points at it.
+// Shared by the renderer and the GLSL test kernels.
+#include "gpu/gpu_buffer.h"
+#include "render/flat_scene.h"
+#include "shared/layout.h"
+
+namespace pt {
+
+class GpuScene {
+public:
+    // `params` holds everything but the buffer addresses, which this fills in; `accumulationBytes`
+    // sizes the accumulation buffer (0 for none), zero-filled.
+    GpuScene(VulkanContext& context, const FlatScene& scene, gpu::GpuSceneParams params, VkDeviceSize accumulationBytes);
+
+    VkDeviceAddress paramsAddress() const { return params_.address(); }
+    const GpuBuffer& accumulation() const { return accumulation_; }
+    GpuBuffer& accumulation() { return accumulation_; }
+
+private:
+    GpuBuffer triangles_, shading_, nodes_, materials_, lights_, lightCdf_, accumulation_, params_;
+};
+
+} // namespace pt

@@ -1,0 +1,286 @@
+// Device tests of the production samplers (shaders/common/sampling.glsl,
+// shaders/lights/triangle_lights.glsl) through shaders/tests/test_kernels.comp: each sampler's
+// directions are histogrammed over (cos theta, phi) bins, which have equal solid angle for equal
+// extents, and compared by a chi-square test against the counts its own pdf predicts. A sampler
+// whose pdf does not describe its samples biases every estimator that divides by that pdf.
+#include "support/gpu_test_support.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <numbers>
+#include <vector>
+
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+constexpr uint32_t kSamples = 200000;
+constexpr double kMinPValue = 1e-3;
+
+// Bins over cos theta in [zLo, zHi] by phi in [0, 2 pi): solid angle dz dphi, so every bin of
+// a grid covers the same solid angle.
+struct DirectionGrid {
+    int zBins, phiBins;
+    double zLo, zHi;
+
+    int count() const { return zBins * phiBins; }
+    double dz() const { return (zHi - zLo) / zBins; }
+    double dphi() const { return 2.0 * kPi / phiBins; }
+    int index(int zi, int pi) const { return zi * phiBins + pi; }
+
+    int binOf(glm::vec3 w) const {
+        const double z = std::clamp(double(w.z), zLo, zHi);
+        double phi = std::atan2(double(w.y), double(w.x));
+        if (phi < 0.0) phi += 2.0 * kPi;
+        const int zi = std::min(int((z - zLo) / dz()), zBins - 1);
+        const int pi = std::min(int(phi / dphi()), phiBins - 1);
+        return index(zi, pi);
+    }
+};
+
+const DirectionGrid kHemisphere{16, 32, 0.0, 1.0};
+const DirectionGrid kSphere{32, 64, -1.0, 1.0};
+
+glm::vec3 directionAt(double z, double phi) {
+    const double r = std::sqrt(std::max(0.0, 1.0 - z * z));
+    return glm::vec3(float(r * std::cos(phi)), float(r * std::sin(phi)), float(z));
+}
+
+std::vector<double> histogram(const DirectionGrid& grid, const std::vector<glm::vec4>& samples) {
+    std::vector<double> counts(grid.count(), 0.0);
+    for (const glm::vec4& s : samples) counts[grid.binOf(glm::vec3(s))] += 1.0;
+    return counts;
+}
+
+// Expected counts of `n` samples from a pdf that depends only on cos theta, integrated over
+// each bin exactly from its antiderivative in z (times dphi).
+template <class Antiderivative>
+std::vector<double> expectedFromZPdf(const DirectionGrid& grid, double n, Antiderivative cdfOfZ) {
+    std::vector<double> expected(grid.count());
+    for (int zi = 0; zi < grid.zBins; ++zi) {
+        const double z0 = grid.zLo + zi * grid.dz(), z1 = z0 + grid.dz();
+        for (int pi = 0; pi < grid.phiBins; ++pi) expected[grid.index(zi, pi)] = n * (cdfOfZ(z1) - cdfOfZ(z0)) * grid.dphi();
+    }
+    return expected;
+}
+// Integral of cos theta / pi dz and of 1 / (2 pi) dz.
+double cosineAntiderivative(double z) { return 0.5 * z * z / kPi; }
+double uniformAntiderivative(double z) { return z / (2.0 * kPi); }
+
+double pValue(const std::vector<double>& observed, const std::vector<double>& expected, const char* what) {
+    int dof = 0;
+    const double p = pt::test::chiSquarePValue(observed, expected, &dof);
+    std::printf("[          ] %s: chi-square p-value %.4g (%d degrees of freedom)\n", what, p, dof);
+    return p;
+}
+
+class SamplingTest : public pt::test::GpuTest {};
+
+// Per sample: unit length, in the upper hemisphere, and the returned pdf equal to the analytic
+// one; then the distribution by chi-square. Two seeds, so one lucky stream cannot hide a bias.
+void checkHemisphereSampler(uint32_t mode, double (*pdf)(double), double (*antiderivative)(double), const char* name) {
+    for (uint32_t seed : {1u, 0x9e3779b9u}) {
+        const std::vector<glm::vec4> samples = pt::test::runTestKernel(mode, kSamples, nullptr, {}, glm::vec3(0.0f),
+            glm::vec3(0, 0, 1), seed);
+        size_t bad = 0;
+        for (const glm::vec4& s : samples) {
+            const double z = s.z;
+            const double expectedPdf = pdf(z);
+            const bool ok = z >= 0.0 && std::abs(glm::length(glm::dvec3(s)) - 1.0) < 1e-5 &&
+                            std::abs(s.w - expectedPdf) <= 1e-5 * expectedPdf;
+            if (!ok && ++bad <= 5)
+                ADD_FAILURE() << name << " seed " << seed << ": sample (" << s.x << ", " << s.y << ", " << s.z << ") pdf " << s.w
+                              << ", analytic pdf " << expectedPdf;
+        }
+        EXPECT_EQ(bad, 0u) << name;
+        const std::vector<double> expected = expectedFromZPdf(kHemisphere, kSamples, antiderivative);
+        const std::string what = std::string(name) + " seed " + std::to_string(seed);
+        EXPECT_GT(pValue(histogram(kHemisphere, samples), expected, what.c_str()), kMinPValue) << what;
+    }
+}
+
+TEST_F(SamplingTest, CosineHemisphereMatchesItsPdf) {
+    checkHemisphereSampler(TEST_MODE_COSINE_HEMISPHERE, [](double z) { return std::max(z, 0.0) / kPi; }, cosineAntiderivative,
+        "cosine hemisphere");
+}
+
+TEST_F(SamplingTest, UniformHemisphereMatchesItsPdf) {
+    // The production pdf is 0 exactly at z = 0 (a boundary of measure zero); mirror that.
+    checkHemisphereSampler(TEST_MODE_UNIFORM_HEMISPHERE, [](double z) { return z > 0.0 ? 0.5 / kPi : 0.0; },
+        uniformAntiderivative, "uniform hemisphere");
+}
+
+// The chi-square test must be able to fail: cosine samples judged against uniform expectations.
+TEST_F(SamplingTest, ChiSquareRejectsAWrongPdf) {
+    const std::vector<glm::vec4> samples = pt::test::runTestKernel(TEST_MODE_COSINE_HEMISPHERE, kSamples, nullptr);
+    const double p = pValue(histogram(kHemisphere, samples), expectedFromZPdf(kHemisphere, kSamples, uniformAntiderivative),
+        "cosine samples vs uniform pdf (must fail)");
+    EXPECT_LT(p, 1e-6);
+}
+
+// ---- Light sampling ----
+
+// Four single-sided emitters around the shading point, all different in power (radiance x area),
+// size and orientation. They sit in different directions so none hides another from the point.
+// The quad below faces away: its samples carry no radiance but still have a pdf. With
+// `equalRadiance` all emit the same, which changes only the light-selection CDF.
+pt::Scene lightScene(bool equalRadiance) {
+    pt::Scene scene;
+    scene.source = "light sampling test";
+    const glm::vec3 radiance[4] = {{4, 4, 4}, {1.0f, 0.5f, 0.2f}, {2, 2, 2}, {20, 2, 1}};
+    for (int k = 0; k < 4; ++k) {
+        pt::Material m;
+        m.name = "light " + std::to_string(k);
+        m.baseColor = glm::vec3(0.0f);
+        m.emission = equalRadiance ? glm::vec3(1.0f) : radiance[k];
+        scene.materials.push_back(m);
+    }
+    using pt::test::makeQuad;
+    // Overhead, facing down at the point.
+    scene.meshes.push_back(makeQuad({-0.5f, -0.6f, 2.0f}, {0.0f, 1.2f, 0.0f}, {1.0f, 0.0f, 0.0f}, 0));
+    // A large tilted quad on the +x side, facing the point.
+    scene.meshes.push_back(makeQuad({2.5f, -1.5f, -1.0f}, {-0.8f, 0.0f, 2.0f}, {0.0f, 3.0f, 0.0f}, 1));
+    // A quad on the -y side, facing away (its normal points along -y).
+    scene.meshes.push_back(makeQuad({-0.8f, -1.5f, -0.6f}, {0.0f, 0.0f, 1.0f}, {1.4f, 0.0f, 0.3f}, 2));
+    // A small bright triangle low on the -x side, facing the point.
+    pt::Mesh tri;
+    tri.name = "small light";
+    tri.positions = {{-1.5f, 0.3f, -1.2f}, {-1.2f, 0.9f, -1.0f}, {-1.6f, 0.8f, -0.5f}};
+    tri.triangles = {{0, 1, 2}};
+    tri.material = 3;
+    scene.meshes.push_back(tri);
+    return scene;
+}
+const glm::vec3 kShadingPoint(0.1f, -0.2f, 0.05f);
+
+struct LightTestScene {
+    pt::FlatScene flat;
+    std::unique_ptr<pt::GpuScene> gpu;
+};
+
+LightTestScene uploadLightScene(bool equalRadiance) {
+    LightTestScene s;
+    s.flat = pt::flattenScene(lightScene(equalRadiance));
+    s.gpu = std::make_unique<pt::GpuScene>(pt::test::sharedContext(), s.flat, pt::gpu::GpuSceneParams{}, 0);
+    return s;
+}
+
+// TEST_MODE_LIGHT_PDF: the solid-angle pdf the integrator assigns to a BSDF ray from the shading
+// point in each direction (0 where it reaches no light).
+std::vector<float> lightPdfs(const pt::GpuScene& scene, const std::vector<glm::vec4>& directions) {
+    const std::vector<glm::vec4> out = pt::test::runTestKernel(TEST_MODE_LIGHT_PDF, static_cast<uint32_t>(directions.size()),
+        &scene, std::as_bytes(std::span<const glm::vec4>(directions)), kShadingPoint);
+    std::vector<float> pdfs(out.size());
+    for (size_t i = 0; i < out.size(); ++i) pdfs[i] = out[i].x;
+    return pdfs;
+}
+
+// Midpoint rule over sub x sub directions inside each listed bin: returns each bin's integral of
+// the pdf, and whether the pdf was zero at some midpoints and not at others.
+struct BinIntegrals {
+    std::vector<double> integral;
+    std::vector<bool> mixed, lit;
+};
+BinIntegrals integrateBins(const pt::GpuScene& scene, const DirectionGrid& grid, const std::vector<int>& bins, int sub) {
+    std::vector<glm::vec4> dirs;
+    dirs.reserve(bins.size() * sub * sub);
+    const double dz = grid.dz() / sub, dphi = grid.dphi() / sub;
+    for (int bin : bins) {
+        const int zi = bin / grid.phiBins, pi = bin % grid.phiBins;
+        for (int a = 0; a < sub; ++a)
+            for (int b = 0; b < sub; ++b)
+                dirs.emplace_back(directionAt(grid.zLo + zi * grid.dz() + (a + 0.5) * dz, pi * grid.dphi() + (b + 0.5) * dphi), 0.0f);
+    }
+    const std::vector<float> pdf = lightPdfs(scene, dirs);
+    BinIntegrals r{std::vector<double>(bins.size(), 0.0), std::vector<bool>(bins.size()), std::vector<bool>(bins.size())};
+    for (size_t k = 0; k < bins.size(); ++k) {
+        int nonZero = 0;
+        for (int j = 0; j < sub * sub; ++j) {
+            const float p = pdf[k * sub * sub + j];
+            r.integral[k] += p * dz * dphi;
+            nonZero += p > 0.0f;
+        }
+        r.mixed[k] = nonZero > 0 && nonZero < sub * sub;
+        r.lit[k] = nonZero > 0;
+    }
+    return r;
+}
+
+// Expected counts of `n` light samples per bin: the light pdf integrated over each bin, by an
+// 8 x 8 midpoint rule, redone at 64 x 64 in bins near a light's outline (where the pdf jumps
+// and a coarse rule could miss a sliver of light entirely, predicting zero where samples land).
+std::vector<double> expectedFromLightPdf(const pt::GpuScene& scene, const DirectionGrid& grid, double n) {
+    std::vector<int> all(grid.count());
+    for (int b = 0; b < grid.count(); ++b) all[b] = b;
+    const BinIntegrals coarse = integrateBins(scene, grid, all, 8);
+    std::vector<int> refine;
+    for (int zi = 0; zi < grid.zBins; ++zi)
+        for (int pi = 0; pi < grid.phiBins; ++pi) {
+            const int bin = grid.index(zi, pi);
+            bool nearOutline = coarse.mixed[bin];
+            for (int dz = -1; dz <= 1; ++dz)
+                for (int dp = -1; dp <= 1; ++dp) {
+                    const int z = zi + dz;
+                    if (z < 0 || z >= grid.zBins) continue;
+                    const int other = grid.index(z, (pi + dp + grid.phiBins) % grid.phiBins);
+                    nearOutline = nearOutline || coarse.mixed[other] || coarse.lit[other] != coarse.lit[bin];
+                }
+            if (nearOutline) refine.push_back(bin);
+        }
+    const BinIntegrals fine = integrateBins(scene, grid, refine, 64);
+    std::vector<double> expected(grid.count());
+    for (int b = 0; b < grid.count(); ++b) expected[b] = n * coarse.integral[b];
+    for (size_t k = 0; k < refine.size(); ++k) expected[refine[k]] = n * fine.integral[k];
+    return expected;
+}
+
+double sum(const std::vector<double>& v) {
+    double s = 0;
+    for (double x : v) s += x;
+    return s;
+}
+
+// sampleLight's directions against the pdf the integrator uses for BSDF rays that hit lights:
+// same distribution (chi-square), same pdf per sample (MIS weights need both techniques to
+// agree on it), and a pdf that integrates to one over the sphere.
+TEST_F(SamplingTest, LightSamplingMatchesTheLightPdf) {
+    const LightTestScene scene = uploadLightScene(false);
+    ASSERT_EQ(scene.flat.lights.lights.size(), 7u);
+    const std::vector<double> expected = expectedFromLightPdf(*scene.gpu, kSphere, kSamples);
+    EXPECT_NEAR(sum(expected) / kSamples, 1.0, 0.01) << "the light pdf should integrate to 1 over the sphere";
+    std::printf("[          ] integral of the light pdf over the sphere: %.5f\n", sum(expected) / kSamples);
+
+    for (uint32_t seed : {1u, 7u}) {
+        const std::vector<glm::vec4> samples = pt::test::runTestKernel(TEST_MODE_LIGHT_SAMPLE, kSamples, scene.gpu.get(), {},
+            kShadingPoint, glm::vec3(0, 0, 1), seed);
+        std::vector<glm::vec4> dirs(samples.size());
+        for (size_t i = 0; i < samples.size(); ++i) dirs[i] = glm::vec4(glm::vec3(samples[i]), 0.0f);
+        const std::vector<float> pdfAtSample = lightPdfs(*scene.gpu, dirs);
+        size_t mismatched = 0;
+        for (size_t i = 0; i < samples.size(); ++i) {
+            const float sampled = samples[i].w;
+            const bool ok = sampled > 0.0f && std::abs(pdfAtSample[i] - sampled) <= 1e-3f * sampled;
+            if (!ok && ++mismatched <= 5)
+                ADD_FAILURE() << "seed " << seed << " sample " << i << " direction (" << dirs[i].x << ", " << dirs[i].y << ", "
+                              << dirs[i].z << "): sampleLight pdf " << sampled << ", light pdf of that direction " << pdfAtSample[i];
+        }
+        EXPECT_EQ(mismatched, 0u);
+        const std::string what = "light sampling seed " + std::to_string(seed);
+        EXPECT_GT(pValue(histogram(kSphere, samples), expected, what.c_str()), kMinPValue);
+    }
+}
+
+// Negative control for the light test: the same samples against the pdf of the same emitters with
+// equal radiance (so chosen by area instead of power) must be rejected; the test sees the CDF.
+TEST_F(SamplingTest, LightChiSquareRejectsTheWrongSelectionCdf) {
+    const LightTestScene scene = uploadLightScene(false);
+    const LightTestScene byArea = uploadLightScene(true);
+    const std::vector<glm::vec4> samples = pt::test::runTestKernel(TEST_MODE_LIGHT_SAMPLE, kSamples, scene.gpu.get(), {},
+        kShadingPoint);
+    const double p = pValue(histogram(kSphere, samples), expectedFromLightPdf(*byArea.gpu, kSphere, kSamples),
+        "light samples vs area-proportional pdf (must fail)");
+    EXPECT_LT(p, 1e-6);
+}
+
+} // namespace

@@ -1,0 +1,57 @@
+#pragma once
+// Shared helpers for tests that run on the Vulkan device (lavapipe in CI): one context with
+// the validation layer on, the GLSL test kernel runner, small procedural scenes, and a
+// one-call render.
+#include "gpu/vulkan_context.h"
+#include "render/flat_scene.h"
+#include "render/gpu_scene.h"
+#include "render/integrator_settings.h"
+#include "render/renderer.h"
+#include "scene/scene.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <span>
+#include <vector>
+
+namespace pt::test {
+
+// The process-wide context, created on first use with validation enabled.
+VulkanContext& sharedContext();
+
+// Fixture: fails a test if the validation layer said anything during it.
+class GpuTest : public ::testing::Test {
+protected:
+    void SetUp() override;
+    void TearDown() override;
+
+private:
+    uint32_t messagesBefore_ = 0;
+};
+
+// Runs shaders/tests/test_kernels.comp in `mode` over `count` items. `scene` may be null for
+// modes that need none; `inputs` is uploaded as the kernel's input array.
+std::vector<glm::vec4> runTestKernel(uint32_t mode, uint32_t count, const GpuScene* scene,
+    std::span<const std::byte> inputs = {}, glm::vec3 point = glm::vec3(0.0f), glm::vec3 normal = glm::vec3(0, 0, 1),
+    uint32_t seed = 1);
+
+// Procedural geometry.
+Mesh makeIcosphere(int subdivisions, glm::vec3 centre, float radius, uint32_t material);
+Mesh makeQuad(glm::vec3 corner, glm::vec3 edgeU, glm::vec3 edgeV, uint32_t material); // normal = edgeU x edgeV
+
+// Renders `scene` from `camera` with the kernel specialised for it and returns the sums read back.
+Renderer::Readback renderScene(const Scene& scene, const IntegratorSettings& settings, const Camera& camera, int width,
+    int height, uint32_t spp, uint32_t passSpp = 0, uint32_t tileSize = 0);
+
+// Directory of test data (tests/), set by CMake.
+std::filesystem::path testDataDir();
+
+// Regularised upper incomplete gamma Q(a, x): the chi-square p-value is Q(dof / 2, chi2 / 2).
+double gammaQ(double a, double x);
+
+// Pearson chi-square test of observed counts against expected ones; bins with expected < 5
+// are pooled (as in pbrt's chi2 tests). Returns the p-value; `dof` receives the degrees of freedom.
+double chiSquarePValue(std::span<const double> observed, std::span<const double> expected, int* dof = nullptr);
+
+} // namespace pt::test
