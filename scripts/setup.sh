@@ -11,9 +11,8 @@ if [ "$(id -u)" -ne 0 ]; then SUDO=sudo; else SUDO=; fi
 packages=(
   build-essential cmake ninja-build pkg-config
   libvulkan-dev vulkan-validationlayers glslang-tools spirv-tools vulkan-tools
-  libglm-dev libglfw3-dev libtinygltf-dev nlohmann-json3-dev libstb-dev
-  libopenexr-dev libpugixml-dev libcli11-dev libpng-dev
-  mesa-vulkan-drivers
+  libglm-dev libtinygltf-dev nlohmann-json3-dev libstb-dev libopenexr-dev libcli11-dev
+  libgtest-dev mesa-vulkan-drivers
 )
 
 backports=/etc/apt/sources.list.d/bookworm-backports.sources

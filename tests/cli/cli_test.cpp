@@ -1,0 +1,556 @@
+// The pt binary as a user runs it: exit statuses, one-line error messages, outputs written (or
+// not), on the malformed glTF corpus, bad command lines, bad paths and a few small renders.
+//
+// Every test runs pt in its own temporary directory (its working directory too, so a default
+// output path could not litter the source tree), with stdout and stderr captured to files.
+#include "render/image_io.h"
+
+#include <gtest/gtest.h>
+
+#include <fcntl.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+extern char** environ;
+
+namespace fs = std::filesystem;
+
+namespace {
+
+const fs::path kTests = PT_TEST_DATA_DIR;
+const fs::path kCorpus = kTests / "data" / "malformed_gltf";
+const fs::path kDiffuseScene = kTests / "references" / "cbox-diffuse" / "scene.gltf";
+const fs::path kDiffuseReference = kTests / "references" / "cbox-diffuse" / "reference.exr";
+
+struct RunResult {
+    bool signaled = false;
+    int signal = 0;
+    int status = -1; // exit status when !signaled
+    bool timedOut = false;
+    double seconds = 0;
+    std::string out, err;
+
+    // Lines of stderr that start with "pt: error: ".
+    std::vector<std::string> errorLines() const {
+        std::vector<std::string> lines;
+        std::istringstream s(err);
+        for (std::string line; std::getline(s, line);)
+            if (line.rfind("pt: error: ", 0) == 0) lines.push_back(line);
+        return lines;
+    }
+    // The only error line ("" and a test failure when there is not exactly one).
+    std::string errorLine() const {
+        const auto lines = errorLines();
+        EXPECT_EQ(lines.size(), 1u) << "expected exactly one 'pt: error: ' line in stderr:\n" << err;
+        return lines.size() == 1 ? lines[0] : std::string();
+    }
+};
+
+std::ostream& operator<<(std::ostream& os, const RunResult& r) {
+    os << (r.signaled ? "killed by signal " + std::to_string(r.signal) : "exit " + std::to_string(r.status))
+       << (r.timedOut ? " (timed out)" : "") << " after " << r.seconds << " s\n--- stderr:\n" << r.err << "--- stdout:\n" << r.out;
+    return os;
+}
+
+std::string readFile(const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    std::ostringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+std::string lower(std::string s) {
+    std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    return s;
+}
+
+std::string removeAll(std::string s, const std::string& what) {
+    if (what.empty()) return s;
+    for (size_t at; (at = s.find(what)) != std::string::npos;) s.erase(at, what.size());
+    return s;
+}
+
+class CliTest : public ::testing::Test {
+protected:
+    void SetUp() override {
+        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+        std::string name = std::string(info->test_suite_name()) + "_" + info->name();
+        for (char& c : name)
+            if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+        dir_ = fs::temp_directory_path() / ("pt_cli_" + std::to_string(::getpid()) + "_" + name);
+        fs::remove_all(dir_);
+        fs::create_directories(dir_);
+        captureDir_ = dir_ / ".capture";
+        fs::create_directories(captureDir_);
+    }
+    void TearDown() override {
+        std::error_code ignored;
+        if (!HasFailure()) fs::remove_all(dir_, ignored); // keep the evidence of a failure
+    }
+
+    // Runs `pt args...` in dir_ with `env` added to (and PT_VALIDATION removed from, unless
+    // given) the environment; kills it after `timeoutSeconds`.
+    RunResult run(const std::vector<std::string>& args, const std::map<std::string, std::string>& env = {},
+        double timeoutSeconds = 30) {
+        std::vector<std::string> argStrings = {PT_BINARY};
+        argStrings.insert(argStrings.end(), args.begin(), args.end());
+        std::vector<char*> argv;
+        for (auto& a : argStrings) argv.push_back(a.data());
+        argv.push_back(nullptr);
+
+        std::vector<std::string> envStrings;
+        for (char** e = environ; *e; ++e) {
+            const std::string entry = *e;
+            const std::string key = entry.substr(0, entry.find('='));
+            if (key == "PT_VALIDATION" || env.count(key)) continue;
+            envStrings.push_back(entry);
+        }
+        for (const auto& [k, v] : env) envStrings.push_back(k + "=" + v);
+        std::vector<char*> envp;
+        for (auto& e : envStrings) envp.push_back(e.data());
+        envp.push_back(nullptr);
+
+        const fs::path outPath = captureDir_ / "stdout", errPath = captureDir_ / "stderr";
+        posix_spawn_file_actions_t actions;
+        posix_spawn_file_actions_init(&actions);
+        posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
+        posix_spawn_file_actions_addopen(&actions, 1, outPath.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        posix_spawn_file_actions_addopen(&actions, 2, errPath.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        posix_spawn_file_actions_addchdir_np(&actions, dir_.c_str());
+
+        RunResult r;
+        const auto start = std::chrono::steady_clock::now();
+        pid_t pid = -1;
+        const int rc = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), envp.data());
+        posix_spawn_file_actions_destroy(&actions);
+        if (rc != 0) {
+            ADD_FAILURE() << "cannot start " << argv[0] << ": " << std::strerror(rc);
+            return r;
+        }
+        int wstatus = 0;
+        while (true) {
+            const pid_t w = ::waitpid(pid, &wstatus, WNOHANG);
+            if (w == pid) break;
+            if (w < 0 && errno != EINTR) {
+                ADD_FAILURE() << "waitpid: " << std::strerror(errno);
+                return r;
+            }
+            if (std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() > timeoutSeconds) {
+                r.timedOut = true;
+                ::kill(pid, SIGKILL);
+                ::waitpid(pid, &wstatus, 0);
+                break;
+            }
+            std::this_thread::sleep_for(std::chrono::milliseconds(2));
+        }
+        r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        r.signaled = WIFSIGNALED(wstatus);
+        if (r.signaled) r.signal = WTERMSIG(wstatus);
+        if (WIFEXITED(wstatus)) r.status = WEXITSTATUS(wstatus);
+        r.out = readFile(outPath);
+        r.err = readFile(errPath);
+        return r;
+    }
+
+    // The files pt left in dir_ (relative names, the capture directory excluded).
+    std::vector<std::string> outputs() const {
+        std::vector<std::string> names;
+        for (const auto& e : fs::recursive_directory_iterator(dir_)) {
+            const fs::path rel = fs::relative(e.path(), dir_);
+            if (*rel.begin() == ".capture") continue;
+            names.push_back(rel.string());
+        }
+        std::sort(names.begin(), names.end());
+        return names;
+    }
+
+    fs::path dir_, captureDir_;
+};
+
+// Exit status `status`, not killed by a signal, within `seconds`.
+#define EXPECT_EXIT_STATUS(r, expected)                                                                         \
+    do {                                                                                                        \
+        EXPECT_FALSE((r).signaled) << (r);                                                                      \
+        EXPECT_FALSE((r).timedOut) << (r);                                                                      \
+        EXPECT_EQ((r).status, (expected)) << (r);                                                               \
+    } while (0)
+
+// ---------------------------------------------------------------------------------------------
+// The malformed corpus: tests/data/malformed_gltf/README.md lists each file with the lowercase
+// substring its error must contain once the file's own path is removed.
+
+std::string trim(std::string s) {
+    const char* ws = " \t\r\n";
+    s.erase(0, s.find_first_not_of(ws));
+    s.erase(s.find_last_not_of(ws) + 1);
+    return s;
+}
+
+std::string firstBackticked(const std::string& s) {
+    const size_t a = s.find('`');
+    if (a == std::string::npos) return "";
+    const size_t b = s.find('`', a + 1);
+    return b == std::string::npos ? "" : s.substr(a + 1, b - a - 1);
+}
+
+// README.md's table: | `file` | problem | `substring` | tinygltf |
+std::map<std::string, std::string> expectedSubstrings() {
+    std::ifstream in(kCorpus / "README.md");
+    std::map<std::string, std::string> out;
+    for (std::string line; std::getline(in, line);) {
+        if (line.rfind("| `", 0) != 0) continue;
+        std::vector<std::string> cells;
+        std::stringstream ss(line);
+        for (std::string cell; std::getline(ss, cell, '|');) cells.push_back(trim(cell));
+        if (cells.size() < 5) continue; // cells[0]: the empty text before the first '|'
+        const std::string file = firstBackticked(cells[1]), substring = firstBackticked(cells[3]);
+        if (!file.empty() && !substring.empty()) out[file] = substring;
+    }
+    return out;
+}
+
+std::vector<std::string> corpusFiles() {
+    std::vector<std::string> files;
+    for (const auto& e : fs::directory_iterator(kCorpus)) {
+        const std::string name = e.path().filename().string();
+        if (!e.is_regular_file() || name == "README.md" || name == "make_corpus.py" || e.path().extension() == ".bin")
+            continue;
+        files.push_back(name);
+    }
+    std::sort(files.begin(), files.end());
+    return files;
+}
+
+TEST(CliCorpus, ReadmeTableCoversEveryCorpusFile) {
+    const auto expected = expectedSubstrings();
+    const auto files = corpusFiles();
+    EXPECT_GE(files.size(), 21u);
+    for (const auto& f : files) EXPECT_EQ(expected.count(f), 1u) << f << " has no row in README.md";
+}
+
+class MalformedCorpus : public CliTest, public ::testing::WithParamInterface<std::string> {};
+
+TEST_P(MalformedCorpus, FailsWithOneLineNamingFileAndProblem) {
+    const auto expected = expectedSubstrings();
+    const auto it = expected.find(GetParam());
+    ASSERT_NE(it, expected.end()) << GetParam() << " has no expected substring in README.md";
+    const std::string file = (kCorpus / GetParam()).string();
+
+    const RunResult r = run({"render", file, "--spp", "1", "--width", "8", "--height", "8", "-o", (dir_ / "x.exr").string()},
+        {}, 10);
+    EXPECT_EXIT_STATUS(r, 1);
+    EXPECT_LT(r.seconds, 5.0) << r;
+    const std::string line = r.errorLine();
+    EXPECT_NE(line.find(file), std::string::npos) << "the error does not name " << file << ": " << line;
+    const std::string problem = lower(removeAll(line.substr(std::strlen("pt: error: ")), file));
+    EXPECT_NE(problem.find(it->second), std::string::npos) << "expected '" << it->second << "' in: " << line;
+    EXPECT_FALSE(fs::exists(dir_ / "x.exr"));
+    EXPECT_FALSE(fs::exists(dir_ / "x.png"));
+    EXPECT_TRUE(outputs().empty()) << "left " << outputs().front();
+}
+
+std::string paramName(const ::testing::TestParamInfo<std::string>& info) {
+    std::string s = info.param;
+    for (char& c : s)
+        if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+    return s;
+}
+
+INSTANTIATE_TEST_SUITE_P(Corpus, MalformedCorpus, ::testing::ValuesIn(corpusFiles()), paramName);
+
+// ---------------------------------------------------------------------------------------------
+// Successful renders
+
+TEST_F(CliTest, DefaultSceneWritesExrWithMetadataAndPng) {
+    const fs::path exr = dir_ / "cbox.exr", png = dir_ / "cbox.png";
+    const RunResult r = run({"render", "-o", exr.string(), "--spp", "2", "--width", "32", "--height", "32"});
+    EXPECT_EXIT_STATUS(r, 0);
+    EXPECT_TRUE(r.errorLines().empty()) << r;
+    ASSERT_TRUE(fs::exists(exr)) << r;
+
+    pt::ImageMetadata meta;
+    const pt::Image image = pt::readExr(exr, &meta);
+    EXPECT_EQ(image.width, 32);
+    EXPECT_EQ(image.height, 32);
+    EXPECT_EQ(meta["spp"], "2");
+    EXPECT_EQ(meta["seed"], "0");
+    EXPECT_FALSE(meta["device"].empty());
+    EXPECT_FALSE(meta["integrator"].empty());
+    EXPECT_EQ(meta["dropped_samples"], "0");
+    EXPECT_EQ(meta["scene"], "built-in Cornell box");
+    // The Cornell box is lit: some light must have arrived, and nothing non-finite.
+    double sum = 0;
+    for (int y = 0; y < image.height; ++y)
+        for (int x = 0; x < image.width; ++x)
+            for (int c = 0; c < 3; ++c) {
+                ASSERT_TRUE(std::isfinite(image.at(x, y)[c])) << x << "," << y;
+                sum += image.at(x, y)[c];
+            }
+    EXPECT_GT(sum, 0.0);
+
+    ASSERT_TRUE(fs::exists(png));
+    EXPECT_GT(fs::file_size(png), 0u);
+    const std::string header = readFile(png).substr(0, 8);
+    EXPECT_EQ(header, std::string("\x89PNG\r\n\x1a\n", 8));
+    EXPECT_EQ(outputs(), (std::vector<std::string>{"cbox.exr", "cbox.png"})) << "temporary files left behind";
+}
+
+TEST_F(CliTest, SeedAndSppReachTheMetadata) {
+    const fs::path exr = dir_ / "sub" / "dir" / "seeded.exr";
+    const RunResult r = run({"render", "-o", exr.string(), "--spp", "3", "--seed", "7", "--width", "8", "--height", "4",
+        "--quiet"});
+    EXPECT_EXIT_STATUS(r, 0);
+    ASSERT_TRUE(fs::exists(exr)) << r; // parent directories are created
+    pt::ImageMetadata meta;
+    const pt::Image image = pt::readExr(exr, &meta);
+    EXPECT_EQ(image.width, 8);
+    EXPECT_EQ(image.height, 4);
+    EXPECT_EQ(meta["spp"], "3");
+    EXPECT_EQ(meta["seed"], "7");
+    EXPECT_TRUE(fs::exists(dir_ / "sub" / "dir" / "seeded.png"));
+}
+
+TEST_F(CliTest, ValidationLayerStaysSilent) {
+    const fs::path exr = dir_ / "v.exr";
+    const RunResult r =
+        run({"render", "--spp", "1", "--width", "16", "--height", "16", "-o", exr.string()}, {{"PT_VALIDATION", "1"}});
+    EXPECT_EXIT_STATUS(r, 0);
+    EXPECT_TRUE(r.errorLines().empty()) << r;
+    // Nothing about validation (this test's own directory name aside).
+    EXPECT_EQ(lower(removeAll(r.err, dir_.string())).find("validation"), std::string::npos) << r;
+    EXPECT_TRUE(fs::exists(exr));
+}
+
+TEST_F(CliTest, DevicesListsAtLeastOneDevice) {
+    const RunResult r = run({"devices"});
+    EXPECT_EXIT_STATUS(r, 0);
+    std::istringstream s(r.out);
+    int devices = 0;
+    for (std::string line; std::getline(s, line);) {
+        // "<index>: <name> (<type>, <driver>, Vulkan x.y)"
+        if (line.empty() || !std::isdigit(static_cast<unsigned char>(line[0])) || line.find(": ") == std::string::npos) continue;
+        if (line.find("llvmpipe") != std::string::npos || line.find("GPU") != std::string::npos) ++devices;
+    }
+    EXPECT_GE(devices, 1) << r;
+}
+
+TEST_F(CliTest, ErrorLogRecordsEveryPass) {
+    const fs::path log = dir_ / "errors.csv", exr = dir_ / "diffuse.exr";
+    const RunResult r = run({"render", kDiffuseScene.string(), "--reference", kDiffuseReference.string(), "--error-log",
+        log.string(), "--spp", "4", "--pass-spp", "1", "-o", exr.string(), "--quiet"});
+    EXPECT_EXIT_STATUS(r, 0);
+    ASSERT_TRUE(fs::exists(log)) << r;
+    std::istringstream s(readFile(log));
+    std::string line;
+    ASSERT_TRUE(std::getline(s, line));
+    EXPECT_EQ(line, "spp,seconds,relmse");
+    std::vector<long> spp;
+    std::vector<double> seconds, relmse;
+    while (std::getline(s, line)) {
+        if (line.empty()) continue;
+        long n;
+        double t, e;
+        char c1, c2;
+        std::istringstream row(line);
+        ASSERT_TRUE(row >> n >> c1 >> t >> c2 >> e && c1 == ',' && c2 == ',') << "bad row: " << line;
+        spp.push_back(n), seconds.push_back(t), relmse.push_back(e);
+    }
+    ASSERT_EQ(spp.size(), 4u) << readFile(log); // --pass-spp 1: one row per sample
+    for (size_t i = 0; i < spp.size(); ++i) {
+        EXPECT_EQ(spp[i], static_cast<long>(i + 1));
+        if (i > 0) EXPECT_GE(seconds[i], seconds[i - 1]);
+        EXPECT_TRUE(std::isfinite(relmse[i]) && relmse[i] > 0) << relmse[i];
+    }
+    // Four times the samples: well below the one-sample error (about a quarter of it).
+    EXPECT_LT(relmse.back(), 0.6 * relmse.front());
+    pt::ImageMetadata meta;
+    const pt::Image image = pt::readExr(exr, &meta);
+    EXPECT_EQ(image.width, 256); // the scene's own size hint
+    EXPECT_EQ(image.height, 256);
+    EXPECT_EQ(meta["spp"], "4");
+}
+
+// ---------------------------------------------------------------------------------------------
+// Bad inputs
+
+TEST_F(CliTest, MissingSceneFile) {
+    const std::string scene = (dir_ / "nothere.gltf").string();
+    const RunResult r = run({"render", scene, "--spp", "1", "-o", (dir_ / "x.exr").string()});
+    EXPECT_EXIT_STATUS(r, 1);
+    const std::string line = r.errorLine();
+    EXPECT_NE(line.find(scene), std::string::npos) << line;
+    EXPECT_NE(lower(removeAll(line, scene)).find("not found"), std::string::npos) << line;
+    EXPECT_TRUE(outputs().empty());
+}
+
+TEST_F(CliTest, DirectoryAsScene) {
+    for (const std::string name : {"scenes", "folder.gltf"}) {
+        SCOPED_TRACE(name);
+        const std::string scene = (dir_ / name).string();
+        fs::create_directories(scene);
+        const RunResult r = run({"render", scene, "--spp", "1", "-o", (dir_ / "x.exr").string()});
+        EXPECT_EXIT_STATUS(r, 1);
+        const std::string line = r.errorLine();
+        EXPECT_NE(line.find(scene), std::string::npos) << line;
+        EXPECT_FALSE(fs::exists(dir_ / "x.exr"));
+    }
+}
+
+TEST_F(CliTest, UnknownSceneExtension) {
+    const std::string scene = (dir_ / "model.obj").string();
+    std::ofstream(scene) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+    const RunResult r = run({"render", scene, "--spp", "1", "-o", (dir_ / "x.exr").string()});
+    EXPECT_EXIT_STATUS(r, 1);
+    const std::string line = r.errorLine();
+    EXPECT_NE(line.find(scene), std::string::npos) << line;
+    EXPECT_NE(removeAll(line, scene).find(".obj"), std::string::npos) << "should say which extension: " << line;
+    EXPECT_FALSE(fs::exists(dir_ / "x.exr"));
+}
+
+TEST_F(CliTest, AbsurdResolutionFailsFastWithoutAllocating) {
+    const RunResult r =
+        run({"render", "--spp", "1", "--width", "100000", "--height", "100000", "-o", (dir_ / "x.exr").string()}, {}, 10);
+    EXPECT_EXIT_STATUS(r, 1);
+    EXPECT_LT(r.seconds, 2.0) << r;
+    const std::string line = r.errorLine();
+    EXPECT_NE(line.find("100000"), std::string::npos) << "should mention the size: " << line;
+    EXPECT_NE(lower(line).find("size"), std::string::npos) << line;
+    EXPECT_TRUE(outputs().empty());
+}
+
+TEST_F(CliTest, ReferenceOfTheWrongSize) {
+    const std::string ref = kDiffuseReference.string(); // 256x256
+    const RunResult r =
+        run({"render", "--reference", ref, "--spp", "1", "--width", "32", "--height", "32", "-o", (dir_ / "x.exr").string()});
+    EXPECT_EXIT_STATUS(r, 1);
+    const std::string line = r.errorLine();
+    EXPECT_NE(line.find(ref), std::string::npos) << line;
+    EXPECT_NE(line.find("256"), std::string::npos) << "should give the reference's size: " << line;
+    EXPECT_TRUE(outputs().empty());
+}
+
+TEST_F(CliTest, MissingReference) {
+    const std::string ref = (dir_ / "nothere.exr").string();
+    const RunResult r =
+        run({"render", "--reference", ref, "--spp", "1", "--width", "8", "--height", "8", "-o", (dir_ / "x.exr").string()});
+    EXPECT_EXIT_STATUS(r, 1);
+    const std::string line = r.errorLine();
+    EXPECT_NE(line.find(ref), std::string::npos) << line;
+    EXPECT_TRUE(outputs().empty());
+}
+
+TEST_F(CliTest, ReferenceThatIsNotAnExr) {
+    const std::string ref = kDiffuseScene.string();
+    const RunResult r =
+        run({"render", "--reference", ref, "--spp", "1", "--width", "8", "--height", "8", "-o", (dir_ / "x.exr").string()});
+    EXPECT_EXIT_STATUS(r, 1);
+    EXPECT_NE(r.errorLine().find(ref), std::string::npos);
+    EXPECT_TRUE(outputs().empty());
+}
+
+TEST_F(CliTest, OutputUnderProc) {
+    const std::string out = "/proc/pt-cli-test-does-not-exist/y.exr";
+    const RunResult r = run({"render", "--spp", "1", "--width", "8", "--height", "8", "-o", out});
+    EXPECT_EXIT_STATUS(r, 1);
+    const std::string line = r.errorLine();
+    // Naming the output, or the directory that could not be made for it.
+    EXPECT_NE(line.find(fs::path(out).parent_path().string()), std::string::npos) << line;
+}
+
+TEST_F(CliTest, OutputWhoseParentIsARegularFile) {
+    const fs::path file = dir_ / "file.txt";
+    std::ofstream(file) << "not a directory\n";
+    const std::string out = (file / "y.exr").string();
+    const RunResult r = run({"render", "--spp", "1", "--width", "8", "--height", "8", "-o", out});
+    EXPECT_EXIT_STATUS(r, 1);
+    const std::string line = r.errorLine();
+    EXPECT_NE(line.find(file.string()), std::string::npos) << line;
+    EXPECT_EQ(readFile(file), "not a directory\n");
+    EXPECT_EQ(outputs(), std::vector<std::string>{"file.txt"});
+}
+
+TEST_F(CliTest, OutputThatIsADirectory) {
+    const fs::path out = dir_ / "taken.exr";
+    fs::create_directories(out);
+    const RunResult r = run({"render", "--spp", "1", "--width", "8", "--height", "8", "-o", out.string(), "--quiet"});
+    EXPECT_EXIT_STATUS(r, 1);
+    EXPECT_NE(r.errorLine().find(out.string()), std::string::npos);
+    EXPECT_TRUE(fs::is_directory(out));
+    EXPECT_FALSE(fs::exists(dir_ / "taken.png"));
+}
+
+TEST_F(CliTest, OutputMustBeExr) {
+    const std::string out = (dir_ / "image.png").string();
+    const RunResult r = run({"render", "--spp", "1", "--width", "8", "--height", "8", "-o", out});
+    EXPECT_EXIT_STATUS(r, 1);
+    EXPECT_NE(r.errorLine().find(out), std::string::npos);
+    EXPECT_TRUE(outputs().empty());
+}
+
+TEST_F(CliTest, CameraOutOfRange) {
+    const RunResult r =
+        run({"render", "--camera", "5", "--spp", "1", "--width", "8", "--height", "8", "-o", (dir_ / "x.exr").string()});
+    EXPECT_EXIT_STATUS(r, 1);
+    const std::string line = r.errorLine();
+    EXPECT_NE(lower(line).find("camera"), std::string::npos) << line;
+    EXPECT_NE(line.find('5'), std::string::npos) << line;
+    EXPECT_TRUE(outputs().empty());
+}
+
+// ---------------------------------------------------------------------------------------------
+// Usage errors: exit status 2, nothing rendered.
+
+TEST_F(CliTest, SppAndTimeTogetherIsAUsageError) {
+    const RunResult r = run({"render", "--spp", "4", "--time", "1", "-o", (dir_ / "x.exr").string()});
+    EXPECT_EXIT_STATUS(r, 2);
+    EXPECT_NE(r.err.find("--time"), std::string::npos) << r;
+    EXPECT_TRUE(outputs().empty());
+}
+
+TEST_F(CliTest, BadSwitchValueIsAUsageError) {
+    const RunResult r = run({"render", "--nee", "maybe", "-o", (dir_ / "x.exr").string()});
+    EXPECT_EXIT_STATUS(r, 2);
+    EXPECT_NE(r.err.find("maybe"), std::string::npos) << r;
+    EXPECT_TRUE(outputs().empty());
+}
+
+TEST_F(CliTest, UnknownOptionIsAUsageError) {
+    const RunResult r = run({"render", "--no-such-option", "-o", (dir_ / "x.exr").string()});
+    EXPECT_EXIT_STATUS(r, 2);
+    EXPECT_TRUE(outputs().empty());
+}
+
+TEST_F(CliTest, MissingSubcommandIsAUsageError) {
+    const RunResult r = run({});
+    EXPECT_EXIT_STATUS(r, 2);
+}
+
+TEST_F(CliTest, ErrorLogWithoutReferenceIsAUsageError) {
+    const RunResult r = run({"render", "--error-log", (dir_ / "e.csv").string(), "-o", (dir_ / "x.exr").string()});
+    EXPECT_EXIT_STATUS(r, 2);
+    EXPECT_NE(r.err.find("--reference"), std::string::npos) << r;
+    EXPECT_TRUE(outputs().empty());
+}
+
+TEST_F(CliTest, HelpExitsZero) {
+    const RunResult r = run({"render", "--help"});
+    EXPECT_EXIT_STATUS(r, 0);
+    EXPECT_NE(r.out.find("--spp"), std::string::npos) << r;
+}
+
+} // namespace

@@ -113,6 +113,13 @@ std::vector<TraceResult> trace(uint32_t mode, const TestScene& scene, const std:
     return results;
 }
 
+std::string str(float x) {
+    std::ostringstream s;
+    s.precision(9);
+    s << x;
+    return s.str();
+}
+
 std::string describe(const GpuTestRay& r) {
     std::ostringstream s;
     s.precision(9);
@@ -161,7 +168,7 @@ Comparison expectBvhMatchesBruteForce(const TestScene& scene, const std::vector<
         }
         if (b.hit != f.hit) {
             fail(i, std::string("BVH ") + (b.hit ? "hits" : "misses") + ", brute force " + (f.hit ? "hits" : "misses") +
-                        " (t " + std::to_string(b.hit ? b.t : f.t) + ")");
+                        " (t " + str(b.hit ? b.t : f.t) + ")");
             continue;
         }
         if (mustHit && !f.hit) {
@@ -171,8 +178,8 @@ Comparison expectBvhMatchesBruteForce(const TestScene& scene, const std::vector<
         if (!f.hit) continue;
         ++c.hits;
         if (std::bit_cast<uint32_t>(b.t) != std::bit_cast<uint32_t>(f.t)) {
-            fail(i, "t differs: BVH " + std::to_string(b.t) + " (triangle " + std::to_string(b.triangle) + "), brute force " +
-                        std::to_string(f.t) + " (triangle " + std::to_string(f.triangle) + ")");
+            fail(i, "t differs: BVH " + str(b.t) + " (triangle " + std::to_string(b.triangle) + "), brute force " + str(f.t) +
+                        " (triangle " + std::to_string(f.triangle) + ")");
         } else if (b.triangle != f.triangle) {
             if (isGenuineTie(scene.flat, rays[i], b, f)) ++c.ties;
             else fail(i, "triangle differs: BVH " + std::to_string(b.triangle) + ", brute force " + std::to_string(f.triangle));
