@@ -182,7 +182,7 @@ protected:
     fs::path dir_, captureDir_;
 };
 
-// Exit status `status`, not killed by a signal, within `seconds`.
+// Exited (not killed by a signal, not timed out) with status `expected`.
 #define EXPECT_EXIT_STATUS(r, expected)                                                                         \
     do {                                                                                                        \
         EXPECT_FALSE((r).signaled) << (r);                                                                      \
