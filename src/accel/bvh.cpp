@@ -20,11 +20,16 @@
 #include <stdexcept>
 #include <thread>
 
+// PT_BVH_SSE=0 forces the portable scalar path (it gives bit-identical trees).
+#ifndef PT_BVH_SSE
 #if defined(__SSE2__) || defined(_M_X64)
-#include <emmintrin.h>
 #define PT_BVH_SSE 1
 #else
 #define PT_BVH_SSE 0
+#endif
+#endif
+#if PT_BVH_SSE
+#include <emmintrin.h>
 #endif
 
 namespace pt {
@@ -72,8 +77,7 @@ constexpr float kInf = std::numeric_limits<float>::infinity();
 
 // Working copy of a primitive, permuted in place (contiguous memory is much faster to bin and
 // partition than gathering through an index array). Laid out as two 16-byte rows so a box loads
-// as two SIMD registers; lane 3 of those registers carries prim / binKeys and is never used as a
-// coordinate. binKeys caches each axis' bin from the last binning pass, so the partition uses
+// as two SIMD registers (lane 3, prim / binKeys, is zeroed on load). binKeys caches each axis' bin from the last binning pass, so the partition uses
 // exactly the classification the SAH was evaluated on, with no recomputation that could round
 // differently.
 struct alignas(16) PrimRef {
@@ -104,8 +108,7 @@ inline V4 vmax(V4 a, V4 b) { return { _mm_max_ps(a.v, b.v) }; }
 inline V4 vadd(V4 a, V4 b) { return { _mm_add_ps(a.v, b.v) }; }
 inline V4 vsub(V4 a, V4 b) { return { _mm_sub_ps(a.v, b.v) }; }
 inline V4 vmul(V4 a, V4 b) { return { _mm_mul_ps(a.v, b.v) }; }
-// Zeroes lane 3 (which holds integer payload bits) before arithmetic on it.
-inline V4 xyz(V4 a) { return { _mm_and_ps(a.v, _mm_castsi128_ps(_mm_set_epi32(0, -1, -1, -1))) }; }
+inline V4 xyz(V4 a) { return { _mm_and_ps(a.v, _mm_castsi128_ps(_mm_set_epi32(0, -1, -1, -1))) }; } // lane 3 = 0
 inline void truncToInt(V4 a, int32_t out[4]) { _mm_storeu_si128(reinterpret_cast<__m128i*>(out), _mm_cvttps_epi32(a.v)); }
 #else
 template <class F>
@@ -170,9 +173,12 @@ inline int rankOf(const float* keys, int nPadded, int i)
 }
 #endif
 
-inline V4 loadLo(const PrimRef& r) { return loadRow(&r.lo[0]); }
-inline V4 loadHi(const PrimRef& r) { return loadRow(&r.hi[0]); }
-inline V4 centroidOf(V4 lo, V4 hi) { return vmul(vadd(xyz(lo), xyz(hi)), splat(0.5f)); }
+// Lane 3 (integer payload) is zeroed so that it never feeds arithmetic as a denormal or NaN.
+inline V4 loadLo(const PrimRef& r) { return xyz(loadRow(&r.lo[0])); }
+inline V4 loadHi(const PrimRef& r) { return xyz(loadRow(&r.hi[0])); }
+// (lo + hi) * 0.5 rather than lo * 0.5 + hi * 0.5: no FMA contraction can make two call sites
+// round differently. Overflows only beyond 1.7e38.
+inline V4 centroidOf(V4 lo, V4 hi) { return vmul(vadd(lo, hi), splat(0.5f)); }
 
 struct Box4 {
     V4 lo = splat(kInf);
@@ -602,7 +608,7 @@ private:
                 const float cost = acc.area() * float(k) + rightArea[k] * float(n - k);
                 const int imbalance = std::abs(2 * k - n);
                 // Branch-free update: which split wins is unpredictable.
-                const bool better = cost < bestCost || (cost == bestCost && imbalance < bestImbalance);
+                const bool better = (cost < bestCost) | ((cost == bestCost) & (imbalance < bestImbalance));
                 bestAxis = better ? a : bestAxis;
                 bestK = better ? k : bestK;
                 bestCost = better ? cost : bestCost;

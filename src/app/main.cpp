@@ -66,7 +66,8 @@ int main(int argc, char** argv) {
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
-        return app.exit(e);
+        // CLI11 prints the message; its own exit codes vary, ours are 0 (help) or 2 (usage).
+        return app.exit(e) == 0 ? 0 : 2;
     }
     if (const char* v = std::getenv("PT_VALIDATION"); v && std::string(v) == "1") o.validation = true;
     o.integrator.nee = onOff(nee);

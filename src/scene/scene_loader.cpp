@@ -10,6 +10,8 @@ namespace pt {
 
 Scene loadScene(const std::filesystem::path& path) {
     if (path.empty()) return loadDefaultScene();
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec)) throw SceneError(path.string(), "is a directory, not a scene file");
     std::string ext = path.extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
     if (ext == ".gltf" || ext == ".glb") return loadGltfFile(path);
