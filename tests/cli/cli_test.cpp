@@ -554,3 +554,23 @@ TEST_F(CliTest, HelpExitsZero) {
 }
 
 } // namespace
+
+// Vulkan failures are one clear line too: no driver at all, and a --device nothing matches.
+TEST_F(CliTest, NoVulkanDriverIsAClearError) {
+    const RunResult r = run({"render", "--spp", "1", "--width", "8", "--height", "8", "-o", (dir_ / "x.exr").string()},
+        {{"VK_ICD_FILENAMES", (dir_ / "no-such-icd.json").string()}, {"VK_DRIVER_FILES", (dir_ / "no-such-icd.json").string()}});
+    EXPECT_EXIT_STATUS(r, 1);
+    const std::string line = lower(r.errorLine());
+    EXPECT_NE(line.find("vulkan"), std::string::npos) << line;
+    EXPECT_TRUE(line.find("driver") != std::string::npos || line.find("device") != std::string::npos) << line;
+    EXPECT_TRUE(outputs().empty());
+}
+
+TEST_F(CliTest, UnmatchedDeviceIsAClearError) {
+    const RunResult r = run({"render", "--spp", "1", "--width", "8", "--height", "8", "--device", "NoSuchGpu9000", "-o",
+        (dir_ / "x.exr").string()});
+    EXPECT_EXIT_STATUS(r, 1);
+    const std::string line = r.errorLine();
+    EXPECT_NE(line.find("NoSuchGpu9000"), std::string::npos) << line;
+    EXPECT_NE(line.find("pt devices"), std::string::npos) << line;
+}
