@@ -117,6 +117,9 @@ int runRender(const RenderOptions& o) {
         std::fprintf(stderr, "pt: note: %s: dropped %zu degenerate (zero-area) triangles\n", scene.source.c_str(),
             flat.degenerateTriangles);
     const double loadSeconds = secondsSince(loadStart);
+    if (flat.lights.lights.empty() && scene.background == glm::vec3(0.0f))
+        std::fprintf(stderr, "pt: warning: %s: nothing emits light (no emissive triangles, black background): the image "
+                             "will be black\n", scene.source.c_str());
 
     ContextOptions contextOptions;
     contextOptions.validation = o.validation;

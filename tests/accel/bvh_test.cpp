@@ -391,7 +391,7 @@ TEST(Bvh, OnePrimitive)
 TEST(Bvh, StructureForVariousOptions)
 {
     const std::vector<Aabb> prims = boundsOf(randomTris(20000, 1, 0.02f));
-    for (int bins : { 2, 8, 16, 32, 128 })
+    for (int bins : { 1, 2, 8, 16, 32, 128, 1000 }) // 1 and 1000 are clamped to [2, 128]
         for (int maxLeaf : { 1, 4, 8 })
             for (float isect : { 0.25f, 1.0f, 8.0f }) {
                 SCOPED_TRACE("bins " + std::to_string(bins) + " maxLeaf " + std::to_string(maxLeaf) + " isect " +
@@ -531,7 +531,7 @@ TEST(Bvh, ManyIdenticalTriangles)
 
     std::uniform_real_distribution<float> u(0.3f, 0.5f);
     std::vector<Ray> rays;
-    for (int i = 0; i < 20000; ++i) {
+    for (int i = 0; i < 5000; ++i) {
         const glm::vec3 p(u(rng), u(rng), 0.5f);
         rays.push_back(Ray{ p + glm::vec3(0, 0, (i & 1) ? 1.0f : -1.0f), kAxisDirs[(i & 1) ? 5 : 4] });
     }
@@ -633,19 +633,20 @@ TEST(Bvh, SahNoWorseThanMedianSplit)
 
 TEST(Bvh, BuildSpeedMillionRandomTriangles)
 {
+    // Timing print only (no assertion: the machine may be shared). Best of two builds.
     const std::vector<Aabb> prims = boundsOf(randomTris(1000000, 71, 0.01f));
     BvhBuildOptions opt;
     for (int threads : { 1, 2 }) {
         opt.threads = threads;
-        double best = 1e30;
-        Bvh bvh;
-        for (int rep = 0; rep < 2; ++rep) {
+        Bvh bvh = pt::buildBvh(prims, opt);
+        double best = bvh.buildSeconds;
+        if (threads == 2) {
             bvh = pt::buildBvh(prims, opt);
             best = std::min(best, bvh.buildSeconds);
+            checkStructure(bvh, prims, opt);
         }
         std::printf("  [speed] 1M random triangles, threads=%d: %.1f ms, %.2f M prims/s, SAH %.2f, %zu nodes, depth %d\n",
                     threads, best * 1e3, 1e-6 * double(prims.size()) / best, bvh.sahCost, bvh.nodes.size(), bvh.maxDepth);
-        if (threads == 2) checkStructure(bvh, prims, opt);
     }
 }
 

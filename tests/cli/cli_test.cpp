@@ -574,3 +574,22 @@ TEST_F(CliTest, UnmatchedDeviceIsAClearError) {
     EXPECT_NE(line.find("NoSuchGpu9000"), std::string::npos) << line;
     EXPECT_NE(line.find("pt devices"), std::string::npos) << line;
 }
+
+// Features the renderer does not model yet are named in exactly one warning, and a scene with
+// nothing emitting says so instead of silently writing a black image.
+TEST_F(CliTest, UnsupportedFeaturesAreListedInOneWarning) {
+    const std::string scene = (kTests / "data" / "cli" / "unsupported_features.gltf").string();
+    const RunResult r = run({"render", scene, "--spp", "1", "--width", "8", "--height", "8", "-o", (dir_ / "x.exr").string()});
+    EXPECT_EXIT_STATUS(r, 0);
+    std::vector<std::string> notSupported, noLight;
+    std::istringstream lines(r.err);
+    for (std::string line; std::getline(lines, line);) {
+        if (line.rfind("pt: warning: ", 0) != 0) continue;
+        if (line.find("not supported yet") != std::string::npos) notSupported.push_back(line);
+        if (line.find("nothing emits light") != std::string::npos) noLight.push_back(line);
+    }
+    ASSERT_EQ(notSupported.size(), 1u) << r;
+    for (const char* what : {"rough metal", "textures", "KHR_lights_punctual", "KHR_texture_transform"})
+        EXPECT_NE(notSupported[0].find(what), std::string::npos) << what << " missing from: " << notSupported[0];
+    EXPECT_EQ(noLight.size(), 1u) << r;
+}
