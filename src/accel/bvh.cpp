@@ -5,7 +5,8 @@
 //  1. Top phase (one thread, but binning of big nodes is split over threads): nodes are split
 //     depth-first until a node has at most kTaskPrims primitives; such a node becomes a task.
 //  2. Task phase: every task builds its subtree into its own node vector, in parallel.
-//  3. Assembly: top nodes first, then every task's nodes in task order, indices remapped.
+//  3. Assembly: nodes are placed exactly where a sequential depth-first build would have put
+//     them (children pairs in preorder of their parents), indices remapped.
 // Split decisions depend only on the primitives, and the decomposition into tasks only on fixed
 // constants, so nodes and primOrder are bit-identical for every thread count.
 #include "bvh.h"
@@ -346,18 +347,29 @@ public:
         }
         std::vector<BvhNode> nodes{ BvhNode{ rootBounds.lo3(), 0, rootBounds.hi3(), 0 } };
 
-        // Phase 1: top of the tree, depth-first, deferring small nodes as tasks.
+        // Phase 1: top of the tree, depth-first, deferring small nodes as tasks. `events` records,
+        // in preorder, where a sequential build would have allocated nodes: a children pair of a
+        // top node, or a task's whole subtree.
+        struct Event {
+            bool task;
+            uint32_t index; // task index, or the (phase-1) index of the first node of a pair
+        };
         std::vector<WorkItem> tasks;
+        std::vector<Event> events;
         int maxDepth = 0;
         {
             std::vector<WorkItem> stack{ root };
             while (!stack.empty()) {
                 const WorkItem item = stack.back();
                 stack.pop_back();
-                if (item.end - item.begin <= kTaskPrims)
+                if (item.end - item.begin <= kTaskPrims) {
+                    events.push_back({ true, uint32_t(tasks.size()) });
                     tasks.push_back(item);
-                else
+                } else {
+                    const size_t before = nodes.size();
                     processNode(nodes, item, stack, maxDepth);
+                    if (nodes.size() != before) events.push_back({ false, uint32_t(before) });
+                }
             }
         }
 
@@ -387,25 +399,38 @@ public:
             });
         }
 
-        // Phase 3: top nodes, then the task subtrees in task order (which is depth-first order).
-        std::vector<size_t> base(tasks.size());
-        size_t total = nodes.size();
-        for (size_t t = 0; t < tasks.size(); ++t) {
-            base[t] = total;
-            total += local[t].size() - 1;
-            maxDepth = std::max(maxDepth, localDepth[t]);
+        // Phase 3: final positions from the preorder events, then copy with remapped indices.
+        std::vector<uint32_t> topIndex(nodes.size(), 0); // phase-1 index -> final index
+        std::vector<size_t> base(tasks.size());          // final index of a task's local node 1
+        size_t total = 1;
+        for (const Event& e : events) {
+            if (e.task) {
+                base[e.index] = total;
+                total += local[e.index].size() - 1;
+                maxDepth = std::max(maxDepth, localDepth[e.index]);
+            } else {
+                topIndex[e.index] = uint32_t(total);
+                topIndex[e.index + 1] = uint32_t(total + 1);
+                total += 2;
+            }
         }
-        nodes.resize(total);
+        std::vector<BvhNode> placed(total);
+        for (size_t i = 0; i < nodes.size(); ++i) { // task roots among these are overwritten below
+            BvhNode nd = nodes[i];
+            if (nd.count == 0) nd.leftOrFirst = topIndex[nd.leftOrFirst];
+            placed[topIndex[i]] = nd;
+        }
         parallelFor(threads_, tasks.size(), [&](size_t t) {
             // Local index k >= 1 moves to base + k - 1; leaves index refs_, which is shared.
             const auto remap = [&](BvhNode nd) {
                 if (nd.count == 0) nd.leftOrFirst = uint32_t(base[t] + nd.leftOrFirst - 1);
                 return nd;
             };
-            nodes[tasks[t].slot] = remap(local[t][0]);
-            for (size_t k = 1; k < local[t].size(); ++k) nodes[base[t] + k - 1] = remap(local[t][k]);
+            placed[topIndex[tasks[t].slot]] = remap(local[t][0]);
+            for (size_t k = 1; k < local[t].size(); ++k) placed[base[t] + k - 1] = remap(local[t][k]);
             std::vector<BvhNode>().swap(local[t]);
         });
+        nodes = std::move(placed);
 
         out.primOrder.resize(n);
         {

@@ -18,9 +18,11 @@ struct Aabb {
 };
 
 // Flattened node, depth-first order. Interior node: count == 0, its two children are
-// nodes[leftOrFirst] and nodes[leftOrFirst + 1] (always adjacent, and always at a larger index
-// than their parent). Leaf: count > 0 primitives primOrder[leftOrFirst .. leftOrFirst + count).
-// The root is nodes[0]. For zero primitives nodes is empty (no node with an empty box exists).
+// nodes[leftOrFirst] and nodes[leftOrFirst + 1] (always adjacent). Leaf: count > 0 primitives
+// primOrder[leftOrFirst .. leftOrFirst + count). The root is nodes[0]. For zero primitives nodes
+// is empty (no node with an empty box exists). "Depth-first": children pairs are stored in the
+// preorder of their parents (left subtree first), i.e. exactly where a sequential depth-first
+// build allocates them, so a child always has a larger index than its parent.
 // Layout is 32 bytes, two std430-compatible vec3+uint pairs, so it can be uploaded as is.
 struct BvhNode {
     glm::vec3 lo;
@@ -51,7 +53,8 @@ struct Bvh {
 };
 
 // Builds over arbitrary primitives given their bounds (triangles now, spheres later).
-// Bounds must be finite; they may be flat or points. Throws std::length_error above 2^31-1 prims.
+// Bounds must be finite (|coordinate| < 1e38); they may be flat or points. Throws
+// std::length_error above 2^31-1 primitives.
 // The output (nodes, primOrder, sahCost, maxDepth) is identical for every options.threads value.
 Bvh buildBvh(std::span<const Aabb> primBounds, const BvhBuildOptions& options = {});
 

@@ -6,7 +6,6 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -114,6 +113,7 @@ size_t checkStructure(const Bvh& bvh, const std::vector<Aabb>& prims, const BvhB
     std::vector<uint8_t> covered(n, 0), visited(bvh.nodes.size(), 0);
     std::vector<std::pair<uint32_t, int>> stack{ { 0u, 0 } };
     size_t leaves = 0, failures = 0;
+    uint32_t nextPair = 1; // depth-first layout: children pairs in preorder of their parents
     int maxDepth = 0;
     const size_t maxLeaf = size_t(std::max(opt.maxLeafSize, 1));
     while (!stack.empty() && failures < 10) {
@@ -132,6 +132,11 @@ size_t checkStructure(const Bvh& bvh, const std::vector<Aabb>& prims, const BvhB
                 ++failures;
                 continue;
             }
+            if (l != nextPair) {
+                ADD_FAILURE() << "node " << idx << ": children at " << l << ", depth-first order expects " << nextPair;
+                ++failures;
+            }
+            nextPair = l + 2;
             Aabb u;
             u.grow(Aabb{ bvh.nodes[l].lo, bvh.nodes[l].hi });
             u.grow(Aabb{ bvh.nodes[l + 1].lo, bvh.nodes[l + 1].hi });
