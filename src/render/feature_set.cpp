@@ -62,7 +62,9 @@ std::vector<SpecializationConstant> FeatureSet::constants(uint32_t localSizeX, u
 std::string FeatureSet::describe() const {
     std::string s;
     auto add = [&](bool on, const char* name) {
-        if (on) s += (s.empty() ? "" : " ") + std::string(name);
+        if (!on) return;
+        if (!s.empty()) s += ' ';
+        s += name;
     };
     add(diffuse, "diffuse");
     add(mirror, "mirror");

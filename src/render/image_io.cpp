@@ -85,8 +85,9 @@ public:
     explicit AtomicFile(const std::filesystem::path& path) : path_(path) {
         // pid + counter keep concurrent writers (threads or processes) apart.
         static std::atomic<unsigned> counter{0};
-        std::string name = "." + path.filename().string() + ".tmp" +
-                           std::to_string(::getpid()) + "_" + std::to_string(counter++);
+        std::string name = ".";
+        name += path.filename().string();
+        name += ".tmp" + std::to_string(::getpid()) + "_" + std::to_string(counter++);
         tmp_ = path.parent_path() / name;
         file_ = std::fopen(tmp_.c_str(), "wb");
         if (!file_) fail(path_, "cannot write (" + errnoText(errno) + ")");

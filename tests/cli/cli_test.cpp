@@ -3,6 +3,7 @@
 //
 // Every test runs pt in its own temporary directory (its working directory too, so a default
 // output path could not litter the source tree), with stdout and stderr captured to files.
+#include "support/malformed_corpus.h"
 #include "render/image_io.h"
 
 #include <gtest/gtest.h>
@@ -194,47 +195,9 @@ protected:
 // The malformed corpus: tests/data/malformed_gltf/README.md lists each file with the lowercase
 // substring its error must contain once the file's own path is removed.
 
-std::string trim(std::string s) {
-    const char* ws = " \t\r\n";
-    s.erase(0, s.find_first_not_of(ws));
-    s.erase(s.find_last_not_of(ws) + 1);
-    return s;
-}
-
-std::string firstBackticked(const std::string& s) {
-    const size_t a = s.find('`');
-    if (a == std::string::npos) return "";
-    const size_t b = s.find('`', a + 1);
-    return b == std::string::npos ? "" : s.substr(a + 1, b - a - 1);
-}
-
-// README.md's table: | `file` | problem | `substring` | tinygltf |
-std::map<std::string, std::string> expectedSubstrings() {
-    std::ifstream in(kCorpus / "README.md");
-    std::map<std::string, std::string> out;
-    for (std::string line; std::getline(in, line);) {
-        if (line.rfind("| `", 0) != 0) continue;
-        std::vector<std::string> cells;
-        std::stringstream ss(line);
-        for (std::string cell; std::getline(ss, cell, '|');) cells.push_back(trim(cell));
-        if (cells.size() < 5) continue; // cells[0]: the empty text before the first '|'
-        const std::string file = firstBackticked(cells[1]), substring = firstBackticked(cells[3]);
-        if (!file.empty() && !substring.empty()) out[file] = substring;
-    }
-    return out;
-}
-
-std::vector<std::string> corpusFiles() {
-    std::vector<std::string> files;
-    for (const auto& e : fs::directory_iterator(kCorpus)) {
-        const std::string name = e.path().filename().string();
-        if (!e.is_regular_file() || name == "README.md" || name == "make_corpus.py" || e.path().extension() == ".bin")
-            continue;
-        files.push_back(name);
-    }
-    std::sort(files.begin(), files.end());
-    return files;
-}
+using pt::test::trim;
+std::map<std::string, std::string> expectedSubstrings() { return pt::test::malformedCorpusExpectations(); }
+std::vector<std::string> corpusFiles() { return pt::test::malformedCorpusFiles(); }
 
 TEST(CliCorpus, ReadmeTableCoversEveryCorpusFile) {
     const auto expected = expectedSubstrings();

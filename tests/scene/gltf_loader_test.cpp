@@ -1,5 +1,6 @@
 // The glTF loader on the reference scenes, on tiny hand-written documents (mirroring and node
 // hierarchies) and on the malformed corpus (tests/data/malformed_gltf/README.md).
+#include "support/malformed_corpus.h"
 #include "scene/default_scene.h"
 #include "scene/gltf_loader.h"
 #include "scene/scene_error.h"
@@ -378,51 +379,9 @@ TEST(GltfLoader, NodeUsedTwiceIsInstancedTwice) {
 // Malformed corpus: every file throws pt::SceneError "<file>: <problem>" with the README's
 // substring in <problem>.
 
-std::string trim(std::string s) {
-    const char* ws = " \t\r\n";
-    s.erase(0, s.find_first_not_of(ws));
-    s.erase(s.find_last_not_of(ws) + 1);
-    return s;
-}
-
-std::string firstBackticked(const std::string& s) {
-    const size_t a = s.find('`');
-    if (a == std::string::npos) return "";
-    const size_t b = s.find('`', a + 1);
-    return b == std::string::npos ? "" : s.substr(a + 1, b - a - 1);
-}
-
-// README.md's table: | `file` | problem | `substring` | tinygltf |
-std::map<std::string, std::string> expectedSubstrings() {
-    std::ifstream in(kCorpus / "README.md");
-    std::map<std::string, std::string> out;
-    std::string line;
-    while (std::getline(in, line)) {
-        if (line.rfind("| `", 0) != 0) continue;
-        std::vector<std::string> cells;
-        std::stringstream ss(line);
-        std::string cell;
-        while (std::getline(ss, cell, '|')) cells.push_back(trim(cell));
-        // cells[0] is the empty text before the first '|'.
-        if (cells.size() < 5) continue;
-        const std::string file = firstBackticked(cells[1]);
-        const std::string substring = firstBackticked(cells[3]);
-        if (!file.empty() && !substring.empty()) out[file] = substring;
-    }
-    return out;
-}
-
-std::vector<std::string> corpusFiles() {
-    std::vector<std::string> files;
-    for (const auto& e : fs::directory_iterator(kCorpus)) {
-        const std::string name = e.path().filename().string();
-        if (!e.is_regular_file() || name == "README.md" || name == "make_corpus.py" || e.path().extension() == ".bin")
-            continue;
-        files.push_back(name);
-    }
-    std::sort(files.begin(), files.end());
-    return files;
-}
+using pt::test::trim;
+std::map<std::string, std::string> expectedSubstrings() { return pt::test::malformedCorpusExpectations(); }
+std::vector<std::string> corpusFiles() { return pt::test::malformedCorpusFiles(); }
 
 std::string lower(std::string s) {
     std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });

@@ -1,0 +1,56 @@
+#include "support/malformed_corpus.h"
+
+#include <algorithm>
+#include <fstream>
+#include <sstream>
+
+namespace pt::test {
+namespace {
+
+std::string firstBackticked(const std::string& s) {
+    const size_t a = s.find('`');
+    if (a == std::string::npos) return "";
+    const size_t b = s.find('`', a + 1);
+    return b == std::string::npos ? "" : s.substr(a + 1, b - a - 1);
+}
+
+} // namespace
+
+std::filesystem::path malformedCorpusDir() { return std::filesystem::path(PT_TEST_DATA_DIR) / "data" / "malformed_gltf"; }
+
+std::string trim(std::string s) {
+    const char* ws = " \t\r\n";
+    s.erase(0, s.find_first_not_of(ws));
+    s.erase(s.find_last_not_of(ws) + 1);
+    return s;
+}
+
+// README.md's table: | `file` | problem | `substring` | tinygltf |
+std::map<std::string, std::string> malformedCorpusExpectations() {
+    std::ifstream in(malformedCorpusDir() / "README.md");
+    std::map<std::string, std::string> out;
+    for (std::string line; std::getline(in, line);) {
+        if (line.rfind("| `", 0) != 0) continue;
+        std::vector<std::string> cells;
+        std::stringstream ss(line);
+        for (std::string cell; std::getline(ss, cell, '|');) cells.push_back(trim(cell));
+        if (cells.size() < 5) continue; // cells[0]: the empty text before the first '|'
+        const std::string file = firstBackticked(cells[1]), substring = firstBackticked(cells[3]);
+        if (!file.empty() && !substring.empty()) out[file] = substring;
+    }
+    return out;
+}
+
+std::vector<std::string> malformedCorpusFiles() {
+    std::vector<std::string> files;
+    for (const auto& e : std::filesystem::directory_iterator(malformedCorpusDir())) {
+        const std::string name = e.path().filename().string();
+        if (!e.is_regular_file() || name == "README.md" || name == "make_corpus.py" || e.path().extension() == ".bin")
+            continue;
+        files.push_back(name);
+    }
+    std::sort(files.begin(), files.end());
+    return files;
+}
+
+} // namespace pt::test
