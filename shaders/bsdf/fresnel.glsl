@@ -22,4 +22,23 @@ vec3 fresnelSchlick(vec3 f0, float cosI) {
     return f0 + (1.0 - f0) * (m2 * m2 * m);
 }
 
+// Unpolarised Fresnel reflectance of a conductor with complex index eta + i k, per channel
+// (the exact expression, e.g. pbrt-v3's FrConductor, written for the outside medium n = 1).
+vec3 fresnelConductor(float cosI, vec3 eta, vec3 k) {
+    float c2 = cosI * cosI;
+    float s2 = 1.0 - c2;
+    vec3 eta2 = eta * eta;
+    vec3 k2 = k * k;
+    vec3 t0 = eta2 - k2 - s2;
+    vec3 a2plusb2 = sqrt(t0 * t0 + 4.0 * eta2 * k2);
+    vec3 t1 = a2plusb2 + c2;
+    vec3 a = sqrt(max(0.5 * (a2plusb2 + t0), 0.0));
+    vec3 t2 = 2.0 * cosI * a;
+    vec3 rs = (t1 - t2) / (t1 + t2);
+    vec3 t3 = c2 * a2plusb2 + s2 * s2;
+    vec3 t4 = t2 * s2;
+    vec3 rp = rs * (t3 - t4) / (t3 + t4);
+    return clamp(0.5 * (rp + rs), 0.0, 1.0);
+}
+
 #endif

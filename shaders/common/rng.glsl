@@ -38,7 +38,8 @@ uvec4 rngHash(Rng r, uint dimension) {
 // Random numbers are addressed, not drawn: dimension = camera dimensions, then a fixed block
 // per path vertex, so toggling a technique (NEE, RR) never reshuffles the numbers of others.
 const uint DIM_PIXEL = 0u;        // 2D: jitter inside the pixel
-const uint DIM_FIRST_BOUNCE = 2u;
+const uint DIM_LENS = 2u;         // 2D: point on the thin lens
+const uint DIM_FIRST_BOUNCE = 4u;
 const uint DIM_BSDF_LOBE = 0u;    // 1D, offsets inside one vertex's block
 const uint DIM_BSDF_DIRECTION = 1u; // 2D
 const uint DIM_LIGHT_SELECT = 3u; // 1D

@@ -14,15 +14,34 @@ struct SurfaceInteraction {
     uint lightIndex;
 };
 
-SurfaceInteraction makeInteraction(Ray ray, Hit hit) {
+SurfaceInteraction makeSphereInteraction(Ray ray, Hit hit) {
     SurfaceInteraction si;
-    GpuTriangle tri = sceneTriangles.v[hit.triangle];
+    GpuSphere sphere = SphereRef(scene.spheres).v[hit.primitive & ~SPHERE_BIT];
+    // Recompute the hit in object space and project it onto the unit sphere: the world point
+    // then lies on the surface to within the map's rounding, whatever the distance travelled.
+    vec3 o = transformPoint(sphere.worldToObject, ray.origin);
+    vec3 d = transformVector(sphere.worldToObject, ray.direction);
+    vec3 po = normalize(o + hit.t * d);
+    si.p = transformPoint(sphere.objectToWorld, po);
+    // Normals map with the inverse transpose of objectToWorld, i.e. the transpose of worldToObject.
+    si.ng = normalize(sphere.worldToObject[0].xyz * po.x + sphere.worldToObject[1].xyz * po.y + sphere.worldToObject[2].xyz * po.z);
+    si.ns = si.ng;
+    si.frontFace = dot(ray.direction, si.ng) < 0.0;
+    si.materialIndex = sphere.materialIndex;
+    si.lightIndex = sphere.lightIndex;
+    return si;
+}
+
+SurfaceInteraction makeInteraction(Ray ray, Hit hit) {
+    if (HAS_SPHERES && (hit.primitive & SPHERE_BIT) != 0u) return makeSphereInteraction(ray, hit);
+    SurfaceInteraction si;
+    GpuTriangle tri = sceneTriangles.v[hit.primitive];
     float b0 = 1.0 - hit.bary.x - hit.bary.y;
     si.p = b0 * tri.p0 + hit.bary.x * tri.p1 + hit.bary.y * tri.p2;
     si.ng = normalize(cross(tri.p1 - tri.p0, tri.p2 - tri.p0));
     si.ns = si.ng;
     if (HAS_SHADING_NORMALS && (tri.flags & TRIANGLE_FLAG_SHADING_NORMALS) != 0u) {
-        GpuTriangleShading sh = sceneShading.v[hit.triangle];
+        GpuTriangleShading sh = sceneShading.v[hit.primitive];
         vec3 n = b0 * sh.n0 + hit.bary.x * sh.n1 + hit.bary.y * sh.n2;
         float len2 = dot(n, n);
         // Degenerate interpolated normals fall back to the geometric one.

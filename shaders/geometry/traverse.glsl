@@ -5,6 +5,8 @@
 #include "common/buffers.glsl"
 #include "common/math.glsl"
 #include "geometry/triangle.glsl"
+#include "geometry/sphere.glsl"
+#include "integrator/features.glsl"
 
 // Depth of the traversal stack. The builder caps tree depth below this (src/accel/bvh.cpp).
 const int TRAVERSAL_STACK_SIZE = 64;
@@ -19,8 +21,8 @@ const float MISS = -1.0;
 
 struct Hit {
     float t;
-    uint triangle; // BVH-ordered index; valid only when t < tMax of the query
-    vec2 bary;     // barycentrics of vertices 1 and 2
+    uint primitive; // triangle index, or sphere index | SPHERE_BIT; valid only when t < tMax of the query
+    vec2 bary;      // triangles: barycentrics of vertices 1 and 2
 };
 
 // What the slab test needs of a ray, computed once per traversal.
@@ -59,38 +61,44 @@ float boxEntry(vec3 lo, vec3 hi, BoxRay r, float tMax) {
     return entry <= exit ? entry : MISS;
 }
 
-// Closest hit in (0, tMax). Returns false on a miss.
-bool traceClosest(Ray ray, float tMax, out Hit hit) {
-    hit.t = tMax;
-    hit.triangle = 0u;
-    hit.bary = vec2(0.0);
-    if (scene.numNodes == 0u) return false;
-    WatertightRay wray = makeWatertightRay(ray);
-    BoxRay boxRay = makeBoxRay(ray);
+// One traversal loop for both trees (triangles, spheres): `sphereTree` is a literal at every
+// call, so the compiler keeps only one kind of leaf test in each inlined copy. `anyHit` stops
+// at the first hit (shadow rays).
+bool traverseTree(bool sphereTree, bool anyHit, Ray ray, WatertightRay wray, BoxRay boxRay, inout Hit hit) {
+    NodeRef nodes = sphereTree ? NodeRef(scene.sphereNodes) : sceneNodes;
+    uint numNodes = sphereTree ? scene.numSphereNodes : scene.numNodes;
+    if (numNodes == 0u) return false;
+    GpuBvhNode root = nodes.v[0];
+    if (boxEntry(root.lo, root.hi, boxRay, hit.t) == MISS) return false;
     uint stack[TRAVERSAL_STACK_SIZE];
     int stackSize = 0;
     uint nodeIndex = 0u;
     bool found = false;
-    GpuBvhNode root = sceneNodes.v[0];
-    if (boxEntry(root.lo, root.hi, boxRay, hit.t) == MISS) return false;
     while (true) {
-        GpuBvhNode node = sceneNodes.v[nodeIndex];
+        GpuBvhNode node = nodes.v[nodeIndex];
         if (node.count > 0u) {
             for (uint i = node.leftOrFirst; i < node.leftOrFirst + node.count; ++i) {
-                GpuTriangle tri = sceneTriangles.v[i];
                 float t;
-                vec2 bary;
-                if (intersectTriangle(wray, tri.p0, tri.p1, tri.p2, hit.t, t, bary)) {
+                vec2 bary = vec2(0.0);
+                bool hitPrimitive;
+                if (sphereTree) {
+                    hitPrimitive = intersectSphere(SphereRef(scene.spheres).v[i], ray, hit.t, t);
+                } else {
+                    GpuTriangle tri = sceneTriangles.v[i];
+                    hitPrimitive = intersectTriangle(wray, tri.p0, tri.p1, tri.p2, hit.t, t, bary);
+                }
+                if (hitPrimitive) {
                     hit.t = t;
-                    hit.triangle = i;
+                    hit.primitive = sphereTree ? (i | SPHERE_BIT) : i;
                     hit.bary = bary;
                     found = true;
+                    if (anyHit) return true;
                 }
             }
         } else {
             uint left = node.leftOrFirst;
-            GpuBvhNode a = sceneNodes.v[left];
-            GpuBvhNode b = sceneNodes.v[left + 1u];
+            GpuBvhNode a = nodes.v[left];
+            GpuBvhNode b = nodes.v[left + 1u];
             float ta = boxEntry(a.lo, a.hi, boxRay, hit.t);
             float tb = boxEntry(b.lo, b.hi, boxRay, hit.t);
             bool hitA = ta != MISS;
@@ -110,41 +118,29 @@ bool traceClosest(Ray ray, float tMax, out Hit hit) {
     return found;
 }
 
-// True if anything lies along the ray in (0, tMax): the shadow-ray query, which stops early.
-bool traceAny(Ray ray, float tMax) {
-    if (scene.numNodes == 0u) return false;
+// Closest hit in (0, tMax). Returns false on a miss.
+bool traceClosest(Ray ray, float tMax, out Hit hit) {
+    hit.t = tMax;
+    hit.primitive = 0u;
+    hit.bary = vec2(0.0);
     WatertightRay wray = makeWatertightRay(ray);
     BoxRay boxRay = makeBoxRay(ray);
-    uint stack[TRAVERSAL_STACK_SIZE];
-    int stackSize = 0;
-    uint nodeIndex = 0u;
-    GpuBvhNode root = sceneNodes.v[0];
-    if (boxEntry(root.lo, root.hi, boxRay, tMax) == MISS) return false;
-    while (true) {
-        GpuBvhNode node = sceneNodes.v[nodeIndex];
-        if (node.count > 0u) {
-            for (uint i = node.leftOrFirst; i < node.leftOrFirst + node.count; ++i) {
-                GpuTriangle tri = sceneTriangles.v[i];
-                float t;
-                vec2 bary;
-                if (intersectTriangle(wray, tri.p0, tri.p1, tri.p2, tMax, t, bary)) return true;
-            }
-        } else {
-            uint left = node.leftOrFirst;
-            GpuBvhNode a = sceneNodes.v[left];
-            GpuBvhNode b = sceneNodes.v[left + 1u];
-            bool hitA = boxEntry(a.lo, a.hi, boxRay, tMax) != MISS;
-            bool hitB = boxEntry(b.lo, b.hi, boxRay, tMax) != MISS;
-            if (hitA || hitB) {
-                if (hitA && hitB && stackSize < TRAVERSAL_STACK_SIZE) stack[stackSize++] = left + 1u;
-                nodeIndex = hitA ? left : left + 1u;
-                continue;
-            }
-        }
-        if (stackSize == 0) break;
-        nodeIndex = stack[--stackSize];
-    }
-    return false;
+    bool found = false;
+    if (HAS_TRIANGLES) found = traverseTree(false, false, ray, wray, boxRay, hit);
+    if (HAS_SPHERES) found = traverseTree(true, false, ray, wray, boxRay, hit) || found;
+    return found;
+}
+
+// True if anything lies along the ray in (0, tMax): the shadow-ray query, which stops early.
+bool traceAny(Ray ray, float tMax) {
+    Hit hit;
+    hit.t = tMax;
+    hit.primitive = 0u;
+    hit.bary = vec2(0.0);
+    WatertightRay wray = makeWatertightRay(ray);
+    BoxRay boxRay = makeBoxRay(ray);
+    if (HAS_TRIANGLES && traverseTree(false, true, ray, wray, boxRay, hit)) return true;
+    return HAS_SPHERES && traverseTree(true, true, ray, wray, boxRay, hit);
 }
 
 #endif

@@ -15,5 +15,8 @@ layout(constant_id = SPEC_USE_NEE) const bool USE_NEE = true;
 layout(constant_id = SPEC_USE_MIS) const bool USE_MIS = true;
 layout(constant_id = SPEC_USE_RR) const bool USE_RR = true;
 layout(constant_id = SPEC_COSINE_SAMPLING) const bool COSINE_SAMPLING = true;
+layout(constant_id = SPEC_HAS_SPHERES) const bool HAS_SPHERES = true;
+layout(constant_id = SPEC_HAS_TRIANGLES) const bool HAS_TRIANGLES = true;
+layout(constant_id = SPEC_HAS_CONDUCTOR) const bool HAS_CONDUCTOR = true;
 
 #endif

@@ -11,6 +11,7 @@
 #include "lights/triangle_lights.glsl"
 #include "bsdf/lambert.glsl"
 #include "bsdf/mirror.glsl"
+#include "bsdf/conductor.glsl"
 #include "bsdf/dielectric.glsl"
 #include "integrator/features.glsl"
 
@@ -58,13 +59,14 @@ vec3 tracePath(Ray ray, Rng rng) {
         if (HAS_ABSORPTION && mat.type == MATERIAL_DIELECTRIC && !si.frontFace && (mat.flags & MATERIAL_FLAG_ABSORBING) != 0u)
             beta *= exp(-mat.sigmaA * hit.t);
 
-        // Emission found by the BSDF-sampled ray, weighted against light sampling.
-        if (HAS_EMITTERS && si.lightIndex != NO_LIGHT) {
+        // Emission found by the BSDF-sampled ray, weighted against light sampling. Emitters
+        // outside the light table (pdfLight 0) can only be found this way and count fully.
+        if (HAS_EMITTERS && maxComponent(mat.emission) > 0.0) {
             vec3 Le = emittedRadiance(mat, si.frontFace);
-            if (!USE_NEE || prevDelta) {
+            float pdfLight = si.lightIndex != NO_LIGHT ? lightPdf(si.lightIndex, hit.t, dot(si.ng, ray.direction)) : 0.0;
+            if (!USE_NEE || prevDelta || pdfLight == 0.0) {
                 L += beta * Le;
             } else if (USE_MIS) {
-                float pdfLight = lightPdf(si.lightIndex, hit.t, dot(si.ng, ray.direction));
                 L += beta * Le * powerHeuristic(prevPdfBsdf, pdfLight);
             }
         }
@@ -84,6 +86,8 @@ vec3 tracePath(Ray ray, Rng rng) {
             vec3 woLocal = toLocal(frame, wo);
             if (HAS_MIRROR && mat.type == MATERIAL_MIRROR) {
                 bs = mirrorSample(mat.baseColor, frame, woLocal);
+            } else if (HAS_CONDUCTOR && mat.type == MATERIAL_CONDUCTOR) {
+                bs = conductorSample(mat.baseColor, mat.conductorEta, mat.conductorK, frame, woLocal);
             } else if (HAS_DIFFUSE && mat.type == MATERIAL_DIFFUSE) {
                 if (HAS_EMITTERS && USE_NEE && scene.numLights > 0u)
                     L += beta * estimateDirect(si, frame, woLocal, mat.baseColor, rng, depth);

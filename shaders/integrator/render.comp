@@ -27,7 +27,7 @@ void main() {
     for (uint s = 0u; s < push.sampleCount; ++s) {
         Rng rng = rngCreate(pixel, push.sampleStart + s, scene.seed);
         vec2 jitter = rng2(rng, DIM_PIXEL); // box filter: uniform over the pixel
-        Ray ray = cameraRay(scene.camera, vec2(pixel) + jitter, scene.imageSize);
+        Ray ray = cameraRay(scene.camera, vec2(pixel) + jitter, scene.imageSize, rng2(rng, DIM_LENS));
         vec3 L = tracePath(ray, rng);
         if (allFinite(L)) {
             sum.rgb += L;

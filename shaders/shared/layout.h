@@ -25,6 +25,7 @@ using uint64_t = std::uint64_t;
 #define MATERIAL_DIFFUSE 0u
 #define MATERIAL_MIRROR 1u
 #define MATERIAL_DIELECTRIC 2u
+#define MATERIAL_CONDUCTOR 3u
 
 // ---- Material flags ----
 #define MATERIAL_FLAG_DOUBLE_SIDED 1u // back faces shade (and emit) like front faces
@@ -34,6 +35,8 @@ using uint64_t = std::uint64_t;
 #define TRIANGLE_FLAG_SHADING_NORMALS 1u // interpolate n0..n2; otherwise use the geometric normal
 
 #define NO_LIGHT 0xffffffffu
+// Hit::primitive: triangles are plain indices, spheres carry this bit.
+#define SPHERE_BIT 0x80000000u
 
 // ---- Specialization constants: what the scene (and the switches) need ----
 #define SPEC_LOCAL_SIZE_X 0
@@ -48,7 +51,10 @@ using uint64_t = std::uint64_t;
 #define SPEC_USE_MIS 9
 #define SPEC_USE_RR 10
 #define SPEC_COSINE_SAMPLING 11
-#define SPEC_COUNT 12
+#define SPEC_HAS_SPHERES 12
+#define SPEC_HAS_TRIANGLES 13
+#define SPEC_HAS_CONDUCTOR 14
+#define SPEC_COUNT 15
 
 // A triangle as the intersector reads it: world-space vertices plus the ids it needs at a hit.
 struct GpuTriangle {
@@ -85,14 +91,31 @@ struct GpuBvhNode {
 PT_CHECK_SIZE(GpuBvhNode, 32);
 
 struct GpuMaterial {
-    vec3 baseColor; // diffuse albedo, mirror/dielectric tint
+    vec3 baseColor; // diffuse albedo, mirror/dielectric/conductor tint
     uint type;      // MATERIAL_*
     vec3 emission;  // emitted radiance (front side; both sides if double-sided)
     uint flags;     // MATERIAL_FLAG_*
     vec3 sigmaA;    // Beer-Lambert absorption coefficient inside a dielectric (1/length)
     float ior;      // interior index of refraction over exterior
+    vec3 conductorEta; // conductor: real part of the complex index of refraction
+    float pad0;
+    vec3 conductorK;   // conductor: imaginary part (absorption index)
+    float pad1;
 };
-PT_CHECK_SIZE(GpuMaterial, 48);
+PT_CHECK_SIZE(GpuMaterial, 80);
+
+// An analytic sphere: the unit sphere at the origin under an affine map (so ellipsoids too).
+// Both directions of the map are stored (rows of 3x4 matrices): rays go to object space for
+// the intersection, hit points come back to world space without the error of o + t d.
+struct GpuSphere {
+    vec4 worldToObject[3];
+    vec4 objectToWorld[3];
+    uint materialIndex;
+    uint lightIndex; // NO_LIGHT: sphere emitters are found by BSDF sampling only (for now)
+    uint pad0;
+    uint pad1;
+};
+PT_CHECK_SIZE(GpuSphere, 112);
 
 // One emissive triangle in the light-selection table.
 struct GpuLight {
@@ -105,15 +128,16 @@ PT_CHECK_SIZE(GpuLight, 16);
 
 struct GpuCamera {
     vec3 origin;
-    float tanHalfFovY;
-    vec3 right; // unit, image x
-    float aspect; // width / height
-    vec3 up; // unit, image y (up)
+    float lensRadius; // thin lens; 0 = pinhole
+    vec3 right;       // unit, image x
+    float focusDistance;
+    vec3 up;          // unit, image y (up)
     float pad0;
-    vec3 forward; // unit, view direction
+    vec3 forward;     // unit, view direction
     float pad1;
+    vec4 window;      // image plane (left, right, bottom, top) at unit distance along forward
 };
-PT_CHECK_SIZE(GpuCamera, 64);
+PT_CHECK_SIZE(GpuCamera, 80);
 
 // Per-render constants, in a buffer reached through its device address.
 struct GpuSceneParams {
@@ -125,6 +149,8 @@ struct GpuSceneParams {
     uint64_t lights;      // GpuLight[]
     uint64_t lightCdf;    // float[numLights + 1]
     uint64_t accumulation; // vec4[2 * pixels]: (sum rgb, dropped count), (sum of squares rgb, 0)
+    uint64_t spheres;      // GpuSphere[]
+    uint64_t sphereNodes;  // GpuBvhNode[]: a second BVH, over the spheres
     uint64_t pad0;
     GpuCamera camera;
     vec3 background; // radiance of rays that escape
@@ -135,9 +161,13 @@ struct GpuSceneParams {
     uint seed;
     uint numTriangles;
     uint numNodes;
+    uint numSpheres;
+    uint numSphereNodes;
     uint pad1;
+    uint pad2;
+    uint pad3;
 };
-PT_CHECK_SIZE(GpuSceneParams, 64 + 64 + 48);
+PT_CHECK_SIZE(GpuSceneParams, 80 + 80 + 64);
 
 // Push constants of the render kernel: which pixels and which sample indices this dispatch adds.
 struct GpuRenderPush {

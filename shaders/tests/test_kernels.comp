@@ -33,9 +33,8 @@ void main() {
         Hit hit;
         float pdf = 0.0;
         if (traceClosest(ray, FLOAT_MAX, hit)) {
-            GpuTriangle tri = sceneTriangles.v[hit.triangle];
-            vec3 ng = normalize(cross(tri.p1 - tri.p0, tri.p2 - tri.p0));
-            if (tri.lightIndex != NO_LIGHT) pdf = lightPdf(tri.lightIndex, hit.t, dot(ng, ray.direction));
+            SurfaceInteraction si = makeInteraction(ray, hit);
+            if (si.lightIndex != NO_LIGHT) pdf = lightPdf(si.lightIndex, hit.t, dot(si.ng, ray.direction));
         }
         outputs.v[i] = vec4(pdf);
     } else if (push.mode == TEST_MODE_TRACE_BVH || push.mode == TEST_MODE_TRACE_BRUTE_FORCE) {
@@ -53,7 +52,7 @@ void main() {
         } else {
             WatertightRay wray = makeWatertightRay(ray);
             hit.t = tr.tMax;
-            hit.triangle = 0u;
+            hit.primitive = 0u;
             hit.bary = vec2(0.0);
             for (uint k = 0u; k < scene.numTriangles; ++k) {
                 GpuTriangle tri = sceneTriangles.v[k];
@@ -61,12 +60,21 @@ void main() {
                 vec2 bary;
                 if (intersectTriangle(wray, tri.p0, tri.p1, tri.p2, hit.t, t, bary)) {
                     hit.t = t;
-                    hit.triangle = k;
+                    hit.primitive = k;
                     hit.bary = bary;
                     found = true;
                 }
             }
+            for (uint k = 0u; k < scene.numSpheres; ++k) {
+                float t;
+                if (intersectSphere(SphereRef(scene.spheres).v[k], ray, hit.t, t)) {
+                    hit.t = t;
+                    hit.primitive = k | SPHERE_BIT;
+                    hit.bary = vec2(0.0);
+                    found = true;
+                }
+            }
         }
-        outputs.v[i] = found ? vec4(hit.t, uintBitsToFloat(hit.triangle), hit.bary) : vec4(hit.t == -2.0 ? -2.0 : -1.0, 0.0, 0.0, 0.0);
+        outputs.v[i] = found ? vec4(hit.t, uintBitsToFloat(hit.primitive), hit.bary) : vec4(hit.t == -2.0 ? -2.0 : -1.0, 0.0, 0.0, 0.0);
     }
 }

@@ -25,17 +25,20 @@ FeatureSet FeatureSet::all(const IntegratorSettings& settings) {
 
 FeatureSet computeFeatures(const FlatScene& scene, const IntegratorSettings& settings) {
     FeatureSet f;
-    f.diffuse = f.mirror = f.dielectric = f.absorption = f.shadingNormals = false;
+    f.diffuse = f.mirror = f.dielectric = f.conductor = f.absorption = f.shadingNormals = f.emitters = false;
     for (const auto& m : scene.materials) {
         f.diffuse |= m.type == MATERIAL_DIFFUSE;
         f.mirror |= m.type == MATERIAL_MIRROR;
         f.dielectric |= m.type == MATERIAL_DIELECTRIC;
+        f.conductor |= m.type == MATERIAL_CONDUCTOR;
         f.absorption |= m.type == MATERIAL_DIELECTRIC && (m.flags & MATERIAL_FLAG_ABSORBING) != 0u;
+        f.emitters |= m.emission.x > 0 || m.emission.y > 0 || m.emission.z > 0;
     }
     for (const auto& t : scene.triangles) f.shadingNormals |= (t.flags & TRIANGLE_FLAG_SHADING_NORMALS) != 0u;
-    f.emitters = !scene.lights.lights.empty();
+    f.triangles = !scene.triangles.empty();
+    f.spheres = !scene.spheres.empty();
     // Light sampling needs something to sample and a surface that can use it (diffuse only today).
-    f.nee = settings.nee && f.emitters && f.diffuse;
+    f.nee = settings.nee && !scene.lights.lights.empty() && f.diffuse;
     f.mis = f.nee && settings.mis;
     f.rr = settings.rr;
     f.cosineSampling = settings.sampling == DirectionSampling::Cosine;
@@ -56,6 +59,9 @@ std::vector<SpecializationConstant> FeatureSet::constants(uint32_t localSizeX, u
         {SPEC_USE_MIS, mis},
         {SPEC_USE_RR, rr},
         {SPEC_COSINE_SAMPLING, cosineSampling},
+        {SPEC_HAS_SPHERES, spheres},
+        {SPEC_HAS_TRIANGLES, triangles},
+        {SPEC_HAS_CONDUCTOR, conductor},
     };
 }
 
@@ -66,9 +72,12 @@ std::string FeatureSet::describe() const {
         if (!s.empty()) s += ' ';
         s += name;
     };
+    add(triangles, "triangles");
+    add(spheres, "spheres");
     add(diffuse, "diffuse");
     add(mirror, "mirror");
     add(dielectric, "dielectric");
+    add(conductor, "conductor");
     add(absorption, "absorption");
     add(shadingNormals, "shading-normals");
     add(emitters, "emitters");

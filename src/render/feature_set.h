@@ -14,6 +14,9 @@ struct FeatureSet {
     bool diffuse = true;
     bool mirror = true;
     bool dielectric = true;
+    bool conductor = true;
+    bool triangles = true;
+    bool spheres = true;
     bool absorption = true;
     bool shadingNormals = true;
     bool emitters = true;

@@ -17,7 +17,10 @@ gpu::GpuMaterial toGpu(const Material& m) {
     case MaterialType::Diffuse: g.type = MATERIAL_DIFFUSE; break;
     case MaterialType::Mirror: g.type = MATERIAL_MIRROR; break;
     case MaterialType::Dielectric: g.type = MATERIAL_DIELECTRIC; break;
+    case MaterialType::Conductor: g.type = MATERIAL_CONDUCTOR; break;
     }
+    g.conductorEta = m.conductorEta;
+    g.conductorK = m.conductorK;
     // glTF's KHR_materials_volume: transmittance attenuationColor after attenuationDistance,
     // so sigma_a = -ln(color) / distance; an infinite distance means no absorption.
     if (m.type == MaterialType::Dielectric && std::isfinite(m.attenuationDistance) && m.attenuationColor != glm::vec3(1.0f)) {
@@ -29,6 +32,52 @@ gpu::GpuMaterial toGpu(const Material& m) {
 }
 
 bool finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+// World-space box of the unit sphere under the affine map m: the half-extent along each axis
+// is the length of that row of m's linear part.
+Aabb sphereBounds(const glm::mat4& m) {
+    const glm::vec3 centre(m[3]);
+    glm::vec3 half;
+    for (int axis = 0; axis < 3; ++axis)
+        half[axis] = std::sqrt(m[0][axis] * m[0][axis] + m[1][axis] * m[1][axis] + m[2][axis] * m[2][axis]);
+    Aabb box;
+    box.grow(centre - half);
+    box.grow(centre + half);
+    return box;
+}
+
+void setRows(glm::vec4 rows[3], const glm::mat4& m) {
+    for (int r = 0; r < 3; ++r) rows[r] = glm::vec4(m[0][r], m[1][r], m[2][r], m[3][r]);
+}
+
+void flattenSpheres(const Scene& scene, const BvhBuildOptions& bvhOptions, FlatScene& flat) {
+    std::vector<gpu::GpuSphere> spheres;
+    std::vector<Aabb> bounds;
+    for (const Sphere& s : scene.spheres) {
+        if (s.material >= scene.materials.size())
+            throw std::runtime_error(scene.source + ": sphere '" + s.name + "' uses a material that does not exist");
+        const glm::mat4 inverse = glm::inverse(s.objectToWorld);
+        const float det = glm::determinant(glm::mat3(s.objectToWorld));
+        bool ok = std::isfinite(det) && det != 0.0f;
+        for (int c = 0; c < 4 && ok; ++c) ok = finite(glm::vec3(inverse[c])) && finite(glm::vec3(s.objectToWorld[c]));
+        if (!ok) {
+            flat.degenerateSpheres++;
+            continue;
+        }
+        gpu::GpuSphere g{};
+        setRows(g.worldToObject, inverse);
+        setRows(g.objectToWorld, s.objectToWorld);
+        g.materialIndex = s.material;
+        g.lightIndex = NO_LIGHT;
+        spheres.push_back(g);
+        bounds.push_back(sphereBounds(s.objectToWorld));
+    }
+    Bvh bvh = buildBvh(bounds, bvhOptions);
+    if (bvh.maxDepth >= kMaxTraversalDepth)
+        throw std::runtime_error(scene.source + ": sphere BVH depth " + std::to_string(bvh.maxDepth) + " exceeds the traversal stack");
+    for (const BvhNode& n : bvh.nodes) flat.sphereNodes.push_back({n.lo, n.leftOrFirst, n.hi, n.count});
+    for (uint32_t original : bvh.primOrder) flat.spheres.push_back(spheres[original]);
+}
 
 } // namespace
 
@@ -97,6 +146,7 @@ FlatScene flattenScene(const Scene& scene, const BvhBuildOptions& bvhOptions) {
         flat.triangles.push_back(triangles[original]);
         flat.shading.push_back(shading[original]);
     }
+    flattenSpheres(scene, bvhOptions, flat);
     flat.lights = buildLightTable(flat.triangles, scene.materials);
     return flat;
 }

@@ -14,9 +14,12 @@ struct FlatScene {
     std::vector<gpu::GpuTriangle> triangles;
     std::vector<gpu::GpuTriangleShading> shading;
     std::vector<gpu::GpuBvhNode> nodes;
+    std::vector<gpu::GpuSphere> spheres;         // BVH-ordered
+    std::vector<gpu::GpuBvhNode> sphereNodes;    // a second BVH, over the spheres
     std::vector<gpu::GpuMaterial> materials;
     LightTable lights;
     size_t degenerateTriangles = 0; // zero-area or non-finite triangles dropped
+    size_t degenerateSpheres = 0;   // singular or non-finite sphere transforms dropped
     double bvhSeconds = 0;
     double sahCost = 0;
     int bvhDepth = 0;

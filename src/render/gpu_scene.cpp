@@ -15,6 +15,8 @@ GpuScene::GpuScene(VulkanContext& context, const FlatScene& scene, gpu::GpuScene
     triangles_ = makeBuffer(context, scene.triangles, "triangles");
     shading_ = makeBuffer(context, scene.shading, "shading");
     nodes_ = makeBuffer(context, scene.nodes, "bvh nodes");
+    spheres_ = makeBuffer(context, scene.spheres, "spheres");
+    sphereNodes_ = makeBuffer(context, scene.sphereNodes, "sphere bvh nodes");
     materials_ = makeBuffer(context, scene.materials, "materials");
     lights_ = makeBuffer(context, scene.lights.lights, "lights");
     lightCdf_ = makeBuffer(context, scene.lights.cdf, "light cdf");
@@ -24,6 +26,8 @@ GpuScene::GpuScene(VulkanContext& context, const FlatScene& scene, gpu::GpuScene
     params.triangles = triangles_.address();
     params.shading = shading_.address();
     params.nodes = nodes_.address();
+    params.spheres = spheres_.address();
+    params.sphereNodes = sphereNodes_.address();
     params.materials = materials_.address();
     params.lights = lights_.address();
     params.lightCdf = lightCdf_.address();
@@ -31,6 +35,8 @@ GpuScene::GpuScene(VulkanContext& context, const FlatScene& scene, gpu::GpuScene
     params.numLights = static_cast<uint32_t>(scene.lights.lights.size());
     params.numTriangles = static_cast<uint32_t>(scene.triangles.size());
     params.numNodes = static_cast<uint32_t>(scene.nodes.size());
+    params.numSpheres = static_cast<uint32_t>(scene.spheres.size());
+    params.numSphereNodes = static_cast<uint32_t>(scene.sphereNodes.size());
     params_ = GpuBuffer(context, sizeof(params), "scene params");
     params_.upload(&params, sizeof(params));
 }

@@ -22,8 +22,15 @@ gpu::GpuCamera toGpuCamera(const Camera& camera, int width, int height) {
     c.forward = glm::normalize(camera.forward);
     c.right = glm::normalize(glm::cross(c.forward, camera.up));
     c.up = glm::cross(c.right, c.forward);
-    c.tanHalfFovY = std::tan(0.5f * camera.yfov);
-    c.aspect = static_cast<float>(width) / static_cast<float>(height);
+    if (camera.window) {
+        c.window = *camera.window;
+    } else {
+        const float t = std::tan(0.5f * camera.yfov);
+        const float r = t * static_cast<float>(width) / static_cast<float>(height);
+        c.window = glm::vec4(-r, r, -t, t);
+    }
+    c.lensRadius = 0.5f * camera.apertureSize;
+    c.focusDistance = camera.focusDistance;
     return c;
 }
 

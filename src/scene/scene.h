@@ -11,7 +11,7 @@
 
 namespace pt {
 
-enum class MaterialType { Diffuse, Mirror, Dielectric };
+enum class MaterialType { Diffuse, Mirror, Dielectric, Conductor };
 
 struct Material {
     std::string name;
@@ -23,6 +23,9 @@ struct Material {
     // Beer-Lambert inside a dielectric: transmittance attenuationColor after attenuationDistance.
     glm::vec3 attenuationColor{1.0f};
     float attenuationDistance = std::numeric_limits<float>::infinity();
+    // Conductor (complex index of refraction eta + i k), tinted by baseColor.
+    glm::vec3 conductorEta{1.0f};
+    glm::vec3 conductorK{0.0f};
 
     bool emissive() const { return emission.x > 0 || emission.y > 0 || emission.z > 0; }
 };
@@ -36,6 +39,28 @@ struct Mesh {
     uint32_t material = 0;
 };
 
+// Tone mapping for the PNG (the EXR stays linear): the CENG795 course's operators.
+struct TonemapSettings {
+    enum class Operator { Clamp, Photographic };
+    Operator op = Operator::Clamp;
+    float key = 0.18f;        // Photographic: key value
+    float burnPercent = 0.0f; // Photographic: percentage of pixels allowed to burn out
+    float saturation = 1.0f;
+    float gamma = 1.0f;       // display gamma; ignored when srgb
+    bool srgb = true;         // the sRGB transfer curve instead of a power
+};
+
+// Settings a camera may carry for its own image (the course format has them per camera);
+// the command line overrides them.
+struct CameraRenderSettings {
+    std::optional<int> width, height;
+    std::optional<uint32_t> spp;
+    std::optional<int> maxDepth;
+    std::optional<bool> nee, importanceSampling, russianRoulette;
+    std::optional<TonemapSettings> tonemap;
+    std::string imageName; // output file name, relative to the scene file's directory
+};
+
 struct Camera {
     std::string name;
     glm::vec3 position{0.0f};
@@ -43,6 +68,20 @@ struct Camera {
     glm::vec3 up{0.0f, 1.0f, 0.0f};       // unit, orthogonal to forward
     float yfov = 0.8f;                    // radians
     float aspectRatio = 0.0f;             // width / height, 0 when the file does not say
+    // Image-plane window (left, right, bottom, top) at unit distance along forward, for
+    // off-centre frusta; when absent the window is symmetric from yfov and the image aspect.
+    std::optional<glm::vec4> window;
+    float apertureSize = 0.0f;  // thin lens: 0 = pinhole
+    float focusDistance = 0.0f;
+    CameraRenderSettings settings;
+};
+
+// An analytic sphere: the unit sphere at the origin mapped by objectToWorld (any affine map,
+// so ellipsoids too).
+struct Sphere {
+    std::string name;
+    glm::mat4 objectToWorld{1.0f};
+    uint32_t material = 0;
 };
 
 // Settings a scene file may carry for itself; the command line overrides them.
@@ -56,6 +95,7 @@ struct Scene {
     std::string source; // file name, or "built-in Cornell box"
     std::vector<Material> materials;
     std::vector<Mesh> meshes;
+    std::vector<Sphere> spheres;
     std::vector<Camera> cameras;
     glm::vec3 background{0.0f};
     RenderHints hints;
