@@ -8,7 +8,7 @@
 #include "common/rng.glsl"
 #include "common/ray_offset.glsl"
 #include "geometry/interaction.glsl"
-#include "lights/triangle_lights.glsl"
+#include "lights/light_sampling.glsl"
 #include "bsdf/lambert.glsl"
 #include "bsdf/mirror.glsl"
 #include "bsdf/conductor.glsl"
@@ -28,14 +28,19 @@ vec3 estimateDirect(SurfaceInteraction si, Frame frame, vec3 woLocal, vec3 albed
     vec3 wiLocal = toLocal(frame, ls.wi);
     vec3 fCos = lambertEval(albedo, woLocal, wiLocal);
     if (maxComponent(fCos) <= 0.0) return vec3(0.0);
-    // Offset both ends of the shadow ray off their surfaces, then stop just short of the light.
-    vec3 origin = spawnOrigin(si.p, si.ng, ls.wi);
-    vec3 target = offsetRayOrigin(ls.point, dot(ls.normal, ls.wi) < 0.0 ? ls.normal : -ls.normal);
     Ray shadow;
-    shadow.origin = origin;
-    shadow.direction = target - origin;
-    if (traceAny(shadow, SHADOW_RAY_FAR)) return vec3(0.0);
-    float weight = USE_MIS ? powerHeuristic(ls.pdf, lambertPdf(woLocal, wiLocal)) : 1.0;
+    shadow.origin = spawnOrigin(si.p, si.ng, ls.wi);
+    float tMax = SHADOW_RAY_FAR;
+    if (ls.distance == FLOAT_MAX) {
+        shadow.direction = ls.wi; // directional light: unoccluded to infinity
+        tMax = FLOAT_MAX;
+    } else {
+        // Offset the light end too (surfaces only), then stop just short of it.
+        vec3 target = ls.isDelta ? ls.point : offsetRayOrigin(ls.point, dot(ls.normal, ls.wi) < 0.0 ? ls.normal : -ls.normal);
+        shadow.direction = target - shadow.origin;
+    }
+    if (traceAny(shadow, tMax)) return vec3(0.0);
+    float weight = (USE_MIS && !ls.isDelta) ? powerHeuristic(ls.pdf, lambertPdf(woLocal, wiLocal)) : 1.0;
     return fCos * ls.radiance * (weight / ls.pdf);
 }
 
@@ -63,7 +68,7 @@ vec3 tracePath(Ray ray, Rng rng) {
         // outside the light table (pdfLight 0) can only be found this way and count fully.
         if (HAS_EMITTERS && maxComponent(mat.emission) > 0.0) {
             vec3 Le = emittedRadiance(mat, si.frontFace);
-            float pdfLight = si.lightIndex != NO_LIGHT ? lightPdf(si.lightIndex, hit.t, dot(si.ng, ray.direction)) : 0.0;
+            float pdfLight = si.lightIndex != NO_LIGHT ? lightPdf(si.lightIndex, ray.origin, si.p, si.ng, hit.t, ray.direction) : 0.0;
             if (!USE_NEE || prevDelta || pdfLight == 0.0) {
                 L += beta * Le;
             } else if (USE_MIS) {

@@ -54,7 +54,8 @@ using uint64_t = std::uint64_t;
 #define SPEC_HAS_SPHERES 12
 #define SPEC_HAS_TRIANGLES 13
 #define SPEC_HAS_CONDUCTOR 14
-#define SPEC_COUNT 15
+#define SPEC_HAS_PUNCTUAL_LIGHTS 15
+#define SPEC_COUNT 16
 
 // A triangle as the intersector reads it: world-space vertices plus the ids it needs at a hit.
 struct GpuTriangle {
@@ -111,20 +112,32 @@ struct GpuSphere {
     vec4 worldToObject[3];
     vec4 objectToWorld[3];
     uint materialIndex;
-    uint lightIndex; // NO_LIGHT: sphere emitters are found by BSDF sampling only (for now)
+    uint lightIndex; // index into the light table, or NO_LIGHT
     uint pad0;
     uint pad1;
 };
 PT_CHECK_SIZE(GpuSphere, 112);
 
-// One emissive triangle in the light-selection table.
+// ---- Light types (GpuLight::type) ----
+#define LIGHT_TRIANGLE 0u
+#define LIGHT_SPHERE 1u
+#define LIGHT_POINT 2u
+#define LIGHT_DIRECTIONAL 3u
+
+// One emitter in the light-selection table (all kinds share one power CDF).
 struct GpuLight {
-    uint triangleIndex; // into the BVH-ordered triangle array
-    float pmf;          // probability of choosing this light
-    float area;
-    float pad;
+    uint type;      // LIGHT_*
+    uint primitive; // triangle or sphere index (BVH order)
+    float pmf;      // probability of choosing this light
+    float area;     // triangle: area; sphere: |det| of its linear map (area scale of the unit sphere)
+    vec3 position;  // point light: position; round sphere: centre
+    float radius;   // round sphere: radius, sampled by solid angle; 0: ellipsoid, sampled by area
+    vec3 intensity; // point: radiant intensity (W/sr); directional: irradiance on a facing surface
+    uint pad0;
+    vec3 direction; // directional: the direction the light travels
+    float pad1;
 };
-PT_CHECK_SIZE(GpuLight, 16);
+PT_CHECK_SIZE(GpuLight, 64);
 
 struct GpuCamera {
     vec3 origin;

@@ -34,7 +34,7 @@ void main() {
         float pdf = 0.0;
         if (traceClosest(ray, FLOAT_MAX, hit)) {
             SurfaceInteraction si = makeInteraction(ray, hit);
-            if (si.lightIndex != NO_LIGHT) pdf = lightPdf(si.lightIndex, hit.t, dot(si.ng, ray.direction));
+            if (si.lightIndex != NO_LIGHT) pdf = lightPdf(si.lightIndex, ray.origin, si.p, si.ng, hit.t, ray.direction);
         }
         outputs.v[i] = vec4(pdf);
     } else if (push.mode == TEST_MODE_TRACE_BVH || push.mode == TEST_MODE_TRACE_BRUTE_FORCE) {

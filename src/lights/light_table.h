@@ -1,6 +1,7 @@
 #pragma once
-// The light-selection table: every emissive triangle, chosen with probability proportional to
-// its emitted power (radiance luminance x area), through a CDF the kernel binary-searches.
+// The light-selection table: every emitter (emissive triangles and spheres, point and
+// directional lights) in one list, chosen with probability proportional to its emitted power
+// through a CDF the kernel binary-searches.
 #include "scene/scene.h"
 #include "shared/layout.h"
 
@@ -12,11 +13,16 @@ namespace pt {
 struct LightTable {
     std::vector<gpu::GpuLight> lights;
     std::vector<float> cdf; // lights.size() + 1 entries, cdf[0] = 0, cdf.back() = 1
-    double totalPower = 0;  // sum of luminance(radiance) x area (x2 when double-sided), in W/sr-ish units
+    double totalPower = 0;  // sum of the power estimates (luminance-weighted watts)
 };
 
-// Builds the table over `triangles` (final, BVH-ordered) and stores each emitter's index in its
-// triangle's lightIndex (NO_LIGHT for the rest). Zero-area emitters are left out: they cannot be hit.
+// Builds the table over the final (BVH-ordered) `triangles` and `spheres`, storing each
+// emitter's index in its primitive's lightIndex (NO_LIGHT for the rest). Zero-area emitters
+// are left out: they cannot be hit. `sceneRadius` sizes a directional light's power.
+LightTable buildLightTable(std::span<gpu::GpuTriangle> triangles, std::span<gpu::GpuSphere> spheres,
+    std::span<const PunctualLight> punctual, std::span<const Material> materials, float sceneRadius);
+
+// Triangles only.
 LightTable buildLightTable(std::span<gpu::GpuTriangle> triangles, std::span<const Material> materials);
 
 } // namespace pt

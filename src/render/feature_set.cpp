@@ -37,6 +37,8 @@ FeatureSet computeFeatures(const FlatScene& scene, const IntegratorSettings& set
     for (const auto& t : scene.triangles) f.shadingNormals |= (t.flags & TRIANGLE_FLAG_SHADING_NORMALS) != 0u;
     f.triangles = !scene.triangles.empty();
     f.spheres = !scene.spheres.empty();
+    f.punctualLights = false;
+    for (const auto& l : scene.lights.lights) f.punctualLights |= l.type == LIGHT_POINT || l.type == LIGHT_DIRECTIONAL;
     // Light sampling needs something to sample and a surface that can use it (diffuse only today).
     f.nee = settings.nee && !scene.lights.lights.empty() && f.diffuse;
     f.mis = f.nee && settings.mis;
@@ -62,6 +64,7 @@ std::vector<SpecializationConstant> FeatureSet::constants(uint32_t localSizeX, u
         {SPEC_HAS_SPHERES, spheres},
         {SPEC_HAS_TRIANGLES, triangles},
         {SPEC_HAS_CONDUCTOR, conductor},
+        {SPEC_HAS_PUNCTUAL_LIGHTS, punctualLights},
     };
 }
 
@@ -81,6 +84,7 @@ std::string FeatureSet::describe() const {
     add(absorption, "absorption");
     add(shadingNormals, "shading-normals");
     add(emitters, "emitters");
+    add(punctualLights, "punctual-lights");
     add(nee, "nee");
     add(mis, "mis");
     add(rr, "rr");

@@ -20,6 +20,7 @@ struct FeatureSet {
     bool absorption = true;
     bool shadingNormals = true;
     bool emitters = true;
+    bool punctualLights = true;
     bool nee = true;
     bool mis = true;
     bool rr = true;

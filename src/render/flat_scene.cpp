@@ -79,6 +79,17 @@ void flattenSpheres(const Scene& scene, const BvhBuildOptions& bvhOptions, FlatS
     for (uint32_t original : bvh.primOrder) flat.spheres.push_back(spheres[original]);
 }
 
+// Radius of a sphere around all geometry (sizes directional lights' power estimate).
+float sceneRadius(const FlatScene& flat) {
+    Aabb box;
+    for (const auto& n : {flat.nodes, flat.sphereNodes})
+        if (!n.empty()) {
+            box.grow(n[0].lo);
+            box.grow(n[0].hi);
+        }
+    return box.empty() ? 1.0f : std::max(0.5f * glm::length(box.hi - box.lo), 1e-6f);
+}
+
 } // namespace
 
 FlatScene flattenScene(const Scene& scene, const BvhBuildOptions& bvhOptions) {
@@ -147,7 +158,7 @@ FlatScene flattenScene(const Scene& scene, const BvhBuildOptions& bvhOptions) {
         flat.shading.push_back(shading[original]);
     }
     flattenSpheres(scene, bvhOptions, flat);
-    flat.lights = buildLightTable(flat.triangles, scene.materials);
+    flat.lights = buildLightTable(flat.triangles, flat.spheres, scene.punctualLights, scene.materials, sceneRadius(flat));
     return flat;
 }
 

@@ -1,5 +1,8 @@
 #include "render/image_io.h"
 
+#include "render/atomic_file.h"
+#include "render/tonemap.h"
+
 #include <ImfChannelList.h>
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
@@ -23,12 +26,6 @@
 #include <system_error>
 #include <vector>
 
-// STB_IMAGE_WRITE_STATIC keeps the stbi_write_* symbols private to this file.
-// libtinygltf.so imports stbi_write_png_to_func from libstb.so; a global
-// definition here would silently interpose on that, so we keep ours local.
-#define STB_IMAGE_WRITE_STATIC
-#define STB_IMAGE_WRITE_IMPLEMENTATION
-#include <stb/stb_image_write.h>
 
 namespace pt {
 namespace {
@@ -76,59 +73,6 @@ void checkImage(const std::filesystem::path& path, const Image& image) {
                        " RGBA");
 }
 
-// Writes go to a hidden temporary file next to the destination (same
-// directory => same filesystem, so rename() is atomic) and only replace the
-// destination on commit(). If anything throws before that, the destructor
-// deletes the temporary and the previous destination file is untouched.
-class AtomicFile {
-public:
-    explicit AtomicFile(const std::filesystem::path& path) : path_(path) {
-        // pid + counter keep concurrent writers (threads or processes) apart.
-        static std::atomic<unsigned> counter{0};
-        std::string name = ".";
-        name += path.filename().string();
-        name += ".tmp" + std::to_string(::getpid()) + "_" + std::to_string(counter++);
-        tmp_ = path.parent_path() / name;
-        file_ = std::fopen(tmp_.c_str(), "wb");
-        if (!file_) fail(path_, "cannot write (" + errnoText(errno) + ")");
-    }
-    ~AtomicFile() {
-        if (file_) std::fclose(file_);
-        if (!committed_) {
-            std::error_code ignored;
-            std::filesystem::remove(tmp_, ignored);
-        }
-    }
-    AtomicFile(const AtomicFile&) = delete;
-    AtomicFile& operator=(const AtomicFile&) = delete;
-
-    std::FILE* file() { return file_; }
-    const std::filesystem::path& path() const { return path_; }
-
-    void write(const void* data, std::size_t n) {
-        if (n != 0 && std::fwrite(data, 1, n, file_) != n)
-            fail(path_, "write failed (" + errnoText(errno) + ")");
-    }
-
-    void commit() {
-        // fsync before rename: otherwise a power loss can leave the renamed
-        // file empty on some filesystems, defeating the point of the rename.
-        if (std::fflush(file_) != 0 || ::fsync(::fileno(file_)) != 0)
-            fail(path_, "write failed (" + errnoText(errno) + ")");
-        std::FILE* f = file_;
-        file_ = nullptr;
-        if (std::fclose(f) != 0) fail(path_, "write failed (" + errnoText(errno) + ")");
-        std::error_code ec;
-        std::filesystem::rename(tmp_, path_, ec);
-        if (ec) fail(path_, "cannot replace file (" + ec.message() + ")");
-        committed_ = true;
-    }
-
-private:
-    std::filesystem::path path_, tmp_;
-    std::FILE* file_ = nullptr;
-    bool committed_ = false;
-};
 
 // OpenEXR output stream on top of AtomicFile. ~OutputFile() writes the
 // scanline offset table and swallows any exception doing so, so a failure
@@ -325,15 +269,6 @@ void writeExrImpl(const std::filesystem::path& path, const Image& image,
     file.commit();
 }
 
-// The exact piecewise sRGB transfer function (IEC 61966-2-1), not the
-// gamma-2.2 approximation: the linear toe matters for dark render regions.
-float srgbOetf(float v) {
-    return v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1.0f / 2.4f) - 0.055f;
-}
-
-uint8_t toByte(float v) {
-    return static_cast<uint8_t>(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f));
-}
 
 }  // namespace
 
@@ -341,6 +276,8 @@ Image readExr(const std::filesystem::path& path, ImageMetadata* metadata) {
     try {
         return readExrImpl(path, metadata);
     } catch (const IoError&) {
+        throw;
+    } catch (const FileWriteError&) {
         throw;
     } catch (const std::bad_alloc&) {
         fail(path, "out of memory while reading (corrupt header?)");
@@ -359,6 +296,8 @@ void writeExr(const std::filesystem::path& path, const Image& image,
         writeExrImpl(path, image, metadata);
     } catch (const IoError&) {
         throw;
+    } catch (const FileWriteError&) {
+        throw;
     } catch (const std::exception& e) {
         fail(path, std::string("cannot write OpenEXR file (") + e.what() + ")");
     } catch (...) {
@@ -367,40 +306,7 @@ void writeExr(const std::filesystem::path& path, const Image& image,
 }
 
 void writePng(const std::filesystem::path& path, const Image& image, float exposureStops) {
-    checkImage(path, image);
-    const float scale = std::exp2(exposureStops);
-    if (!std::isfinite(scale)) fail(path, "exposure is not finite");
-
-    std::vector<uint8_t> rgb(static_cast<std::size_t>(image.width) * image.height * 3);
-    for (int y = 0; y < image.height; ++y) {
-        for (int x = 0; x < image.width; ++x) {
-            const float* p = image.at(x, y);
-            uint8_t* q = &rgb[(static_cast<std::size_t>(y) * image.width + x) * 3];
-            if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2])) {
-                q[0] = 255, q[1] = 0, q[2] = 255;  // magenta flags NaN/Inf
-                continue;
-            }
-            for (int c = 0; c < 3; ++c)
-                q[c] = toByte(srgbOetf(std::clamp(p[c] * scale, 0.0f, 1.0f)));
-        }
-    }
-
-    // Encode to memory first: stbi's own file writer only reports "failed",
-    // whereas writing the bytes ourselves gives errno-based messages and the
-    // atomic temp-file + rename.
-    std::vector<uint8_t> encoded;
-    auto sink = [](void* ctx, void* data, int size) {
-        auto* out = static_cast<std::vector<uint8_t>*>(ctx);
-        const auto* bytes = static_cast<const uint8_t*>(data);
-        out->insert(out->end(), bytes, bytes + size);
-    };
-    if (!stbi_write_png_to_func(sink, &encoded, image.width, image.height, 3, rgb.data(),
-                                image.width * 3))
-        fail(path, "PNG encoding failed");
-
-    AtomicFile file(path);
-    file.write(encoded.data(), encoded.size());
-    file.commit();
+    writeTonemappedPng(path, image, TonemapSettings{}, exposureStops); // clamp + sRGB curve
 }
 
 }  // namespace pt

@@ -1,5 +1,7 @@
 #include "render/tonemap.h"
 
+#include "render/atomic_file.h"
+
 #include <unistd.h>
 
 #include <algorithm>
@@ -194,56 +196,7 @@ void photographicOperator(const Image& image, const TonemapSettings& s, float ex
     throw std::runtime_error(path.string() + ": " + problem);
 }
 
-std::string errnoText(int err) { return std::generic_category().message(err); }
 
-// Writes to a hidden temporary file next to the destination (same directory, hence same
-// filesystem, so rename() is atomic) that replaces the destination only on commit(); if
-// anything fails first, the destructor deletes the temporary and the old file survives.
-// The same scheme as image_io.cpp, whose helper is private to that file.
-class AtomicFile {
-public:
-    explicit AtomicFile(const std::filesystem::path& path) : path_(path) {
-        // pid + counter keep concurrent writers (threads or processes) apart.
-        static std::atomic<unsigned> counter{0};
-        tmp_ = path.parent_path() / ("." + path.filename().string() + ".tmp" +
-                                     std::to_string(::getpid()) + "_" +
-                                     std::to_string(counter++));
-        file_ = std::fopen(tmp_.c_str(), "wb");
-        if (!file_) fail(path_, "cannot write (" + errnoText(errno) + ")");
-    }
-    ~AtomicFile() {
-        if (file_) std::fclose(file_);
-        if (!committed_) {
-            std::error_code ignored;
-            std::filesystem::remove(tmp_, ignored);
-        }
-    }
-    AtomicFile(const AtomicFile&) = delete;
-    AtomicFile& operator=(const AtomicFile&) = delete;
-
-    void write(const void* data, std::size_t n) {
-        if (n != 0 && std::fwrite(data, 1, n, file_) != n)
-            fail(path_, "write failed (" + errnoText(errno) + ")");
-    }
-
-    void commit() {
-        // fsync before rename, or a power loss can leave the renamed file empty.
-        if (std::fflush(file_) != 0 || ::fsync(::fileno(file_)) != 0)
-            fail(path_, "write failed (" + errnoText(errno) + ")");
-        std::FILE* f = file_;
-        file_ = nullptr;
-        if (std::fclose(f) != 0) fail(path_, "write failed (" + errnoText(errno) + ")");
-        std::error_code ec;
-        std::filesystem::rename(tmp_, path_, ec);
-        if (ec) fail(path_, "cannot replace file (" + ec.message() + ")");
-        committed_ = true;
-    }
-
-private:
-    std::filesystem::path path_, tmp_;
-    std::FILE* file_ = nullptr;
-    bool committed_ = false;
-};
 
 } // namespace
 

@@ -207,7 +207,8 @@ bool parseHeaderLine(std::string_view line, Header& h, bool& haveFormat) {
         if (h.elements.empty()) fail("property line before any element line");
         h.elements.back().properties.push_back(parseProperty(words));
     } else {
-        fail("unknown header keyword " + inQuotes(key));
+        // Most often this is body data read as header because end_header is missing.
+        fail("unknown header keyword " + inQuotes(key) + " (is end_header missing?)");
     }
     return true;
 }
@@ -628,7 +629,12 @@ std::string readFileBytes(const fs::path& path) {
     if (ec) fail("cannot determine file size (" + ec.message() + ")");
     std::ifstream in(path, std::ios::binary);
     if (!in) fail("cannot open for reading");
-    std::string bytes(size, '\0');
+    std::string bytes;
+    try {
+        bytes.resize(size);
+    } catch (const std::exception&) { // bad_alloc or length_error: report it like any other problem
+        fail("file too large to read (" + std::to_string(size) + " bytes)");
+    }
     in.read(bytes.data(), static_cast<std::streamsize>(size));
     if (static_cast<uintmax_t>(in.gcount()) != size) fail("read error (file shrank while reading?)");
     return bytes;

@@ -91,11 +91,21 @@ struct RenderHints {
     std::optional<int> maxDepth;
 };
 
+// Lights without geometry: reached by light sampling only.
+struct PunctualLight {
+    enum class Type { Point, Directional };
+    Type type = Type::Point;
+    glm::vec3 position{0.0f};        // point
+    glm::vec3 direction{0, -1, 0};   // directional: the direction light travels (unit)
+    glm::vec3 intensity{0.0f};       // point: radiant intensity (W/sr); directional: irradiance (W/m^2)
+};
+
 struct Scene {
     std::string source; // file name, or "built-in Cornell box"
     std::vector<Material> materials;
     std::vector<Mesh> meshes;
     std::vector<Sphere> spheres;
+    std::vector<PunctualLight> punctualLights;
     std::vector<Camera> cameras;
     glm::vec3 background{0.0f};
     RenderHints hints;

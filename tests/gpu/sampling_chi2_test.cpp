@@ -3,6 +3,7 @@
 // directions are histogrammed over (cos theta, phi) bins, which have equal solid angle for equal
 // extents, and compared by a chi-square test against the counts its own pdf predicts. A sampler
 // whose pdf does not describe its samples biases every estimator that divides by that pdf.
+#include <glm/gtc/matrix_transform.hpp>
 #include "support/gpu_test_support.h"
 
 #include <algorithm>
@@ -159,6 +160,13 @@ struct LightTestScene {
     std::unique_ptr<pt::GpuScene> gpu;
 };
 
+LightTestScene uploadScene(const pt::Scene& scene) {
+    LightTestScene s;
+    s.flat = pt::flattenScene(scene);
+    s.gpu = std::make_unique<pt::GpuScene>(pt::test::sharedContext(), s.flat, pt::gpu::GpuSceneParams{}, 0);
+    return s;
+}
+
 LightTestScene uploadLightScene(bool equalRadiance) {
     LightTestScene s;
     s.flat = pt::flattenScene(lightScene(equalRadiance));
@@ -244,9 +252,7 @@ double sum(const std::vector<double>& v) {
 // sampleLight's directions against the pdf the integrator uses for BSDF rays that hit lights:
 // same distribution (chi-square), same pdf per sample (MIS weights need both techniques to
 // agree on it), and a pdf that integrates to one over the sphere.
-TEST_F(SamplingTest, LightSamplingMatchesTheLightPdf) {
-    const LightTestScene scene = uploadLightScene(false);
-    ASSERT_EQ(scene.flat.lights.lights.size(), 7u);
+void checkLightSampling(const LightTestScene& scene) {
     const std::vector<double> expected = expectedFromLightPdf(*scene.gpu, kSphere, kSamples);
     EXPECT_NEAR(sum(expected) / kSamples, 1.0, 0.01) << "the light pdf should integrate to 1 over the sphere";
     std::printf("[          ] integral of the light pdf over the sphere: %.5f\n", sum(expected) / kSamples);
@@ -269,6 +275,49 @@ TEST_F(SamplingTest, LightSamplingMatchesTheLightPdf) {
         const std::string what = "light sampling seed " + std::to_string(seed);
         EXPECT_GT(pValue(histogram(kSphere, samples), expected, what.c_str()), kMinPValue);
     }
+}
+
+TEST_F(SamplingTest, LightSamplingMatchesTheLightPdf) {
+    const LightTestScene scene = uploadLightScene(false);
+    ASSERT_EQ(scene.flat.lights.lights.size(), 7u);
+    checkLightSampling(scene);
+}
+
+pt::Sphere transformedSphere(glm::vec3 centre, float angle, glm::vec3 radii, uint32_t material) {
+    pt::Sphere s;
+    s.objectToWorld = glm::translate(glm::mat4(1.0f), centre) * glm::rotate(glm::mat4(1.0f), angle, glm::vec3(0, 0, 1)) *
+                      glm::scale(glm::mat4(1.0f), radii);
+    s.material = material;
+    return s;
+}
+
+// Round spheres seen from outside are sampled in the cone they subtend; they share the table
+// with a triangle light.
+TEST_F(SamplingTest, ConeSampledSphereLightsMatchTheLightPdf) {
+    pt::Scene scene = lightScene(false);
+    scene.meshes.resize(1); // keep the overhead quad
+    scene.spheres.push_back(transformedSphere({2.0f, 0.5f, 0.3f}, 0.0f, glm::vec3(0.7f), 1));
+    scene.spheres.push_back(transformedSphere({-1.5f, -1.0f, -0.5f}, 0.3f, glm::vec3(0.4f), 3));
+    const LightTestScene uploaded = uploadScene(scene);
+    ASSERT_EQ(uploaded.flat.lights.lights.size(), 4u);
+    for (const auto& l : uploaded.flat.lights.lights)
+        if (l.type == LIGHT_SPHERE) EXPECT_GT(l.radius, 0.0f) << "round one-sided spheres are sampled by cone";
+    checkLightSampling(uploaded);
+}
+
+// Ellipsoids (and spheres emitting inwards) are sampled by area through the unit-sphere map.
+// From inside, every direction meets the surface exactly once, so the directional pdf is the
+// per-point pdf converted to solid angle. (From outside, a direction meets two points; the
+// per-point pdf is still what MIS needs, but a directional histogram would see their sum.)
+TEST_F(SamplingTest, AreaSampledEllipsoidLightMatchesTheLightPdfFromInside) {
+    pt::Scene scene = lightScene(false);
+    scene.meshes.clear();
+    scene.materials[2].doubleSided = true;
+    scene.spheres.push_back(transformedSphere(kShadingPoint + glm::vec3(0.3f, -0.2f, 0.1f), 0.7f, {1.5f, 0.6f, 0.9f}, 2));
+    const LightTestScene uploaded = uploadScene(scene);
+    ASSERT_EQ(uploaded.flat.lights.lights.size(), 1u);
+    EXPECT_EQ(uploaded.flat.lights.lights[0].radius, 0.0f);
+    checkLightSampling(uploaded);
 }
 
 // Negative control for the light test: the same samples against the pdf of the same emitters with

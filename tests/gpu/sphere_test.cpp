@@ -56,7 +56,8 @@ TEST_F(Spheres, TraversalMatchesBruteForceWithTrianglesAndEllipsoids) {
 }
 
 TEST_F(Spheres, CameraInsideAnEmissiveDiffuseSphereSeesTheAnalyticRadiance) {
-    // Le * sum_{k < D} rho^k, as for the triangle enclosure, here with an analytic ellipsoid.
+    // Le * sum_{k < D} rho^k, as for the triangle enclosure, here with an analytic ellipsoid
+    // that is also a light: light sampling by area from inside, with and without MIS.
     Scene scene;
     Material m;
     m.baseColor = glm::vec3(0.5f);
@@ -67,12 +68,26 @@ TEST_F(Spheres, CameraInsideAnEmissiveDiffuseSphereSeesTheAnalyticRadiance) {
     Camera camera;
     camera.position = glm::vec3(0.3f, -0.2f, 0.1f);
     camera.yfov = 1.5f;
-    IntegratorSettings s;
-    s.maxDepth = 6;
-    s.rr = false; // without roulette every path carries exactly the sum (cosine sampling, albedo weights)
-    auto r = renderScene(scene, s, camera, 16, 16, 32);
     const double expected = (1.0 - std::pow(0.5, 6)) / 0.5;
-    for (size_t i = 0; i < r.mean.rgba.size(); i += 4) EXPECT_NEAR(r.mean.rgba[i], expected, 1e-4 * expected) << i / 4;
+    for (int mode = 0; mode < 3; ++mode) {
+        IntegratorSettings s;
+        s.maxDepth = 6;
+        s.rr = false;
+        s.nee = mode > 0;
+        s.mis = mode == 2;
+        auto r = renderScene(scene, s, camera, 32, 32, 64);
+        EXPECT_EQ(r.droppedSamples, 0u);
+        double sum = 0, var = 0;
+        const size_t pixels = r.mean.rgba.size() / 4;
+        for (size_t i = 0; i < pixels; ++i) {
+            sum += r.mean.rgba[4 * i];
+            var += r.varianceOfMean.rgba[4 * i];
+        }
+        const double mean = sum / pixels, standardError = std::sqrt(var) / pixels;
+        // Without NEE every path carries exactly the sum (cosine sampling, albedo weights).
+        EXPECT_NEAR(mean, expected, 4.0 * standardError + 1e-4 * expected) << "mode " << mode;
+        if (mode > 0) EXPECT_GT(standardError, 0.0) << "light sampling should add noise";
+    }
 }
 
 // A sphere in a uniform white sky: every camera ray that hits it ends in the sky after delta

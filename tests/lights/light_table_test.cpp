@@ -58,7 +58,7 @@ std::vector<double> expectedPower(const std::vector<GpuTriangle>& tris, const st
     for (const auto& t : tris) {
         const Material& m = mats[t.materialIndex];
         const double a = triangleArea(t);
-        p.push_back(m.emissive() && a > 0 ? luminance(m.emission) * a * (m.doubleSided ? 2.0 : 1.0) : 0.0);
+        p.push_back(m.emissive() && a > 0 ? M_PI * luminance(m.emission) * a * (m.doubleSided ? 2.0 : 1.0) : 0.0);
     }
     return p;
 }
@@ -77,16 +77,16 @@ void checkInvariants(const LightTable& table, const std::vector<GpuTriangle>& tr
         EXPECT_EQ(table.lights[k].pmf, table.cdf[k + 1] - table.cdf[k]) << "light " << k;
         if (positivePmf) EXPECT_GT(table.lights[k].pmf, 0.0f) << "light " << k;
         EXPECT_GE(table.lights[k].pmf, 0.0f) << "light " << k;
-        ASSERT_LT(table.lights[k].triangleIndex, tris.size());
-        EXPECT_EQ(tris[table.lights[k].triangleIndex].lightIndex, k) << "light " << k << " is not linked back";
-        EXPECT_FLOAT_EQ(table.lights[k].area, static_cast<float>(triangleArea(tris[table.lights[k].triangleIndex])));
+        ASSERT_LT(table.lights[k].primitive, tris.size());
+        EXPECT_EQ(tris[table.lights[k].primitive].lightIndex, k) << "light " << k << " is not linked back";
+        EXPECT_FLOAT_EQ(table.lights[k].area, static_cast<float>(triangleArea(tris[table.lights[k].primitive])));
     }
     // Every triangle is either a light that points back to itself, or NO_LIGHT.
     size_t linked = 0;
     for (size_t i = 0; i < tris.size(); ++i) {
         if (tris[i].lightIndex == NO_LIGHT) continue;
         ASSERT_LT(tris[i].lightIndex, table.lights.size()) << "triangle " << i;
-        EXPECT_EQ(table.lights[tris[i].lightIndex].triangleIndex, i) << "triangle " << i;
+        EXPECT_EQ(table.lights[tris[i].lightIndex].primitive, i) << "triangle " << i;
         ++linked;
     }
     EXPECT_EQ(linked, table.lights.size());
@@ -119,7 +119,7 @@ TEST(LightTable, PmfIsProportionalToLuminanceTimesAreaAndDoubledForTwoSided) {
     EXPECT_NEAR(table.totalPower, total, 1e-6 * total);
 
     std::map<uint32_t, float> pmfOfTriangle;
-    for (const auto& l : table.lights) pmfOfTriangle[l.triangleIndex] = l.pmf;
+    for (const auto& l : table.lights) pmfOfTriangle[l.primitive] = l.pmf;
     for (uint32_t i = 0; i < tris.size(); ++i) {
         if (power[i] == 0) {
             EXPECT_EQ(tris[i].lightIndex, NO_LIGHT) << "triangle " << i << " is not emissive";
@@ -146,7 +146,7 @@ TEST(LightTable, DoubleSidedDoublesThePowerOfAnOtherwiseEqualEmitter) {
     const float twoSided = table.lights[tris[1].lightIndex].pmf;
     EXPECT_NEAR(oneSided, 1.0 / 3.0, 1e-6);
     EXPECT_NEAR(twoSided, 2.0 / 3.0, 1e-6);
-    EXPECT_NEAR(table.totalPower, 0.5 + 1.0, 1e-9);
+    EXPECT_NEAR(table.totalPower, M_PI * (0.5 + 1.0), 1e-9); // power = pi x radiance x area
 }
 
 TEST(LightTable, ZeroAreaEmittersAreLeftOut) {
@@ -160,7 +160,7 @@ TEST(LightTable, ZeroAreaEmittersAreLeftOut) {
     LightTable table = pt::buildLightTable(tris, mats);
     checkInvariants(table, tris);
     ASSERT_EQ(table.lights.size(), 1u);
-    EXPECT_EQ(table.lights[0].triangleIndex, 3u);
+    EXPECT_EQ(table.lights[0].primitive, 3u);
     EXPECT_EQ(table.lights[0].pmf, 1.0f);
     EXPECT_EQ(tris[0].lightIndex, NO_LIGHT);
     EXPECT_EQ(tris[1].lightIndex, NO_LIGHT);
@@ -225,8 +225,8 @@ TEST(LightTable, ManyEmittersKeepTheCdfExactAndNormalised) {
     for (const auto& l : table.lights) {
         pmfSum += l.pmf;
         // A float CDF entry near 1 is rounded by up to 6e-8, so each difference by about 1.2e-7.
-        EXPECT_NEAR(l.pmf, power[l.triangleIndex] / total, 1.5e-7 + 1e-5 * power[l.triangleIndex] / total)
-            << "triangle " << l.triangleIndex;
+        EXPECT_NEAR(l.pmf, power[l.primitive] / total, 1.5e-7 + 1e-5 * power[l.primitive] / total)
+            << "triangle " << l.primitive;
     }
     EXPECT_NEAR(pmfSum, 1.0, 1e-5);
     for (size_t i = 0; i < tris.size(); ++i)

@@ -161,7 +161,8 @@ TEST(Tonemap, BurnPercentileWhitePoint) {
     // 251.5). With burn 0 there is no white point: the brightest is only 81.9 (n = 100).
     for (int n : {100, 200}) {
         std::vector<float> values(n);
-        for (int i = 0; i < n; ++i) values[(i * 37) % n] = float(i + 1) / float(n); // 37 coprime to n
+        // 37 is coprime to n, so i -> 37i mod n is a permutation.
+        for (int i = 0; i < n; ++i) values[(i * 37) % n] = float(i + 1) / float(n);
         const Image im = greyRow(values);
         const auto burn1 = pt::tonemapToRgb8(im, photographic(0.18f, 1.0f));
         const auto burn0 = pt::tonemapToRgb8(im, photographic(0.18f, 0.0f));
@@ -180,6 +181,18 @@ TEST(Tonemap, BurnPercentileWhitePoint) {
             EXPECT_EQ(px(burn0, (99 * 37) % n, 0), 82);
         }
     }
+}
+
+TEST(Tonemap, FractionalBurnCountsPixelsNotFloatNoise) {
+    // 0.1f is 0.100000001 as a float: 0.1% of 1000 pixels must burn 1 pixel, not 2.
+    std::vector<float> values(1000);
+    // A ramp up to 0.4995 and one pixel at 1: the runner-up is far below the brightest, so
+    // it reaches 255 only if it wrongly becomes the white point.
+    for (int i = 0; i < 999; ++i) values[i] = float(i + 1) / 2000.0f;
+    values[999] = 1.0f;
+    const auto rgb = pt::tonemapToRgb8(greyRow(values), photographic(0.18f, 0.1f));
+    EXPECT_EQ(px(rgb, 999, 0), 255);
+    EXPECT_LT(px(rgb, 998, 0), 255);
 }
 
 TEST(Tonemap, BurnEverythingIncludingDegenerateWhite) {

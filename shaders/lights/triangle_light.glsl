@@ -1,0 +1,30 @@
+// Emissive triangles: a uniform point on the triangle (pbrt's square-root warp).
+#ifndef PT_LIGHTS_TRIANGLE_LIGHT_GLSL
+#define PT_LIGHTS_TRIANGLE_LIGHT_GLSL
+#include "lights/light_common.glsl"
+#include "common/sampling.glsl"
+
+// Solid-angle pdf of a point at distance dist whose emitter normal makes cosine cosLight with
+// the direction: pmf / area * dist^2 / |cos|.
+float triangleLightPdf(GpuLight light, float dist, float cosLight) {
+    float c = abs(cosLight);
+    return c > 0.0 ? light.pmf * dist * dist / (light.area * c) : 0.0;
+}
+
+LightSample sampleTriangleLight(GpuLight light, vec3 x, vec2 u) {
+    LightSample s = noLightSample();
+    GpuTriangle tri = sceneTriangles.v[light.primitive];
+    vec2 b = sampleUniformTriangle(u);
+    s.point = (1.0 - b.x - b.y) * tri.p0 + b.x * tri.p1 + b.y * tri.p2;
+    s.normal = normalize(cross(tri.p1 - tri.p0, tri.p2 - tri.p0));
+    vec3 toLight = s.point - x;
+    float dist2 = dot(toLight, toLight);
+    s.distance = sqrt(dist2);
+    s.wi = toLight / s.distance;
+    float cosLight = dot(s.normal, -s.wi);
+    s.radiance = emittedRadiance(sceneMaterials.v[tri.materialIndex], cosLight > 0.0);
+    s.pdf = dist2 > 0.0 ? triangleLightPdf(light, s.distance, cosLight) : 0.0;
+    return s;
+}
+
+#endif

@@ -1,0 +1,132 @@
+#include "scene/ceng795_loader.h"
+
+#include "scene/ceng795_camera.h"
+#include "scene/ceng795_document.h"
+#include "scene/ceng795_geometry.h"
+#include "scene/ceng795_materials.h"
+#include "scene/ceng795_objects.h"
+#include "scene/ceng795_transforms.h"
+#include "scene/scene_error.h"
+
+#include <algorithm>
+#include <fstream>
+#include <iterator>
+#include <set>
+
+namespace pt {
+namespace {
+
+using namespace ceng795;
+
+// MaxRecursionDepth counts bounces after the camera ray (primary rays have depth 0); the
+// renderer's depth counts ray segments including the camera ray.
+constexpr long long kMaxRecursionDepth = (1 << 16) - 2;
+
+void noteUnknownElements(Context& ctx, pugi::xml_node root) {
+    static const std::set<std::string> known = {"MaxRecursionDepth", "BackgroundColor", "ShadowRayEpsilon",
+        "IntersectionTestEpsilon", "ZeroBasedIndexing", "Cameras", "Lights", "Materials", "BRDFs", "Textures",
+        "Transformations", "VertexData", "TexCoordData", "Objects"};
+    // The epsilons are deliberately ignored: the renderer offsets rays robustly by itself.
+    for (pugi::xml_node e : root.children())
+        if (e.type() == pugi::node_element && !known.count(e.name())) ctx.note("element <" + std::string(e.name()) + "> (ignored)");
+}
+
+void readSceneSettings(Context& ctx, pugi::xml_node root, Scene& s) {
+    if (pugi::xml_node d = root.child("MaxRecursionDepth"))
+        s.hints.maxDepth = static_cast<int>(integer(ctx, d, 0, kMaxRecursionDepth) + 1);
+    // Absent, the course parser's default of 0 would mean camera rays only; better to leave
+    // the depth to the renderer.
+    if (pugi::xml_node b = root.child("BackgroundColor")) {
+        s.background = vec3(ctx, b);
+        if (s.background.x < 0.0f || s.background.y < 0.0f || s.background.z < 0.0f) ctx.fail(b, "must not be negative");
+        // The course shows it to primary rays only; the renderer lights the scene with it too.
+        if (s.background != glm::vec3(0.0f)) ctx.note("background seen only by primary rays");
+    }
+}
+
+// The renderer has only object lights so far: every other light is named once and skipped.
+void noteLights(Context& ctx, pugi::xml_node root) {
+    for (pugi::xml_node lights : root.children("Lights"))
+        for (pugi::xml_node l : lights.children()) {
+            if (l.type() != pugi::node_element) continue;
+            const std::string type = l.name();
+            if (type == "AmbientLight") {
+                if (vec3(ctx, l) != glm::vec3(0.0f)) ctx.note("ambient light (ignored)");
+            } else if (type == "PointLight") ctx.note("point lights (ignored)");
+            else if (type == "AreaLight") ctx.note("area lights (ignored)");
+            else if (type == "DirectionalLight") ctx.note("directional lights (ignored)");
+            else if (type == "SpotLight") ctx.note("spot lights (ignored)");
+            else if (type == "SphericalDirectionalLight") ctx.note("environment lights (ignored)");
+            else ctx.note(type + " lights (ignored)");
+        }
+}
+
+// A replace_background texture is used without any object naming it.
+void noteBackgroundTexture(Context& ctx, pugi::xml_node root) {
+    for (pugi::xml_node textures : root.children("Textures"))
+        for (pugi::xml_node map : textures.children("TextureMap")) {
+            const std::string mode = textOf(map.child("DecalMode"));
+            const std::vector<std::string_view> t = tokens(mode);
+            if (t.size() == 1 && lowercase(t[0]) == "replace_background") ctx.note("textures (ignored)");
+        }
+}
+
+// Until the renderer reads per-camera settings, the first camera's resolution is the scene's.
+void hintResolution(Scene& s) {
+    if (s.cameras.empty()) return;
+    s.hints.width = s.cameras.front().settings.width;
+    s.hints.height = s.cameras.front().settings.height;
+}
+
+Scene importScene(Context& ctx, pugi::xml_node root) {
+    Scene s;
+    s.source = ctx.file();
+    noteUnknownElements(ctx, root);
+    readSceneSettings(ctx, root, s);
+    noteLights(ctx, root);
+    noteBackgroundTexture(ctx, root);
+    MaterialTable materials = MaterialTable::read(ctx, root, s.materials);
+    const Transforms transforms = Transforms::read(ctx, root);
+    const VertexPool pool = readVertexPool(ctx, root);
+    readObjects(ctx, root, pool, transforms, materials, s);
+    materials.noteUsed(ctx);
+    if (s.meshes.empty() && s.spheres.empty()) ctx.fail("no objects to render");
+    s.cameras = readCameras(ctx, root, s.hints.maxDepth);
+    hintResolution(s);
+    s.unsupported = ctx.notes();
+    return s;
+}
+
+// pugixml reports a byte offset; a line number is what an editor can jump to.
+size_t lineAt(std::string_view text, ptrdiff_t offset) {
+    const size_t end = std::min(text.size(), static_cast<size_t>(std::max<ptrdiff_t>(0, offset)));
+    return 1 + static_cast<size_t>(std::count(text.begin(), text.begin() + static_cast<ptrdiff_t>(end), '\n'));
+}
+
+} // namespace
+
+Scene loadCeng795Text(std::string_view xml, const std::string& displayName, const std::filesystem::path& baseDir) {
+    Context ctx(displayName, baseDir);
+    pugi::xml_document doc;
+    const pugi::xml_parse_result parsed = doc.load_buffer(xml.data(), xml.size(), pugi::parse_default, pugi::encoding_auto);
+    if (!parsed)
+        ctx.fail("malformed XML at offset " + std::to_string(parsed.offset) + " (line " + std::to_string(lineAt(xml, parsed.offset)) +
+                 "): " + parsed.description());
+    pugi::xml_node root = doc.document_element();
+    if (std::string(root.name()) != "Scene") ctx.fail("root element is <" + std::string(root.name()) + ">, expected <Scene>");
+    return importScene(ctx, root);
+}
+
+Scene loadCeng795File(const std::filesystem::path& xml) {
+    const std::string name = xml.string();
+    std::error_code ec;
+    if (!std::filesystem::exists(xml, ec)) throw SceneError(name, "file not found");
+    if (std::filesystem::is_directory(xml, ec)) throw SceneError(name, "is a directory, not a scene file");
+    std::ifstream in(xml, std::ios::binary);
+    if (!in) throw SceneError(name, "cannot open for reading");
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (text.empty()) throw SceneError(name, "empty file");
+    return loadCeng795Text(text, name, xml.parent_path());
+}
+
+} // namespace pt

@@ -1,0 +1,167 @@
+#include "scene/ceng795_materials.h"
+
+#include <cmath>
+#include <limits>
+
+namespace pt::ceng795 {
+namespace {
+
+using Notes = std::vector<std::string>;
+
+bool anyPositive(const glm::vec3& c) { return c.x > 0.0f || c.y > 0.0f || c.z > 0.0f; }
+
+// Reads material colours, undoing the sRGB-ish encoding when the material says degamma="true".
+class ColourReader {
+public:
+    ColourReader(const Context& ctx, pugi::xml_node material, bool degamma) : ctx_(ctx), material_(material), degamma_(degamma) {}
+
+    glm::vec3 operator()(const char* child, const glm::vec3& fallback) const {
+        pugi::xml_node n = material_.child(child);
+        if (!n) return fallback;
+        glm::vec3 c = vec3(ctx_, n);
+        if (c.x < 0.0f || c.y < 0.0f || c.z < 0.0f) ctx_.fail(n, "must not be negative");
+        return degamma_ ? glm::pow(c, glm::vec3(2.2f)) : c;
+    }
+
+    glm::vec3 required(const char* child) const {
+        ceng795::required(ctx_, material_, child);
+        return (*this)(child, glm::vec3(0.0f));
+    }
+
+private:
+    const Context& ctx_;
+    pugi::xml_node material_;
+    bool degamma_;
+};
+
+// Reflectances above 1 would make the path tracer gain energy; the course's classic shading
+// did not care. Clamp, and say so.
+glm::vec3 reflectance(Notes& notes, const glm::vec3& c) {
+    if (c.x > 1.0f || c.y > 1.0f || c.z > 1.0f) notes.push_back("reflectances above 1 (clamped)");
+    return glm::min(c, glm::vec3(1.0f));
+}
+
+float positiveScalar(const Context& ctx, pugi::xml_node material, const char* child) {
+    pugi::xml_node n = required(ctx, material, child);
+    const float v = scalar(ctx, n);
+    if (!(v > 0.0f)) ctx.fail(n, "must be positive");
+    return v;
+}
+
+void convertDiffuse(Notes& notes, const ColourReader& colour, Material& m) {
+    m.type = MaterialType::Diffuse;
+    m.baseColor = reflectance(notes, colour("DiffuseReflectance", glm::vec3(0.0f)));
+    if (anyPositive(colour("SpecularReflectance", glm::vec3(0.0f)))) notes.push_back("course BRDF specular lobes (rendered diffuse)");
+}
+
+// The course adds its Blinn-Phong/BRDF diffuse and specular terms to mirrors, conductors and
+// dielectrics too; the renderer's specular materials have no such layers.
+void noteExtraLayers(Notes& notes, const ColourReader& colour, const std::string& type) {
+    if (anyPositive(colour("DiffuseReflectance", glm::vec3(0.0f)))) notes.push_back(type + " with diffuse layer");
+    if (anyPositive(colour("SpecularReflectance", glm::vec3(0.0f)))) notes.push_back(type + " with specular highlights (ignored)");
+}
+
+void convertMirror(Notes& notes, const ColourReader& colour, Material& m) {
+    m.type = MaterialType::Mirror;
+    m.baseColor = reflectance(notes, colour.required("MirrorReflectance"));
+    noteExtraLayers(notes, colour, "mirror");
+}
+
+void convertDielectric(const Context& ctx, Notes& notes, pugi::xml_node e, const ColourReader& colour, Material& m) {
+    m.type = MaterialType::Dielectric;
+    m.baseColor = glm::vec3(1.0f); // course glass is untinted; colour comes from absorption only
+    m.ior = positiveScalar(ctx, e, "RefractionIndex");
+    if (pugi::xml_node a = e.child("AbsorptionCoefficient")) {
+        const glm::vec3 sigma = vec3(ctx, a);
+        if (sigma.x < 0.0f || sigma.y < 0.0f || sigma.z < 0.0f) ctx.fail(a, "must not be negative");
+        // Beer's law L(x) = L(0) e^{-sigma x}: the transmittance after one unit of distance.
+        if (anyPositive(sigma)) {
+            m.attenuationDistance = 1.0f;
+            m.attenuationColor = glm::exp(-sigma);
+        }
+    }
+    noteExtraLayers(notes, colour, "dielectric");
+}
+
+void convertConductor(const Context& ctx, Notes& notes, pugi::xml_node e, const ColourReader& colour, Material& m) {
+    m.type = MaterialType::Conductor;
+    m.baseColor = reflectance(notes, colour.required("MirrorReflectance"));
+    m.conductorEta = glm::vec3(positiveScalar(ctx, e, "RefractionIndex"));
+    const float k = optionalScalar(ctx, e, "AbsorptionIndex").value_or(0.0f);
+    if (k < 0.0f) ctx.fail(e.child("AbsorptionIndex"), "must not be negative");
+    m.conductorK = glm::vec3(k);
+    noteExtraLayers(notes, colour, "conductor");
+}
+
+std::map<long long, std::string> readBrdfs(const Context& ctx, pugi::xml_node scene) {
+    std::map<long long, std::string> brdfs;
+    for (pugi::xml_node list : scene.children("BRDFs"))
+        for (pugi::xml_node b : list.children()) {
+            if (b.type() != pugi::node_element) continue;
+            if (!brdfs.emplace(idOf(ctx, b), b.name()).second) ctx.fail(b, "duplicate id");
+        }
+    return brdfs;
+}
+
+} // namespace
+
+Material convertMaterial(const Context& ctx, pugi::xml_node e, const std::map<long long, std::string>& brdfs, Notes& notes) {
+    Material m;
+    m.name = "material " + idText(e, "?");
+    const bool degamma = e.attribute("degamma") && booleanValue(ctx, e, e.attribute("degamma").value(), "degamma");
+    const ColourReader colour(ctx, e, degamma);
+    if (pugi::xml_attribute brdf = e.attribute("BRDF")) {
+        const std::vector<std::string_view> t = tokens(brdf.value());
+        if (t.size() != 1 || !brdfs.count(toInteger(ctx, e, t[0]))) ctx.fail(e, "unknown BRDF " + quote(brdf.value()));
+    }
+    const std::string type = lowercase(e.attribute("type").value());
+    if (type == "mirror") convertMirror(notes, colour, m);
+    else if (type == "dielectric") convertDielectric(ctx, notes, e, colour, m);
+    else if (type == "conductor") convertConductor(ctx, notes, e, colour, m);
+    else {
+        if (!type.empty()) notes.push_back("material type " + quote(type) + " (rendered diffuse)");
+        convertDiffuse(notes, colour, m);
+    }
+    if (const auto r = optionalScalar(ctx, e, "Roughness"); r && *r > 0.0f) notes.push_back("rough specular (rendered smooth)");
+    return m;
+}
+
+MaterialTable MaterialTable::read(const Context& ctx, pugi::xml_node scene, std::vector<Material>& out) {
+    const std::map<long long, std::string> brdfs = readBrdfs(ctx, scene);
+    MaterialTable table;
+    for (pugi::xml_node list : scene.children("Materials"))
+        for (pugi::xml_node e : list.children("Material")) {
+            const long long id = idOf(ctx, e);
+            if (!table.indexById_.emplace(id, static_cast<uint32_t>(out.size())).second) ctx.fail(e, "duplicate id");
+            table.notes_.emplace_back();
+            out.push_back(convertMaterial(ctx, e, brdfs, table.notes_.back()));
+        }
+    table.used_.assign(out.size(), false);
+    return table;
+}
+
+uint32_t MaterialTable::lookup(const Context& ctx, pugi::xml_node reference) {
+    const long long id = integer(ctx, reference, std::numeric_limits<long long>::min(), std::numeric_limits<long long>::max());
+    auto it = indexById_.find(id);
+    if (it == indexById_.end()) ctx.fail(reference, "unknown material " + std::to_string(id));
+    used_[it->second] = true;
+    return it->second;
+}
+
+void MaterialTable::noteUsed(Context& ctx) const {
+    for (size_t i = 0; i < notes_.size(); ++i)
+        if (used_[i])
+            for (const std::string& n : notes_[i]) ctx.note(n);
+}
+
+uint32_t addEmissiveCopy(std::vector<Material>& materials, uint32_t base, const glm::vec3& radiance, const std::string& name) {
+    Material m = materials[base];
+    m.name = name;
+    m.emission = radiance;
+    // Course NEE divides by |cos| at the light (FORMAT.md §7): object lights emit from both sides.
+    m.doubleSided = true;
+    materials.push_back(m);
+    return static_cast<uint32_t>(materials.size() - 1);
+}
+
+} // namespace pt::ceng795
