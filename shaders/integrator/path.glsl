@@ -94,7 +94,7 @@ vec3 tracePath(Ray ray, Rng rng) {
             } else if (HAS_CONDUCTOR && mat.type == MATERIAL_CONDUCTOR) {
                 bs = conductorSample(mat.baseColor, mat.conductorEta, mat.conductorK, frame, woLocal);
             } else if (HAS_DIFFUSE && mat.type == MATERIAL_DIFFUSE) {
-                if (HAS_EMITTERS && USE_NEE && scene.numLights > 0u)
+                if (USE_NEE && scene.numLights > 0u)
                     L += beta * estimateDirect(si, frame, woLocal, mat.baseColor, rng, depth);
                 bs = lambertSample(mat.baseColor, frame, woLocal, rng2(rng, bounceDimension(depth, DIM_BSDF_DIRECTION)));
             }

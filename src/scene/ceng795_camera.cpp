@@ -208,9 +208,9 @@ void readSettings(Context& ctx, pugi::xml_node e, std::optional<int> maxDepth, C
 
 } // namespace
 
-Camera readCamera(Context& ctx, pugi::xml_node e, std::optional<int> maxDepth) {
+Camera readCamera(Context& ctx, pugi::xml_node e, size_t index, std::optional<int> maxDepth) {
     Camera c;
-    c.name = "camera " + idText(e, "?");
+    c.name = "camera " + idText(e, std::to_string(index + 1));
     readView(ctx, e, c);
     readResolution(ctx, e, c);
     readProjection(ctx, e, c);
@@ -222,7 +222,7 @@ Camera readCamera(Context& ctx, pugi::xml_node e, std::optional<int> maxDepth) {
 std::vector<Camera> readCameras(Context& ctx, pugi::xml_node scene, std::optional<int> maxDepth) {
     std::vector<Camera> cameras;
     for (pugi::xml_node list : scene.children("Cameras"))
-        for (pugi::xml_node e : list.children("Camera")) cameras.push_back(readCamera(ctx, e, maxDepth));
+        for (pugi::xml_node e : list.children("Camera")) cameras.push_back(readCamera(ctx, e, cameras.size(), maxDepth));
     return cameras;
 }
 

@@ -24,26 +24,27 @@ void Context::note(const std::string& feature) {
     if (noted_.insert(feature).second) notes_.push_back(feature);
 }
 
-std::string quote(std::string_view text) {
+std::string printable(std::string_view text) {
     constexpr size_t kMax = 40;
-    std::string out = "'";
+    std::string out;
     for (size_t i = 0; i < text.size() && i < kMax; ++i) {
         const unsigned char c = static_cast<unsigned char>(text[i]);
         out += (c >= 32 && c < 127) ? static_cast<char>(c) : '?';
     }
     if (text.size() > kMax) out += "...";
-    return out + "'";
+    return out;
 }
+
+std::string quote(std::string_view text) { return "'" + printable(text) + "'"; }
 
 std::string label(pugi::xml_node node) {
     std::vector<std::string> parts;
     // Stop below the root <Scene>: every element is inside it, so naming it adds nothing.
     for (pugi::xml_node n = node; n && n.type() == pugi::node_element && n.parent().type() == pugi::node_element;
          n = n.parent()) {
-        std::string part = n.name();
+        std::string part = printable(n.name());
         if (pugi::xml_attribute id = n.attribute("id")) {
-            const std::string q = quote(id.value());
-            parts.push_back(part + " id=" + q.substr(1, q.size() - 2));
+            parts.push_back(part + " id=" + printable(id.value()));
             break;
         }
         parts.push_back(part);
@@ -81,6 +82,7 @@ double toNumber(const Context& ctx, pugi::xml_node where, std::string_view token
     if (!t.empty() && t.front() == '+') t.remove_prefix(1); // from_chars rejects a leading '+'
     double value = 0.0;
     const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), value);
+    if (ec == std::errc::result_out_of_range) ctx.fail(where, quote(token) + " is out of range");
     if (ec != std::errc() || end != t.data() + t.size()) ctx.fail(where, quote(token) + " is not a number");
     // from_chars accepts "nan" and "inf"; nothing in a scene may be either.
     if (!std::isfinite(value)) ctx.fail(where, quote(token) + " is not a finite number");
@@ -170,9 +172,7 @@ long long idOf(const Context& ctx, pugi::xml_node node) {
 
 std::string idText(pugi::xml_node node, const std::string& fallback) {
     pugi::xml_attribute id = node.attribute("id");
-    if (!id) return fallback;
-    const std::string q = quote(id.value());
-    return q.substr(1, q.size() - 2);
+    return id ? printable(id.value()) : fallback;
 }
 
 long long integerAttribute(const Context& ctx, pugi::xml_node node, const char* name, long long fallback) {

@@ -42,7 +42,9 @@ private:
 // its ancestors up to the nearest one with an id (ids are what a user can search the file for).
 std::string label(pugi::xml_node node);
 
-// A value from the file, shortened and made printable, for quoting in a one-line message.
+// A value from the file, shortened and made printable, for a one-line message; quote() adds
+// single quotes around it.
+std::string printable(std::string_view text);
 std::string quote(std::string_view text);
 
 // All text content of an element (comments may split it into several pieces).

@@ -5,6 +5,7 @@
 #include "scene/scene_error.h"
 
 #include <cmath>
+#include <cstdlib>
 #include <unordered_map>
 
 namespace pt::ceng795 {
@@ -52,8 +53,14 @@ VertexPool readVertexPool(const Context& ctx, pugi::xml_node scene) {
     return pool;
 }
 
+long long FaceReader::boundedOffset(pugi::xml_node faces, const char* name) const {
+    const long long offset = integerAttribute(ctx_, faces, name, 0);
+    if (offset < -kMaxIndexMagnitude || offset > kMaxIndexMagnitude) ctx_.fail(faces, std::string(name) + " is out of range");
+    return offset;
+}
+
 glm::vec3 FaceReader::vertex(pugi::xml_node where, long long id) const {
-    const long long i = poolIndex(id, 0);
+    const long long i = std::abs(id) > kMaxIndexMagnitude ? -1 : poolIndex(id, 0);
     if (i < 0 || i >= static_cast<long long>(pool_.positions.size()))
         ctx_.fail(where, "vertex " + std::to_string(id) + " out of range (" + std::to_string(pool_.positions.size()) +
                              " vertices, " + (pool_.zeroBased ? "0" : "1") + "-based)");
@@ -72,7 +79,7 @@ ObjectMesh FaceReader::fromIndices(pugi::xml_node where, const std::vector<long 
     std::vector<long long> uvIndex;
     mesh.triangles.resize(ids.size() / 3);
     for (size_t k = 0; k < ids.size(); ++k) {
-        const long long g = poolIndex(ids[k], vertexOffset);
+        const long long g = std::abs(ids[k]) > kMaxIndexMagnitude ? -1 : poolIndex(ids[k], vertexOffset);
         if (g < 0 || g >= static_cast<long long>(pool_.positions.size()))
             ctx_.fail(where, outOfRange(ids[k], vertexOffset, pool_.positions.size(), pool_.zeroBased));
         auto [it, inserted] = local.emplace(g, static_cast<uint32_t>(mesh.positions.size()));
@@ -119,8 +126,8 @@ std::shared_ptr<const ObjectMesh> FaceReader::fromPly(pugi::xml_node faces) {
 
 std::shared_ptr<const ObjectMesh> FaceReader::faces(pugi::xml_node faces) {
     if (hasAttribute(faces, "plyFile")) return fromPly(faces);
-    const long long vertexOffset = integerAttribute(ctx_, faces, "vertexOffset", 0);
-    const long long textureOffset = integerAttribute(ctx_, faces, "textureOffset", 0);
+    const long long vertexOffset = boundedOffset(faces, "vertexOffset");
+    const long long textureOffset = boundedOffset(faces, "textureOffset");
     if (hasAttribute(faces, "binaryFile")) {
         const std::vector<int32_t> raw = readBinaryIndices(ctx_, faces);
         return std::make_shared<ObjectMesh>(

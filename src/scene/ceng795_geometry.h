@@ -11,6 +11,9 @@
 
 namespace pt::ceng795 {
 
+// Far beyond any real vertex count; keeps index arithmetic on hostile values from overflowing.
+constexpr long long kMaxIndexMagnitude = 1LL << 40;
+
 // The vertices that inline faces, <Triangle>s and sphere <Center>s refer to by id.
 struct VertexPool {
     std::vector<glm::vec3> positions;
@@ -43,7 +46,9 @@ private:
     ObjectMesh fromIndices(pugi::xml_node where, const std::vector<long long>& ids, long long vertexOffset,
         long long textureOffset) const;
     std::shared_ptr<const ObjectMesh> fromPly(pugi::xml_node faces);
+    // Ids and offsets are bounded (kMaxIndexMagnitude) before this sum, so it cannot overflow.
     long long poolIndex(long long id, long long offset) const { return id + offset - (pool_.zeroBased ? 0 : 1); }
+    long long boundedOffset(pugi::xml_node faces, const char* name) const;
 
     const Context& ctx_;
     const VertexPool& pool_;

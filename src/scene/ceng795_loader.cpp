@@ -9,6 +9,7 @@
 #include "scene/scene_error.h"
 
 #include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <iterator>
 #include <set>
@@ -28,7 +29,7 @@ void noteUnknownElements(Context& ctx, pugi::xml_node root) {
         "Transformations", "VertexData", "TexCoordData", "Objects"};
     // The epsilons are deliberately ignored: the renderer offsets rays robustly by itself.
     for (pugi::xml_node e : root.children())
-        if (e.type() == pugi::node_element && !known.count(e.name())) ctx.note("element <" + std::string(e.name()) + "> (ignored)");
+        if (e.type() == pugi::node_element && !known.count(e.name())) ctx.note("element <" + printable(e.name()) + "> (ignored)");
 }
 
 void readSceneSettings(Context& ctx, pugi::xml_node root, Scene& s) {
@@ -44,20 +45,49 @@ void readSceneSettings(Context& ctx, pugi::xml_node root, Scene& s) {
     }
 }
 
-// The renderer has only object lights so far: every other light is named once and skipped.
-void noteLights(Context& ctx, pugi::xml_node root) {
+PunctualLight readPointLight(const Context& ctx, pugi::xml_node e) {
+    PunctualLight l;
+    l.type = PunctualLight::Type::Point;
+    l.position = vec3(ctx, required(ctx, e, "Position"));
+    // The course's Intensity is radiant intensity (E = I / d^2), as is the scene model's.
+    pugi::xml_node i = required(ctx, e, "Intensity");
+    l.intensity = vec3(ctx, i);
+    if (l.intensity.x < 0.0f || l.intensity.y < 0.0f || l.intensity.z < 0.0f) ctx.fail(i, "must not be negative");
+    return l;
+}
+
+PunctualLight readDirectionalLight(const Context& ctx, pugi::xml_node e) {
+    PunctualLight l;
+    l.type = PunctualLight::Type::Directional;
+    // Direction is the way the light travels; its "Radiance" arrives undiminished with distance,
+    // i.e. it is the irradiance on a surface facing the light, which is what the model stores.
+    pugi::xml_node d = required(ctx, e, "Direction");
+    const glm::vec3 direction = vec3(ctx, d);
+    const float length = glm::length(direction);
+    if (!(length > 0.0f) || !std::isfinite(length)) ctx.fail(d, "must be non-zero");
+    l.direction = direction / length;
+    pugi::xml_node r = required(ctx, e, "Radiance");
+    l.intensity = vec3(ctx, r);
+    if (l.intensity.x < 0.0f || l.intensity.y < 0.0f || l.intensity.z < 0.0f) ctx.fail(r, "must not be negative");
+    return l;
+}
+
+// Point and directional lights map onto the model's punctual lights; the others are named once
+// and skipped (object lights are objects, read with the geometry).
+void readLights(Context& ctx, pugi::xml_node root, Scene& s) {
     for (pugi::xml_node lights : root.children("Lights"))
         for (pugi::xml_node l : lights.children()) {
             if (l.type() != pugi::node_element) continue;
             const std::string type = l.name();
             if (type == "AmbientLight") {
+                // The course adds ka * Ia, a constant no physically based renderer has.
                 if (vec3(ctx, l) != glm::vec3(0.0f)) ctx.note("ambient light (ignored)");
-            } else if (type == "PointLight") ctx.note("point lights (ignored)");
+            } else if (type == "PointLight") s.punctualLights.push_back(readPointLight(ctx, l));
+            else if (type == "DirectionalLight") s.punctualLights.push_back(readDirectionalLight(ctx, l));
             else if (type == "AreaLight") ctx.note("area lights (ignored)");
-            else if (type == "DirectionalLight") ctx.note("directional lights (ignored)");
             else if (type == "SpotLight") ctx.note("spot lights (ignored)");
             else if (type == "SphericalDirectionalLight") ctx.note("environment lights (ignored)");
-            else ctx.note(type + " lights (ignored)");
+            else ctx.note(printable(type) + " lights (ignored)");
         }
 }
 
@@ -83,7 +113,7 @@ Scene importScene(Context& ctx, pugi::xml_node root) {
     s.source = ctx.file();
     noteUnknownElements(ctx, root);
     readSceneSettings(ctx, root, s);
-    noteLights(ctx, root);
+    readLights(ctx, root, s);
     noteBackgroundTexture(ctx, root);
     MaterialTable materials = MaterialTable::read(ctx, root, s.materials);
     const Transforms transforms = Transforms::read(ctx, root);

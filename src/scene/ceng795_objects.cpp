@@ -64,7 +64,7 @@ private:
         else if (type == "LightMesh") emitLightMesh(e);
         else if (type == "Sphere") emitSphere(e, std::nullopt);
         else if (type == "LightSphere") emitSphere(e, radiance(e));
-        else ctx_.note(type + " objects (ignored)");
+        else ctx_.note(printable(type) + " objects (ignored)");
     }
 
     void noteUnmodelled(pugi::xml_node e) {
@@ -93,7 +93,7 @@ private:
             ctx_.fail(e, "the scene expands to more than " + std::to_string(kMaxSceneTriangles) + " triangles");
         Mesh mesh = toWorld(ctx_, e, geometry, transform, smooth);
         if (mesh.triangles.empty()) return false;
-        mesh.name = std::string(e.name()) + " " + idText(e, "?");
+        mesh.name = printable(e.name()) + " " + idText(e, "?");
         mesh.material = material;
         triangles_ += mesh.triangles.size();
         out_.meshes.push_back(std::move(mesh));

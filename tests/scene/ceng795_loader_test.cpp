@@ -87,6 +87,7 @@ protected:
     fs::path writeBinary(const std::string& name, const std::vector<int32_t>& header, const std::vector<float>& floats,
         const std::vector<int32_t>& ints = {}) const {
         const fs::path p = dir_ / name;
+        fs::create_directories(p.parent_path());
         std::ofstream out(p, std::ios::binary);
         out.write(reinterpret_cast<const char*>(header.data()), static_cast<std::streamsize>(header.size() * 4));
         out.write(reinterpret_cast<const char*>(floats.data()), static_cast<std::streamsize>(floats.size() * 4));
@@ -420,8 +421,14 @@ TEST_F(Ceng795, ObjectErrors) {
     expectError(sceneXml(head + "<Mesh id=\"3\"><Material>9</Material><Faces>1 2 3</Faces></Mesh></Objects>"),
         "Mesh id=3: Material", "unknown material 9");
     expectError(sceneXml(head + "<Mesh id=\"3\"><Material>1</Material></Mesh></Objects>"), "Mesh id=3", "missing <Faces>");
-    expectError(sceneXml(head + "<Mesh id=\"3\"><Material>1</Material><Faces>1 2 3 4 5 6 7 8 12</Faces></Mesh></Objects>"),
+    expectError(sceneXml(head + "<Mesh id=\"3\"><Material>1</Material><Faces>1 2 3 2 3 12</Faces></Mesh></Objects>"),
         "Mesh id=3: Faces", "face index 12 out of range (4 vertices, 1-based)");
+    expectError(sceneXml(head + "<Mesh id=\"3\"><Material>1</Material><Faces>9223372036854775807 1 2</Faces></Mesh></Objects>"),
+        "Mesh id=3: Faces", "face index 9223372036854775807 out of range");
+    expectError(sceneXml(head + "<Mesh id=\"3\"><Material>1</Material><Faces vertexOffset=\"9223372036854775807\">1 2 3</Faces></Mesh></Objects>"),
+        "Mesh id=3: Faces", "vertexOffset is out of range");
+    expectError(sceneXml(head + "<Mesh id=\"3\"><Material>1</Material><Faces>99999999999999999999 1 2</Faces></Mesh></Objects>"),
+        "Mesh id=3: Faces", "'99999999999999999999' is out of range");
     expectError(sceneXml(head + "<Mesh id=\"3\"><Material>1</Material><Faces>0 1 2</Faces></Mesh></Objects>"),
         "Mesh id=3: Faces", "face index 0 out of range");
     expectError(sceneXml(head + "<Mesh id=\"3\"><Material>1</Material><Faces>1 2 3 4</Faces></Mesh></Objects>"),
@@ -536,7 +543,7 @@ TEST_F(Ceng795, MaterialErrors) {
     expectError(materialScene("<Material id=\"5\"><DiffuseReflectance>nan 0 0</DiffuseReflectance></Material>"),
         "Material id=5: DiffuseReflectance", "'nan' is not a finite number");
     expectError(materialScene("<Material id=\"5\"><DiffuseReflectance>1e999 0 0</DiffuseReflectance></Material>"),
-        "Material id=5: DiffuseReflectance", "not a finite number");
+        "Material id=5: DiffuseReflectance", "'1e999' is out of range");
     expectError(materialScene("<Material id=\"5\"><DiffuseReflectance>0.5 0.5</DiffuseReflectance></Material>"),
         "Material id=5: DiffuseReflectance", "expected 3 numbers, found 2");
     expectError(materialScene("<Material id=\"5\"/><Material id=\"5\"/>"), "Material id=5", "duplicate id");
@@ -554,13 +561,30 @@ TEST_F(Ceng795, TexturesAndMotionBlurAreNoted) {
 // ---------------------------------------------------------------------------------------------
 // Lights and scene settings
 
-TEST_F(Ceng795, NonObjectLightsAreNamedOnce) {
+TEST_F(Ceng795, PointAndDirectionalLightsArePunctualLights) {
+    const pt::Scene s = load(triangleScene("", "", "<Lights>"
+        "<PointLight id=\"1\"><Position>0 30 50</Position><Intensity>1000 2000 3000</Intensity></PointLight>"
+        "<DirectionalLight id=\"1\"><Direction>0 -2 0</Direction><Radiance>2 2 2</Radiance></DirectionalLight></Lights>"));
+    ASSERT_EQ(s.punctualLights.size(), 2u);
+    EXPECT_EQ(s.punctualLights[0].type, pt::PunctualLight::Type::Point);
+    EXPECT_TRUE(near3(s.punctualLights[0].position, glm::vec3(0, 30, 50)));
+    EXPECT_TRUE(near3(s.punctualLights[0].intensity, glm::vec3(1000, 2000, 3000)));
+    EXPECT_EQ(s.punctualLights[1].type, pt::PunctualLight::Type::Directional);
+    EXPECT_TRUE(near3(s.punctualLights[1].direction, glm::vec3(0, -1, 0)));
+    EXPECT_TRUE(near3(s.punctualLights[1].intensity, glm::vec3(2)));
+    EXPECT_TRUE(s.unsupported.empty());
+    expectError(triangleScene("", "", "<Lights><PointLight id=\"4\"><Position>0 0 0</Position></PointLight></Lights>"),
+        "PointLight id=4", "missing <Intensity>");
+    expectError(triangleScene("", "", "<Lights><DirectionalLight id=\"2\"><Direction>0 0 0</Direction><Radiance>1 1 1</Radiance>"
+        "</DirectionalLight></Lights>"), "DirectionalLight id=2: Direction", "non-zero");
+}
+
+TEST_F(Ceng795, OtherLightsAreNamedOnce) {
     const pt::Scene s = load(triangleScene("", "", "<Lights><AmbientLight>25 25 25</AmbientLight>"
-        "<PointLight id=\"1\"><Position>0 0 0</Position><Intensity>1 1 1</Intensity></PointLight>"
-        "<PointLight id=\"2\"><Position>0 0 0</Position><Intensity>1 1 1</Intensity></PointLight>"
-        "<AreaLight id=\"1\"/><DirectionalLight id=\"1\"/><SpotLight id=\"1\"/><SphericalDirectionalLight id=\"1\"/></Lights>"));
-    EXPECT_EQ(s.unsupported, (std::vector<std::string>{"ambient light (ignored)", "point lights (ignored)",
-        "area lights (ignored)", "directional lights (ignored)", "spot lights (ignored)", "environment lights (ignored)"}));
+        "<AreaLight id=\"1\"/><AreaLight id=\"2\"/><SpotLight id=\"1\"/><SphericalDirectionalLight id=\"1\"/></Lights>"));
+    EXPECT_EQ(s.unsupported, (std::vector<std::string>{"ambient light (ignored)", "area lights (ignored)",
+        "spot lights (ignored)", "environment lights (ignored)"}));
+    EXPECT_TRUE(s.punctualLights.empty());
     const pt::Scene dark = load(triangleScene("", "", "<Lights><AmbientLight>0 0 0</AmbientLight></Lights>"));
     EXPECT_TRUE(dark.unsupported.empty());
 }
@@ -809,7 +833,11 @@ TEST(Ceng795Official, CornellPathDiffuseCameras) {
         EXPECT_NEAR(glm::dot(c.forward, c.up), 0.0f, 1e-6f);
     }
     EXPECT_EQ(s.hints.maxDepth, std::optional<int>(4));
-    EXPECT_EQ(s.unsupported, std::vector<std::string>{"point lights (ignored)"});
+    EXPECT_TRUE(s.unsupported.empty()) << s.unsupported.front();
+    // "50 Watts / (4 * PI)" at (0, -0.5, 1).
+    ASSERT_EQ(s.punctualLights.size(), 1u);
+    EXPECT_TRUE(near3(s.punctualLights[0].position, glm::vec3(0, -0.5f, 1)));
+    EXPECT_TRUE(near3(s.punctualLights[0].intensity, glm::vec3(3.9788735772973833f)));
 }
 
 TEST(Ceng795Official, CornellPathDiffuseGeometryAndLight) {

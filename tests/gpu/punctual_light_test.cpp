@@ -1,0 +1,92 @@
+// Point and directional lights against their analytic direct lighting on a Lambertian plane:
+// L = rho / pi * I cos(theta) / d^2 under a point light, rho / pi * E cos(theta) under a
+// directional one. Delta lights are sampled exactly, so the only noise is the pixel jitter.
+#include "support/gpu_test_support.h"
+
+#include <cmath>
+
+namespace pt::test {
+namespace {
+
+class PunctualLights : public GpuTest {
+protected:
+    Scene plane() {
+        Scene scene;
+        Material m;
+        m.baseColor = glm::vec3(0.6f, 0.5f, 0.4f);
+        scene.materials.push_back(m);
+        // A plane at y = 0, facing up. Small, because a directional light's selection weight
+        // grows with the scene's size: a huge plane would leave the point light almost never chosen.
+        scene.meshes.push_back(makeQuad({-2.0f, 0.0f, 2.0f}, {4.0f, 0.0f, 0.0f}, {0.0f, 0.0f, -4.0f}, 0));
+        return scene;
+    }
+    // Looks straight down at the origin from height 3 with a narrow field of view.
+    Renderer::Readback render(const Scene& scene) {
+        Camera camera;
+        camera.position = glm::vec3(0.0f, 3.0f, 0.0f);
+        camera.forward = glm::vec3(0.0f, -1.0f, 0.0f);
+        camera.up = glm::vec3(0.0f, 0.0f, -1.0f);
+        camera.yfov = 0.01f;
+        IntegratorSettings s;
+        s.maxDepth = 2;
+        return renderScene(scene, s, camera, 9, 9, 16);
+    }
+};
+
+TEST_F(PunctualLights, PointLightFollowsTheInverseSquareLaw) {
+    Scene scene = plane();
+    PunctualLight light;
+    light.type = PunctualLight::Type::Point;
+    light.position = glm::vec3(1.0f, 2.0f, 0.0f);
+    light.intensity = glm::vec3(10.0f, 20.0f, 30.0f);
+    scene.punctualLights.push_back(light);
+    auto r = render(scene);
+    const double d2 = 1.0 + 4.0, cosTheta = 2.0 / std::sqrt(d2);
+    for (int c = 0; c < 3; ++c) {
+        const double expected = scene.materials[0].baseColor[c] / M_PI * light.intensity[c] * cosTheta / d2;
+        EXPECT_NEAR(r.mean.at(4, 4)[c], expected, 2e-3 * expected) << "channel " << c;
+    }
+}
+
+TEST_F(PunctualLights, DirectionalLightGivesLambertsCosineLaw) {
+    Scene scene = plane();
+    PunctualLight light;
+    light.type = PunctualLight::Type::Directional;
+    light.direction = glm::normalize(glm::vec3(1.0f, -2.0f, 0.5f));
+    light.intensity = glm::vec3(3.0f);
+    scene.punctualLights.push_back(light);
+    // A second light of each kind shares the table: the estimate stays unbiased.
+    PunctualLight point;
+    point.position = glm::vec3(0.0f, 1.0f, 0.0f);
+    point.intensity = glm::vec3(1.0f);
+    scene.punctualLights.push_back(point);
+    auto r = render(scene);
+    const double cosTheta = -light.direction.y;
+    const double expected = scene.materials[0].baseColor[0] / M_PI * (3.0 * cosTheta + 1.0);
+    // Light selection makes each sample see one light or the other: average over the image.
+    double sum = 0, var = 0;
+    for (int y = 0; y < 9; ++y)
+        for (int x = 0; x < 9; ++x) sum += r.mean.at(x, y)[0], var += r.varianceOfMean.at(x, y)[0];
+    EXPECT_NEAR(sum / 81, expected, 4 * std::sqrt(var) / 81 + 2e-3 * expected);
+}
+
+TEST_F(PunctualLights, ShadowsBlockPointLights) {
+    Scene scene = plane();
+    scene.meshes.push_back(makeQuad({-1.0f, 1.0f, 1.0f}, {2.0f, 0.0f, 0.0f}, {0.0f, 0.0f, -2.0f}, 0)); // occluder at y = 1
+    PunctualLight light;
+    light.position = glm::vec3(0.0f, 2.0f, 0.0f);
+    light.intensity = glm::vec3(10.0f);
+    scene.punctualLights.push_back(light);
+    Camera camera;
+    camera.position = glm::vec3(0.0f, 0.5f, 0.0f); // between the plane and the occluder
+    camera.forward = glm::vec3(0.0f, -1.0f, 0.0f);
+    camera.up = glm::vec3(0.0f, 0.0f, -1.0f);
+    camera.yfov = 0.01f;
+    IntegratorSettings s;
+    s.maxDepth = 2;
+    auto r = renderScene(scene, s, camera, 5, 5, 4);
+    EXPECT_EQ(r.mean.at(2, 2)[0], 0.0f);
+}
+
+} // namespace
+} // namespace pt::test
