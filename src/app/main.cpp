@@ -33,7 +33,7 @@ int main(int argc, char** argv) {
     CLI::App app{"pt: a physically based path tracer on Vulkan compute shaders"};
     app.require_subcommand(1);
     pt::RenderOptions o;
-    std::string nee = "on", mis = "on", rr = "on", sampling = "cosine";
+    std::string nee, mis, rr, sampling;
 
     CLI::App* render = app.add_subcommand("render", "Render a scene (glTF .gltf/.glb; none: the built-in Cornell box) to EXR and PNG");
     render->add_option("scene", o.scene, "Scene file");
@@ -47,11 +47,11 @@ int main(int argc, char** argv) {
         ->check(CLI::Range(1u, 65536u));
     render->add_option("--rr-start", o.integrator.rrStartDepth, "Russian roulette starts after this many segments (default 5)");
     render->add_option("--seed", o.integrator.seed, "Random seed (default 0)");
-    render->add_option("--nee", nee, "Next event estimation (light sampling): on|off")->check(CLI::IsMember({"on", "off"}));
-    render->add_option("--mis", mis, "Multiple importance sampling of light and BSDF samples: on|off")->check(CLI::IsMember({"on", "off"}));
-    render->add_option("--rr", rr, "Russian roulette: on|off")->check(CLI::IsMember({"on", "off"}));
-    render->add_option("--sampling", sampling, "BSDF direction sampling: cosine|uniform")->check(CLI::IsMember({"cosine", "uniform"}));
-    render->add_option("--camera", o.camera, "Index of the camera to render (default 0)");
+    render->add_option("--nee", nee, "Next event estimation (light sampling): on|off (default on)")->check(CLI::IsMember({"on", "off"}));
+    render->add_option("--mis", mis, "Multiple importance sampling of light and BSDF samples: on|off (default on)")->check(CLI::IsMember({"on", "off"}));
+    render->add_option("--rr", rr, "Russian roulette: on|off (default on)")->check(CLI::IsMember({"on", "off"}));
+    render->add_option("--sampling", sampling, "BSDF direction sampling: cosine|uniform (default cosine)")->check(CLI::IsMember({"cosine", "uniform"}));
+    render->add_option("--camera", o.camera, "Camera to render: glTF: its index (default 0); course XML: its id (default: every camera)");
     render->add_option("--device", o.device, "Use the first Vulkan device whose name contains this (see 'pt devices')");
     render->add_option("--reference", o.reference, "Reference EXR: log relMSE after every pass");
     render->add_option("--error-log", o.errorLog, "CSV of spp, seconds, relMSE after every pass (needs --reference)");
@@ -70,10 +70,10 @@ int main(int argc, char** argv) {
         return app.exit(e) == 0 ? 0 : 2;
     }
     if (const char* v = std::getenv("PT_VALIDATION"); v && std::string(v) == "1") o.validation = true;
-    o.integrator.nee = onOff(nee);
-    o.integrator.mis = onOff(mis);
-    o.integrator.rr = onOff(rr);
-    o.integrator.sampling = sampling == "cosine" ? pt::DirectionSampling::Cosine : pt::DirectionSampling::Uniform;
+    if (!nee.empty()) o.nee = onOff(nee);
+    if (!mis.empty()) o.mis = onOff(mis);
+    if (!rr.empty()) o.rr = onOff(rr);
+    if (!sampling.empty()) o.sampling = sampling == "cosine" ? pt::DirectionSampling::Cosine : pt::DirectionSampling::Uniform;
     if (!o.errorLog.empty() && o.reference.empty()) {
         std::fprintf(stderr, "pt: error: --error-log needs --reference\n");
         return 2;

@@ -14,7 +14,10 @@ struct RenderOptions {
     std::optional<double> seconds;
     std::optional<int> width, height;
     std::optional<uint32_t> maxDepth;
-    int camera = 0;
+    std::optional<int> camera; // glTF: index; course XML: the Camera's id
+    // Switches given on the command line; otherwise the camera's (course XML) or the defaults.
+    std::optional<bool> nee, mis, rr;
+    std::optional<DirectionSampling> sampling;
     std::string device;
     std::string reference;
     std::string errorLog;
@@ -23,7 +26,7 @@ struct RenderOptions {
     bool validation = false;
     bool quiet = false;
     float exposure = 0.0f;
-    IntegratorSettings integrator;
+    IntegratorSettings integrator; // seed and rrStartDepth; the rest comes from the fields above
 };
 
 } // namespace pt

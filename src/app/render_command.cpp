@@ -5,8 +5,9 @@
 #include "render/flat_scene.h"
 #include "render/image_io.h"
 #include "render/metrics.h"
-#include "render/progress.h"
+#include "render/progressive_render.h"
 #include "render/renderer.h"
+#include "render/tonemap.h"
 #include "scene/scene_loader.h"
 
 #include <chrono>
@@ -19,6 +20,7 @@
 namespace pt {
 namespace {
 
+namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 double secondsSince(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
@@ -35,41 +37,160 @@ std::string formatDouble(double v) {
     return s.str();
 }
 
-std::filesystem::path defaultOutput(const std::string& scene) {
-    std::string stem = scene.empty() ? "cornell-box" : std::filesystem::path(scene).stem().string();
-    if (stem == "scene") stem = std::filesystem::path(scene).parent_path().filename().string(); // refs/<name>/scene.gltf
-    if (stem.empty()) stem = "render";
-    return std::filesystem::path("out") / (stem + ".exr");
+std::string sceneStem(const std::string& scene) {
+    std::string stem = scene.empty() ? "cornell-box" : fs::path(scene).stem().string();
+    if (stem == "scene") stem = fs::path(scene).parent_path().filename().string(); // refs/<name>/scene.gltf
+    return stem.empty() ? "render" : stem;
 }
 
-// Image size: command line, then the scene's own hints, then 512 wide with the camera's aspect.
-void chooseResolution(const RenderOptions& o, const Scene& scene, const Camera& camera, int& width, int& height) {
-    width = o.width.value_or(scene.hints.width.value_or(512));
-    if (o.height) height = *o.height;
-    else if (scene.hints.height && !o.width) height = *scene.hints.height;
-    else if (camera.aspectRatio > 0) height = std::max(1, static_cast<int>(std::lround(width / camera.aspectRatio)));
-    else height = width;
+// "No depth cap": deep enough that Russian roulette, not the cap, ends every path in practice.
+constexpr int kUncappedDepth = 256;
+
+bool isCourseScene(const std::string& scene) {
+    std::string ext = fs::path(scene).extension().string();
+    for (auto& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return ext == ".xml";
 }
 
-Camera chooseCamera(const Scene& scene, int index) {
+// One image to render: which camera, at what size, with which settings, to which file.
+struct Job {
+    Camera camera;
+    int width = 0, height = 0;
+    IntegratorSettings settings;
+    ProgressiveTarget target;
+    fs::path output; // .exr; the PNG goes beside it
+    TonemapSettings tonemap;
+};
+
+// The cameras to render: --camera picks one (a glTF index, a course camera id); glTF renders
+// its first camera by default, a course scene every camera (one image each, as the course does).
+std::vector<Camera> chooseCameras(const Scene& scene, const RenderOptions& o, bool course) {
     if (scene.cameras.empty()) {
-        if (index != 0) throw std::runtime_error(scene.source + ": --camera " + std::to_string(index) + ": the scene has no cameras");
+        if (o.camera && *o.camera != 0)
+            throw std::runtime_error(scene.source + ": --camera " + std::to_string(*o.camera) + ": the scene has no cameras");
         // No camera in the file: look at the scene's bounding box from +z.
         glm::vec3 lo(INFINITY), hi(-INFINITY);
         for (const auto& m : scene.meshes)
             for (const auto& p : m.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
+        for (const auto& s : scene.spheres) {
+            const glm::vec3 c(s.objectToWorld[3]);
+            const float r = glm::length(glm::vec3(s.objectToWorld[0])) + glm::length(glm::vec3(s.objectToWorld[1])) +
+                            glm::length(glm::vec3(s.objectToWorld[2]));
+            lo = glm::min(lo, c - r), hi = glm::max(hi, c + r);
+        }
         Camera c;
+        c.name = "framing camera";
         c.yfov = 0.8f;
         const glm::vec3 centre = 0.5f * (lo + hi);
         const float radius = 0.5f * glm::length(hi - lo);
         c.position = centre + glm::vec3(0, 0, radius / std::tan(0.5f * c.yfov) + radius);
         std::fprintf(stderr, "pt: note: %s has no camera; using one that frames the scene\n", scene.source.c_str());
-        return c;
+        return {c};
     }
+    if (course) {
+        if (!o.camera) return scene.cameras;
+        for (const auto& c : scene.cameras)
+            if (c.id == *o.camera) return {c};
+        std::string ids;
+        for (const auto& c : scene.cameras) ids += (ids.empty() ? "" : " ") + std::to_string(c.id);
+        throw std::runtime_error(scene.source + ": --camera " + std::to_string(*o.camera) + ": no camera with that id (ids: " + ids + ")");
+    }
+    const int index = o.camera.value_or(0);
     if (index < 0 || index >= static_cast<int>(scene.cameras.size()))
         throw std::runtime_error(scene.source + ": --camera " + std::to_string(index) + " is out of range (the scene has " +
                                  std::to_string(scene.cameras.size()) + " camera(s))");
-    return scene.cameras[index];
+    return {scene.cameras[index]};
+}
+
+Job makeJob(const Scene& scene, const Camera& camera, const RenderOptions& o, bool severalImages) {
+    Job job;
+    job.camera = camera;
+    const CameraRenderSettings& cs = camera.settings;
+    // Size: command line, then the camera's, then the scene's hints, then 512 wide.
+    job.width = o.width.value_or(cs.width.value_or(scene.hints.width.value_or(512)));
+    if (o.height) job.height = *o.height;
+    else if (!o.width && cs.height) job.height = *cs.height;
+    else if (!o.width && scene.hints.height) job.height = *scene.hints.height;
+    else if (camera.aspectRatio > 0) job.height = std::max(1, static_cast<int>(std::lround(job.width / camera.aspectRatio)));
+    else job.height = job.width;
+    validateImageSize(job.width, job.height);
+
+    IntegratorSettings& s = job.settings;
+    s = o.integrator;
+    s.nee = o.nee.value_or(cs.nee.value_or(true));
+    s.mis = o.mis.value_or(true);
+    s.rr = o.rr.value_or(cs.russianRoulette.value_or(true));
+    s.sampling = o.sampling.value_or(cs.importanceSampling.value_or(true) ? DirectionSampling::Cosine : DirectionSampling::Uniform);
+    // The course's official path-tracing images apply Russian roulette without a depth cap
+    // (FORMAT.md section 8): such cameras get a cap so high that only roulette ends paths.
+    const bool uncapped = isCourseScene(o.scene) && cs.russianRoulette.value_or(false) && !cs.maxDepth;
+    const int fallbackDepth = uncapped ? kUncappedDepth : scene.hints.maxDepth.value_or(16);
+    const int depth = o.maxDepth ? static_cast<int>(*o.maxDepth) : cs.maxDepth.value_or(fallbackDepth);
+    if (depth < 1) throw std::runtime_error("max depth must be at least 1");
+    s.maxDepth = static_cast<uint32_t>(depth);
+
+    job.target.spp = o.spp.value_or(o.seconds ? 0u : cs.spp.value_or(64u));
+    job.target.seconds = o.seconds.value_or(0.0);
+    job.target.passSpp = o.passSpp;
+    job.target.tileSize = o.tileSize;
+    job.tonemap = cs.tonemap.value_or(TonemapSettings{});
+
+    // Output: -o names the file (one image) or the folder (several); else out/<name>.
+    fs::path name = cs.imageName.empty() ? fs::path(sceneStem(o.scene) + ".exr") : fs::path(cs.imageName).filename();
+    name.replace_extension(".exr");
+    if (!o.output.empty()) job.output = severalImages ? fs::path(o.output) / name : fs::path(o.output);
+    else job.output = fs::path("out") / name;
+    if (job.output.extension() != ".exr") throw std::runtime_error(job.output.string() + ": output must end in .exr");
+    return job;
+}
+
+void prepareOutputDirectory(const fs::path& output) {
+    if (output.parent_path().empty()) return;
+    std::error_code ec;
+    fs::create_directories(output.parent_path(), ec);
+    if (ec) throw std::runtime_error(output.parent_path().string() + ": cannot create directory (" + ec.message() + ")");
+}
+
+int renderJob(VulkanContext& context, const Scene& scene, const FlatScene& flat, const Job& job, const RenderOptions& o,
+    const std::optional<Image>& reference, std::ostream* errorLog) {
+    const FeatureSet features = computeFeatures(flat, job.settings);
+    Renderer renderer(context, flat, features, job.settings, job.camera, FilmSettings{job.width, job.height, scene.background});
+    if (!o.quiet) {
+        std::fprintf(stderr, "pt: %s: %dx%d, kernel features: %s; pipeline %.3f s\n", job.camera.name.c_str(), job.width,
+            job.height, features.describe().c_str(), renderer.pipelineSeconds());
+        std::fprintf(stderr, "pt: %s\n", job.settings.describe().c_str());
+    }
+    const ProgressiveResult progress =
+        renderProgressively(renderer, job.target, reference ? &*reference : nullptr, errorLog, !o.quiet);
+
+    const Renderer::Readback result = renderer.read();
+    const uint32_t spp = renderer.samplesPerPixel();
+    const double mpaths = double(job.width) * job.height * spp / std::max(progress.seconds, 1e-9) * 1e-6;
+    ImageMetadata meta;
+    meta["spp"] = std::to_string(spp);
+    meta["seconds"] = formatDouble(progress.seconds);
+    meta["seed"] = std::to_string(job.settings.seed);
+    meta["device"] = context.info().name;
+    meta["driver"] = context.info().driver;
+    meta["integrator"] = job.settings.describe();
+    meta["features"] = features.describe();
+    meta["scene"] = scene.source;
+    meta["camera"] = job.camera.name;
+    meta["dropped_samples"] = std::to_string(result.droppedSamples);
+    meta["mpaths_per_second"] = formatDouble(mpaths);
+    prepareOutputDirectory(job.output);
+    writeExr(job.output, result.mean, meta);
+    fs::path png = job.output;
+    png.replace_extension(".png");
+    writeTonemappedPng(png, result.mean, job.tonemap, o.exposure);
+
+    std::string summary = "pt: wrote " + job.output.string() + " and " + png.string() + ": " + std::to_string(spp) +
+                          " spp in " + formatDouble(std::round(progress.seconds * 1000) / 1000) + " s, " +
+                          formatDouble(std::round(mpaths * 1000) / 1000) + " M paths/s, " +
+                          std::to_string(result.droppedSamples) + " non-finite samples dropped";
+    if (reference) summary += ", relMSE " + formatDouble(relMse(result.mean, *reference));
+    std::fprintf(stderr, "%s\n", summary.c_str());
+    return 0;
 }
 
 } // namespace
@@ -80,31 +201,22 @@ int runRender(const RenderOptions& o) {
     if (!scene.unsupported.empty())
         std::fprintf(stderr, "pt: warning: %s: not supported yet, rendered approximately: %s\n", scene.source.c_str(),
             joinNotes(scene.unsupported).c_str());
-    const Camera camera = chooseCamera(scene, o.camera);
-    int width, height;
-    chooseResolution(o, scene, camera, width, height);
-    validateImageSize(width, height);
+    const bool course = isCourseScene(o.scene);
+    const std::vector<Camera> cameras = chooseCameras(scene, o, course);
+    std::vector<Job> jobs;
+    for (const Camera& c : cameras) jobs.push_back(makeJob(scene, c, o, cameras.size() > 1));
 
-    IntegratorSettings settings = o.integrator;
-    settings.maxDepth = o.maxDepth.value_or(scene.hints.maxDepth ? static_cast<uint32_t>(*scene.hints.maxDepth) : settings.maxDepth);
-    if (settings.maxDepth < 1) throw std::runtime_error("--max-depth must be at least 1");
-
-    // Fail on a bad reference or output path before spending time on rendering.
+    // Fail on a bad reference or output before spending time on rendering.
     std::optional<Image> reference;
     if (!o.reference.empty()) {
+        if (jobs.size() != 1) throw std::runtime_error(o.reference + ": --reference needs a single image (use --camera)");
         reference = readExr(o.reference);
-        if (reference->width != width || reference->height != height)
+        if (reference->width != jobs[0].width || reference->height != jobs[0].height)
             throw std::runtime_error(o.reference + ": reference is " + std::to_string(reference->width) + "x" +
-                                     std::to_string(reference->height) + " but the render is " + std::to_string(width) +
-                                     "x" + std::to_string(height));
+                                     std::to_string(reference->height) + " but the render is " +
+                                     std::to_string(jobs[0].width) + "x" + std::to_string(jobs[0].height));
     }
-    const std::filesystem::path output = o.output.empty() ? defaultOutput(o.scene) : std::filesystem::path(o.output);
-    if (output.extension() != ".exr") throw std::runtime_error(output.string() + ": output must end in .exr");
-    if (!output.parent_path().empty()) {
-        std::error_code ec;
-        std::filesystem::create_directories(output.parent_path(), ec);
-        if (ec) throw std::runtime_error(output.parent_path().string() + ": cannot create directory (" + ec.message() + ")");
-    }
+    for (const Job& job : jobs) prepareOutputDirectory(job.output);
     std::ofstream errorLog;
     if (!o.errorLog.empty()) {
         errorLog.open(o.errorLog);
@@ -116,10 +228,13 @@ int runRender(const RenderOptions& o) {
     if (flat.degenerateTriangles > 0)
         std::fprintf(stderr, "pt: note: %s: dropped %zu degenerate (zero-area) triangles\n", scene.source.c_str(),
             flat.degenerateTriangles);
-    const double loadSeconds = secondsSince(loadStart);
+    if (flat.degenerateSpheres > 0)
+        std::fprintf(stderr, "pt: note: %s: dropped %zu spheres with a singular transform\n", scene.source.c_str(),
+            flat.degenerateSpheres);
     if (flat.lights.lights.empty() && scene.background == glm::vec3(0.0f))
-        std::fprintf(stderr, "pt: warning: %s: nothing emits light (no emissive triangles, black background): the image "
-                             "will be black\n", scene.source.c_str());
+        std::fprintf(stderr, "pt: warning: %s: nothing emits light (no emissive surfaces or lights, black background): "
+                             "the image will be black\n", scene.source.c_str());
+    const double loadSeconds = secondsSince(loadStart);
 
     ContextOptions contextOptions;
     contextOptions.validation = o.validation;
@@ -128,80 +243,13 @@ int runRender(const RenderOptions& o) {
     if (context.isSlowLavapipe() && !o.quiet)
         std::fprintf(stderr, "pt: note: lavapipe from Mesa older than 24 runs about 3.5x slower; install Mesa 25 "
                              "from bookworm-backports (scripts/setup.sh does)\n");
-
-    const FeatureSet features = computeFeatures(flat, settings);
-    FilmSettings film{width, height, scene.background};
-    Renderer renderer(context, flat, features, settings, camera, film);
     if (!o.quiet) {
-        std::fprintf(stderr, "pt: %s: %zu triangles, %zu lights, BVH %.3f s (SAH %.1f, depth %d), load %.2f s\n",
-            scene.source.c_str(), flat.triangles.size(), flat.lights.lights.size(), flat.bvhSeconds, flat.sahCost,
-            flat.bvhDepth, loadSeconds);
-        std::fprintf(stderr, "pt: device %s (%s); kernel features: %s; pipeline %.3f s\n", context.info().name.c_str(),
-            context.info().driver.c_str(), features.describe().c_str(), renderer.pipelineSeconds());
-        std::fprintf(stderr, "pt: %dx%d, %s\n", width, height, settings.describe().c_str());
+        std::fprintf(stderr, "pt: %s: %zu triangles, %zu spheres, %zu lights, BVH %.3f s (SAH %.1f, depth %d), load %.2f s\n",
+            scene.source.c_str(), flat.triangles.size(), flat.spheres.size(), flat.lights.lights.size(), flat.bvhSeconds,
+            flat.sahCost, flat.bvhDepth, loadSeconds);
+        std::fprintf(stderr, "pt: device %s (%s)\n", context.info().name.c_str(), context.info().driver.c_str());
     }
-
-    // Progressive passes: about half a second each (or --pass-spp), until the spp or time target.
-    const uint32_t targetSpp = o.spp.value_or(o.seconds ? 0u : 64u);
-    const double targetSeconds = o.seconds.value_or(0.0);
-    Progress progress(targetSpp, targetSeconds, !o.quiet);
-    double renderSeconds = 0;
-    double lastRelMse = NAN;
-    const double pixels = double(width) * height;
-    while (true) {
-        const uint32_t done = renderer.samplesPerPixel();
-        if (targetSpp > 0 && done >= targetSpp) break;
-        const double secondsPerSpp = done > 0 ? renderSeconds / done : 0.0;
-        uint32_t pass;
-        if (o.passSpp > 0) pass = o.passSpp;
-        else if (done == 0) pass = 1;
-        else pass = static_cast<uint32_t>(std::clamp(0.5 / std::max(secondsPerSpp, 1e-9), 1.0, 4096.0));
-        if (targetSpp > 0) pass = std::min(pass, targetSpp - done);
-        if (targetSeconds > 0 && done > 0) {
-            const double remaining = targetSeconds - renderSeconds;
-            const double fits = std::floor(remaining / std::max(secondsPerSpp, 1e-9));
-            if (fits < 1.0) break;
-            pass = static_cast<uint32_t>(std::min<double>(pass, fits));
-        }
-        const auto passStart = Clock::now();
-        renderer.addSamples(pass, o.tileSize);
-        renderSeconds += secondsSince(passStart);
-        const uint32_t spp = renderer.samplesPerPixel();
-        if (reference) {
-            lastRelMse = relMse(renderer.read().mean, *reference);
-            if (errorLog) errorLog << spp << "," << formatDouble(renderSeconds) << "," << formatDouble(lastRelMse) << "\n";
-        }
-        progress.update(spp, renderSeconds, pixels * spp / std::max(renderSeconds, 1e-9) * 1e-6, lastRelMse);
-        if (targetSeconds > 0 && renderSeconds >= targetSeconds) break;
-    }
-    progress.finish();
-
-    const Renderer::Readback result = renderer.read();
-    const uint32_t spp = renderer.samplesPerPixel();
-    const double mpaths = pixels * spp / std::max(renderSeconds, 1e-9) * 1e-6;
-    ImageMetadata meta;
-    meta["spp"] = std::to_string(spp);
-    meta["seconds"] = formatDouble(renderSeconds);
-    meta["seed"] = std::to_string(settings.seed);
-    meta["device"] = context.info().name;
-    meta["driver"] = context.info().driver;
-    meta["integrator"] = settings.describe();
-    meta["features"] = features.describe();
-    meta["scene"] = scene.source;
-    meta["camera"] = camera.name;
-    meta["dropped_samples"] = std::to_string(result.droppedSamples);
-    meta["mpaths_per_second"] = formatDouble(mpaths);
-    writeExr(output, result.mean, meta);
-    std::filesystem::path png = output;
-    png.replace_extension(".png");
-    writePng(png, result.mean, o.exposure);
-
-    std::string summary = "pt: wrote " + output.string() + " and " + png.string() + ": " + std::to_string(spp) + " spp in " +
-                          formatDouble(std::round(renderSeconds * 1000) / 1000) + " s, " +
-                          formatDouble(std::round(mpaths * 1000) / 1000) + " M paths/s, " +
-                          std::to_string(result.droppedSamples) + " non-finite samples dropped";
-    if (reference) summary += ", relMSE " + formatDouble(relMse(result.mean, *reference));
-    std::fprintf(stderr, "%s\n", summary.c_str());
+    for (const Job& job : jobs) renderJob(context, scene, flat, job, o, reference, errorLog.is_open() ? &errorLog : nullptr);
 
     if (o.validation && context.validationMessageCount() > 0) {
         std::fprintf(stderr, "pt: error: Vulkan validation reported %u message(s); first: %s\n",

@@ -1,6 +1,7 @@
 #include "scene/ceng795_camera.h"
 
 #include <cmath>
+#include <limits>
 
 namespace pt::ceng795 {
 namespace {
@@ -211,6 +212,12 @@ void readSettings(Context& ctx, pugi::xml_node e, std::optional<int> maxDepth, C
 Camera readCamera(Context& ctx, pugi::xml_node e, size_t index, std::optional<int> maxDepth) {
     Camera c;
     c.name = "camera " + idText(e, std::to_string(index + 1));
+    // The id is how a user picks a course camera (--camera); it must fit the model's int.
+    if (e.attribute("id")) {
+        const long long id = idOf(ctx, e);
+        if (id < 0 || id > std::numeric_limits<int>::max()) ctx.fail(e, "id is out of range");
+        c.id = static_cast<int>(id);
+    }
     readView(ctx, e, c);
     readResolution(ctx, e, c);
     readProjection(ctx, e, c);

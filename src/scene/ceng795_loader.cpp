@@ -101,13 +101,6 @@ void noteBackgroundTexture(Context& ctx, pugi::xml_node root) {
         }
 }
 
-// Until the renderer reads per-camera settings, the first camera's resolution is the scene's.
-void hintResolution(Scene& s) {
-    if (s.cameras.empty()) return;
-    s.hints.width = s.cameras.front().settings.width;
-    s.hints.height = s.cameras.front().settings.height;
-}
-
 Scene importScene(Context& ctx, pugi::xml_node root) {
     Scene s;
     s.source = ctx.file();
@@ -122,7 +115,6 @@ Scene importScene(Context& ctx, pugi::xml_node root) {
     materials.noteUsed(ctx);
     if (s.meshes.empty() && s.spheres.empty()) ctx.fail("no objects to render");
     s.cameras = readCameras(ctx, root, s.hints.maxDepth);
-    hintResolution(s);
     s.unsupported = ctx.notes();
     return s;
 }

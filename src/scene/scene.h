@@ -63,6 +63,7 @@ struct CameraRenderSettings {
 
 struct Camera {
     std::string name;
+    int id = -1; // the course format's Camera id (selects it with --camera); -1 for glTF
     glm::vec3 position{0.0f};
     glm::vec3 forward{0.0f, 0.0f, -1.0f}; // unit
     glm::vec3 up{0.0f, 1.0f, 0.0f};       // unit, orthogonal to forward

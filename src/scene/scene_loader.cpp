@@ -1,5 +1,6 @@
 #include "scene/scene_loader.h"
 
+#include "scene/ceng795_loader.h"
 #include "scene/default_scene.h"
 #include "scene/gltf_loader.h"
 #include "scene/scene_error.h"
@@ -15,7 +16,8 @@ Scene loadScene(const std::filesystem::path& path) {
     std::string ext = path.extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
     if (ext == ".gltf" || ext == ".glb") return loadGltfFile(path);
-    throw SceneError(path.string(), "unknown scene format '" + ext + "' (expected .gltf or .glb)");
+    if (ext == ".xml") return loadCeng795File(path);
+    throw SceneError(path.string(), "unknown scene format '" + ext + "' (expected .gltf, .glb or the course's .xml)");
 }
 
 } // namespace pt

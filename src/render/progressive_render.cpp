@@ -1,0 +1,56 @@
+#include "render/progressive_render.h"
+
+#include "render/metrics.h"
+#include "render/progress.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <sstream>
+
+namespace pt {
+
+ProgressiveResult renderProgressively(Renderer& renderer, const ProgressiveTarget& target, const Image* reference,
+    std::ostream* errorLog, bool showProgress) {
+    using Clock = std::chrono::steady_clock;
+    Progress progress(target.spp, target.seconds, showProgress);
+    ProgressiveResult result;
+    double lastRelMse = NAN;
+    const double pixels = double(renderer.width()) * renderer.height();
+    while (true) {
+        const uint32_t done = renderer.samplesPerPixel();
+        if (target.spp > 0 && done >= target.spp) break;
+        const double secondsPerSpp = done > 0 ? result.seconds / done : 0.0;
+        uint32_t pass;
+        if (target.passSpp > 0) pass = target.passSpp;
+        else if (done == 0) pass = 1;
+        else pass = static_cast<uint32_t>(std::clamp(0.5 / std::max(secondsPerSpp, 1e-9), 1.0, 4096.0));
+        if (target.spp > 0) pass = std::min(pass, target.spp - done);
+        if (target.seconds > 0 && done > 0) {
+            // Never start a pass that would overrun the budget.
+            const double fits = std::floor((target.seconds - result.seconds) / std::max(secondsPerSpp, 1e-9));
+            if (fits < 1.0) break;
+            pass = static_cast<uint32_t>(std::min<double>(pass, fits));
+        }
+        const auto passStart = Clock::now();
+        renderer.addSamples(pass, target.tileSize);
+        result.seconds += std::chrono::duration<double>(Clock::now() - passStart).count();
+        const uint32_t spp = renderer.samplesPerPixel();
+        if (reference) {
+            lastRelMse = relMse(renderer.read().mean, *reference);
+            if (errorLog) {
+                std::ostringstream line;
+                line.precision(9);
+                line << spp << "," << result.seconds << "," << lastRelMse << "\n";
+                *errorLog << line.str() << std::flush;
+            }
+        }
+        progress.update(spp, result.seconds, pixels * spp / std::max(result.seconds, 1e-9) * 1e-6, lastRelMse);
+        if (target.seconds > 0 && result.seconds >= target.seconds) break;
+    }
+    progress.finish();
+    result.lastRelMse = std::isnan(lastRelMse) ? -1 : lastRelMse;
+    return result;
+}
+
+} // namespace pt

@@ -1,0 +1,28 @@
+#pragma once
+// The progressive loop: passes of samples until a sample count or a time budget is reached,
+// with progress, and relMSE against a reference after every pass when one is given.
+#include "render/image.h"
+#include "render/renderer.h"
+
+#include <cstdint>
+#include <ostream>
+
+namespace pt {
+
+struct ProgressiveTarget {
+    uint32_t spp = 0;      // stop at this many samples per pixel (0: use seconds)
+    double seconds = 0;    // or after this much render time
+    uint32_t passSpp = 0;  // samples per pass; 0 chooses passes of about half a second
+    uint32_t tileSize = 0; // split passes into tiles (same image)
+};
+
+struct ProgressiveResult {
+    double seconds = 0; // render time of the passes (excludes relMSE evaluation)
+    double lastRelMse = -1;
+};
+
+// `errorLog` receives "spp,seconds,relmse" lines (without header) when `reference` is given.
+ProgressiveResult renderProgressively(Renderer& renderer, const ProgressiveTarget& target, const Image* reference,
+    std::ostream* errorLog, bool showProgress);
+
+} // namespace pt
