@@ -556,3 +556,33 @@ TEST_F(CliTest, UnsupportedFeaturesAreListedInOneWarning) {
         EXPECT_NE(notSupported[0].find(what), std::string::npos) << what << " missing from: " << notSupported[0];
     EXPECT_EQ(noLight.size(), 1u) << r;
 }
+
+// A course scene renders one image per camera, named by its ImageName, into the -o folder;
+// --camera picks one camera by its id.
+TEST_F(CliTest, CourseSceneRendersEveryCameraToItsImageName) {
+    const std::string scene = (kTests / "data" / "ceng795" / "cornellbox_jaroslav_path_glass.xml").string();
+    const RunResult all = run({"render", scene, "--spp", "1", "--width", "16", "--height", "16", "-o", (dir_ / "all").string()});
+    EXPECT_EXIT_STATUS(all, 0);
+    for (const char* name : {"glass", "glass_next", "glass_next_importance_russian", "glass_russian"}) {
+        EXPECT_TRUE(fs::exists(dir_ / "all" / (std::string(name) + ".exr"))) << name << "\n" << all;
+        EXPECT_TRUE(fs::exists(dir_ / "all" / (std::string(name) + ".png"))) << name;
+    }
+    size_t images = 0;
+    for (const auto& e : fs::directory_iterator(dir_ / "all")) images += e.path().extension() == ".exr";
+    EXPECT_EQ(images, 8u);
+
+    const RunResult one = run({"render", scene, "--camera", "4", "--spp", "1", "--width", "16", "--height", "16", "-o",
+        (dir_ / "one.exr").string()});
+    EXPECT_EXIT_STATUS(one, 0);
+    pt::ImageMetadata meta;
+    pt::readExr(dir_ / "one.exr", &meta);
+    EXPECT_EQ(meta["camera"], "camera 4");
+    // Camera 4 asks for NEE, importance sampling and Russian roulette, with no depth cap.
+    EXPECT_NE(meta["integrator"].find("nee=on"), std::string::npos) << meta["integrator"];
+    EXPECT_NE(meta["integrator"].find("rr=on"), std::string::npos) << meta["integrator"];
+    EXPECT_NE(meta["integrator"].find("sampling=cosine"), std::string::npos) << meta["integrator"];
+
+    const RunResult missing = run({"render", scene, "--camera", "42", "--spp", "1", "-o", (dir_ / "x.exr").string()});
+    EXPECT_EXIT_STATUS(missing, 1);
+    EXPECT_NE(missing.errorLine().find("42"), std::string::npos);
+}
