@@ -9,7 +9,7 @@
 #include "common/ray_offset.glsl"
 #include "geometry/interaction.glsl"
 #include "lights/light_sampling.glsl"
-#include "bsdf/lambert.glsl"
+#include "bsdf/surface_bsdf.glsl"
 #include "bsdf/mirror.glsl"
 #include "bsdf/conductor.glsl"
 #include "bsdf/dielectric.glsl"
@@ -20,13 +20,13 @@
 const float SHADOW_RAY_FAR = 0.9999;
 
 // Direct light at a diffuse vertex by sampling the light table.
-vec3 estimateDirect(SurfaceInteraction si, Frame frame, vec3 woLocal, vec3 albedo, Rng rng, uint depth) {
+vec3 estimateDirect(SurfaceInteraction si, Frame frame, vec3 woLocal, GpuMaterial mat, Rng rng, uint depth) {
     float uSelect = rng1(rng, bounceDimension(depth, DIM_LIGHT_SELECT));
     vec2 uPoint = rng2(rng, bounceDimension(depth, DIM_LIGHT_POINT));
     LightSample ls = sampleLight(si.p, uSelect, uPoint);
     if (ls.pdf <= 0.0 || maxComponent(ls.radiance) <= 0.0) return vec3(0.0);
     vec3 wiLocal = toLocal(frame, ls.wi);
-    vec3 fCos = lambertEval(albedo, woLocal, wiLocal);
+    vec3 fCos = surfaceEval(mat, woLocal, wiLocal);
     if (maxComponent(fCos) <= 0.0) return vec3(0.0);
     Ray shadow;
     shadow.origin = spawnOrigin(si.p, si.ng, ls.wi);
@@ -40,7 +40,7 @@ vec3 estimateDirect(SurfaceInteraction si, Frame frame, vec3 woLocal, vec3 albed
         shadow.direction = target - shadow.origin;
     }
     if (traceAny(shadow, tMax)) return vec3(0.0);
-    float weight = (USE_MIS && !ls.isDelta) ? powerHeuristic(ls.pdf, lambertPdf(woLocal, wiLocal)) : 1.0;
+    float weight = (USE_MIS && !ls.isDelta) ? powerHeuristic(ls.pdf, surfacePdf(mat, woLocal, wiLocal)) : 1.0;
     return fCos * ls.radiance * (weight / ls.pdf);
 }
 
@@ -93,10 +93,10 @@ vec3 tracePath(Ray ray, Rng rng) {
                 bs = mirrorSample(mat.baseColor, frame, woLocal);
             } else if (HAS_CONDUCTOR && mat.type == MATERIAL_CONDUCTOR) {
                 bs = conductorSample(mat.baseColor, mat.conductorEta, mat.conductorK, frame, woLocal);
-            } else if (HAS_DIFFUSE && mat.type == MATERIAL_DIFFUSE) {
-                if (USE_NEE && scene.numLights > 0u)
-                    L += beta * estimateDirect(si, frame, woLocal, mat.baseColor, rng, depth);
-                bs = lambertSample(mat.baseColor, frame, woLocal, rng2(rng, bounceDimension(depth, DIM_BSDF_DIRECTION)));
+            } else if (isSurfaceBsdf(mat)) {
+                if (USE_NEE && scene.numLights > 0u) L += beta * estimateDirect(si, frame, woLocal, mat, rng, depth);
+                bs = surfaceSample(mat, frame, woLocal, rng1(rng, bounceDimension(depth, DIM_BSDF_LOBE)),
+                    rng2(rng, bounceDimension(depth, DIM_BSDF_DIRECTION)));
             }
         }
         if (!bs.valid || maxComponent(bs.weight) <= 0.0) break;

@@ -26,10 +26,20 @@ using uint64_t = std::uint64_t;
 #define MATERIAL_MIRROR 1u
 #define MATERIAL_DIELECTRIC 2u
 #define MATERIAL_CONDUCTOR 3u
+#define MATERIAL_GLOSSY 4u // Lambert + one course BRDF lobe (GLOSSY_*)
+
+// ---- Glossy lobes (GpuMaterial::glossyModel), the CENG795 course's BRDFs ----
+#define GLOSSY_ORIGINAL_PHONG 0u
+#define GLOSSY_ORIGINAL_BLINN_PHONG 1u
+#define GLOSSY_MODIFIED_PHONG 2u
+#define GLOSSY_MODIFIED_BLINN_PHONG 3u
+#define GLOSSY_TORRANCE_SPARROW 4u
 
 // ---- Material flags ----
 #define MATERIAL_FLAG_DOUBLE_SIDED 1u // back faces shade (and emit) like front faces
 #define MATERIAL_FLAG_ABSORBING 2u    // dielectric interior has Beer-Lambert absorption
+#define MATERIAL_FLAG_NORMALIZED 4u   // glossy: energy-normalised modified Phong / Blinn-Phong lobe
+#define MATERIAL_FLAG_KD_FRESNEL 8u   // glossy Torrance-Sparrow: diffuse term times (1 - F)
 
 // ---- Triangle flags ----
 #define TRIANGLE_FLAG_SHADING_NORMALS 1u // interpolate n0..n2; otherwise use the geometric normal
@@ -55,7 +65,8 @@ using uint64_t = std::uint64_t;
 #define SPEC_HAS_TRIANGLES 13
 #define SPEC_HAS_CONDUCTOR 14
 #define SPEC_HAS_PUNCTUAL_LIGHTS 15
-#define SPEC_COUNT 16
+#define SPEC_HAS_GLOSSY 16
+#define SPEC_COUNT 17
 
 // A triangle as the intersector reads it: world-space vertices plus the ids it needs at a hit.
 struct GpuTriangle {
@@ -98,12 +109,14 @@ struct GpuMaterial {
     uint flags;     // MATERIAL_FLAG_*
     vec3 sigmaA;    // Beer-Lambert absorption coefficient inside a dielectric (1/length)
     float ior;      // interior index of refraction over exterior
-    vec3 conductorEta; // conductor: real part of the complex index of refraction
+    vec3 conductorEta; // conductor, Torrance-Sparrow: real part of the complex index of refraction
+    uint glossyModel;  // GLOSSY_*
+    vec3 conductorK;   // imaginary part (absorption index)
+    float exponent;    // glossy lobe exponent
+    vec3 specular;     // glossy: ks
     float pad0;
-    vec3 conductorK;   // conductor: imaginary part (absorption index)
-    float pad1;
 };
-PT_CHECK_SIZE(GpuMaterial, 80);
+PT_CHECK_SIZE(GpuMaterial, 96);
 
 // An analytic sphere: the unit sphere at the origin under an affine map (so ellipsoids too).
 // Both directions of the map are stored (rows of 3x4 matrices): rays go to object space for
@@ -200,6 +213,8 @@ PT_CHECK_SIZE(GpuRenderPush, 40);
 #define TEST_MODE_LIGHT_PDF 3u
 #define TEST_MODE_TRACE_BVH 4u
 #define TEST_MODE_TRACE_BRUTE_FORCE 5u
+#define TEST_MODE_BSDF_SAMPLE 6u // outputs[i] = (wi local, pdf), outputs[count + i] = (weight, valid)
+#define TEST_MODE_BSDF_PDF 7u    // inputs: local wi; outputs[i] = (f cos, pdf)
 
 struct GpuTestRay {
     vec3 origin;
@@ -217,8 +232,8 @@ struct GpuTestPush {
     uint count;
     vec3 point;   // shading point for light tests
     uint seed;
-    vec3 normal;  // shading normal for hemisphere tests (world space)
-    uint pad;
+    vec3 normal;  // hemisphere tests: shading normal; BSDF tests: wo in the local frame
+    uint materialIndex; // BSDF tests
 };
 PT_CHECK_SIZE(GpuTestPush, 64);
 

@@ -37,6 +37,18 @@ void main() {
             if (si.lightIndex != NO_LIGHT) pdf = lightPdf(si.lightIndex, ray.origin, si.p, si.ng, hit.t, ray.direction);
         }
         outputs.v[i] = vec4(pdf);
+    } else if (push.mode == TEST_MODE_BSDF_SAMPLE) {
+        // The local frame is the canonical one: wo = push.normal, z = shading normal.
+        GpuMaterial m = sceneMaterials.v[push.materialIndex];
+        Frame frame = makeFrame(vec3(0.0, 0.0, 1.0));
+        BsdfSample bs = surfaceSample(m, frame, normalize(push.normal), rng1(rng, 2u), u);
+        outputs.v[i] = vec4(bs.wi, bs.valid ? bs.pdf : 0.0);
+        outputs.v[push.count + i] = vec4(bs.weight, bs.valid ? 1.0 : 0.0);
+    } else if (push.mode == TEST_MODE_BSDF_PDF) {
+        GpuMaterial m = sceneMaterials.v[push.materialIndex];
+        vec3 wo = normalize(push.normal);
+        vec3 wi = normalize(Vec4Ref(push.inputs).v[i].xyz);
+        outputs.v[i] = vec4(surfaceEval(m, wo, wi).x, 0.0, 0.0, surfacePdf(m, wo, wi));
     } else if (push.mode == TEST_MODE_TRACE_BVH || push.mode == TEST_MODE_TRACE_BRUTE_FORCE) {
         GpuTestRay tr = TestRayRef(push.inputs).v[i];
         Ray ray;

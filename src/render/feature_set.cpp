@@ -25,12 +25,13 @@ FeatureSet FeatureSet::all(const IntegratorSettings& settings) {
 
 FeatureSet computeFeatures(const FlatScene& scene, const IntegratorSettings& settings) {
     FeatureSet f;
-    f.diffuse = f.mirror = f.dielectric = f.conductor = f.absorption = f.shadingNormals = f.emitters = false;
+    f.diffuse = f.mirror = f.dielectric = f.conductor = f.glossy = f.absorption = f.shadingNormals = f.emitters = false;
     for (const auto& m : scene.materials) {
         f.diffuse |= m.type == MATERIAL_DIFFUSE;
         f.mirror |= m.type == MATERIAL_MIRROR;
         f.dielectric |= m.type == MATERIAL_DIELECTRIC;
         f.conductor |= m.type == MATERIAL_CONDUCTOR;
+        f.glossy |= m.type == MATERIAL_GLOSSY;
         f.absorption |= m.type == MATERIAL_DIELECTRIC && (m.flags & MATERIAL_FLAG_ABSORBING) != 0u;
         f.emitters |= m.emission.x > 0 || m.emission.y > 0 || m.emission.z > 0;
     }
@@ -39,8 +40,8 @@ FeatureSet computeFeatures(const FlatScene& scene, const IntegratorSettings& set
     f.spheres = !scene.spheres.empty();
     f.punctualLights = false;
     for (const auto& l : scene.lights.lights) f.punctualLights |= l.type == LIGHT_POINT || l.type == LIGHT_DIRECTIONAL;
-    // Light sampling needs something to sample and a surface that can use it (diffuse only today).
-    f.nee = settings.nee && !scene.lights.lights.empty() && f.diffuse;
+    // Light sampling needs something to sample and a non-delta surface that can use it.
+    f.nee = settings.nee && !scene.lights.lights.empty() && (f.diffuse || f.glossy);
     f.mis = f.nee && settings.mis;
     f.rr = settings.rr;
     f.cosineSampling = settings.sampling == DirectionSampling::Cosine;
@@ -65,6 +66,7 @@ std::vector<SpecializationConstant> FeatureSet::constants(uint32_t localSizeX, u
         {SPEC_HAS_TRIANGLES, triangles},
         {SPEC_HAS_CONDUCTOR, conductor},
         {SPEC_HAS_PUNCTUAL_LIGHTS, punctualLights},
+        {SPEC_HAS_GLOSSY, glossy},
     };
 }
 
@@ -81,6 +83,7 @@ std::string FeatureSet::describe() const {
     add(mirror, "mirror");
     add(dielectric, "dielectric");
     add(conductor, "conductor");
+    add(glossy, "glossy");
     add(absorption, "absorption");
     add(shadingNormals, "shading-normals");
     add(emitters, "emitters");

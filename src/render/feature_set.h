@@ -15,6 +15,7 @@ struct FeatureSet {
     bool mirror = true;
     bool dielectric = true;
     bool conductor = true;
+    bool glossy = true;
     bool triangles = true;
     bool spheres = true;
     bool absorption = true;

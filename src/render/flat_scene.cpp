@@ -7,6 +7,13 @@
 namespace pt {
 namespace {
 
+static_assert(static_cast<uint32_t>(GlossyModel::OriginalPhong) == GLOSSY_ORIGINAL_PHONG &&
+              static_cast<uint32_t>(GlossyModel::OriginalBlinnPhong) == GLOSSY_ORIGINAL_BLINN_PHONG &&
+              static_cast<uint32_t>(GlossyModel::ModifiedPhong) == GLOSSY_MODIFIED_PHONG &&
+              static_cast<uint32_t>(GlossyModel::ModifiedBlinnPhong) == GLOSSY_MODIFIED_BLINN_PHONG &&
+              static_cast<uint32_t>(GlossyModel::TorranceSparrow) == GLOSSY_TORRANCE_SPARROW,
+    "GlossyModel must list the models in the order of GLOSSY_*");
+
 gpu::GpuMaterial toGpu(const Material& m) {
     gpu::GpuMaterial g{};
     g.baseColor = m.baseColor;
@@ -18,7 +25,13 @@ gpu::GpuMaterial toGpu(const Material& m) {
     case MaterialType::Mirror: g.type = MATERIAL_MIRROR; break;
     case MaterialType::Dielectric: g.type = MATERIAL_DIELECTRIC; break;
     case MaterialType::Conductor: g.type = MATERIAL_CONDUCTOR; break;
+    case MaterialType::Glossy: g.type = MATERIAL_GLOSSY; break;
     }
+    g.specular = m.specular;
+    g.exponent = m.exponent;
+    g.glossyModel = static_cast<uint32_t>(m.glossyModel); // same order as GLOSSY_*
+    if (m.normalized) g.flags |= MATERIAL_FLAG_NORMALIZED;
+    if (m.kdFresnel) g.flags |= MATERIAL_FLAG_KD_FRESNEL;
     g.conductorEta = m.conductorEta;
     g.conductorK = m.conductorK;
     // glTF's KHR_materials_volume: transmittance attenuationColor after attenuationDistance,

@@ -48,10 +48,43 @@ float positiveScalar(const Context& ctx, pugi::xml_node material, const char* ch
     return v;
 }
 
-void convertDiffuse(Notes& notes, const ColourReader& colour, Material& m) {
+// A course BRDF model by its element name.
+GlossyModel glossyModel(const Context& ctx, pugi::xml_node brdf) {
+    const std::string name = brdf.name();
+    if (name == "OriginalPhong") return GlossyModel::OriginalPhong;
+    if (name == "OriginalBlinnPhong") return GlossyModel::OriginalBlinnPhong;
+    if (name == "ModifiedPhong") return GlossyModel::ModifiedPhong;
+    if (name == "ModifiedBlinnPhong") return GlossyModel::ModifiedBlinnPhong;
+    if (name == "TorranceSparrow") return GlossyModel::TorranceSparrow;
+    ctx.fail(brdf, "unknown BRDF model");
+}
+
+// Default materials: Lambertian, plus the specular lobe of their BRDF (or, without one, the
+// course's default Blinn-Phong with PhongExponent) when SpecularReflectance is not black.
+void convertDiffuse(const Context& ctx, Notes& notes, pugi::xml_node e, const ColourReader& colour,
+    const std::optional<pugi::xml_node>& brdf, Material& m) {
     m.type = MaterialType::Diffuse;
     m.baseColor = reflectance(notes, colour("DiffuseReflectance", glm::vec3(0.0f)));
-    if (anyPositive(colour("SpecularReflectance", glm::vec3(0.0f)))) notes.push_back("course BRDF specular lobes (rendered diffuse)");
+    const glm::vec3 ks = colour("SpecularReflectance", glm::vec3(0.0f));
+    if (!anyPositive(ks)) return;
+    m.type = MaterialType::Glossy;
+    m.specular = reflectance(notes, ks);
+    if (brdf) {
+        m.glossyModel = glossyModel(ctx, *brdf);
+        m.exponent = positiveScalar(ctx, *brdf, "Exponent");
+        m.normalized = brdf->attribute("normalized") && booleanValue(ctx, *brdf, brdf->attribute("normalized").value(), "normalized");
+        m.kdFresnel = brdf->attribute("kdfresnel") && booleanValue(ctx, *brdf, brdf->attribute("kdfresnel").value(), "kdfresnel");
+        if (m.glossyModel == GlossyModel::TorranceSparrow) {
+            m.conductorEta = glm::vec3(positiveScalar(ctx, e, "RefractionIndex"));
+            const float k = optionalScalar(ctx, e, "AbsorptionIndex").value_or(0.0f);
+            if (k < 0.0f) ctx.fail(e.child("AbsorptionIndex"), "must not be negative");
+            m.conductorK = glm::vec3(k);
+        }
+    } else {
+        m.glossyModel = GlossyModel::OriginalBlinnPhong; // the course's shading before HW6
+        m.exponent = optionalScalar(ctx, e, "PhongExponent").value_or(1.0f);
+        if (!(m.exponent > 0.0f)) ctx.fail(e.child("PhongExponent"), "must be positive");
+    }
 }
 
 // The course adds its Blinn-Phong/BRDF diffuse and specular terms to mirrors, conductors and
@@ -93,26 +126,28 @@ void convertConductor(const Context& ctx, Notes& notes, pugi::xml_node e, const 
     noteExtraLayers(notes, colour, "conductor");
 }
 
-std::map<long long, std::string> readBrdfs(const Context& ctx, pugi::xml_node scene) {
-    std::map<long long, std::string> brdfs;
+std::map<long long, pugi::xml_node> readBrdfs(const Context& ctx, pugi::xml_node scene) {
+    std::map<long long, pugi::xml_node> brdfs;
     for (pugi::xml_node list : scene.children("BRDFs"))
         for (pugi::xml_node b : list.children()) {
             if (b.type() != pugi::node_element) continue;
-            if (!brdfs.emplace(idOf(ctx, b), b.name()).second) ctx.fail(b, "duplicate id");
+            if (!brdfs.emplace(idOf(ctx, b), b).second) ctx.fail(b, "duplicate id");
         }
     return brdfs;
 }
 
 } // namespace
 
-Material convertMaterial(const Context& ctx, pugi::xml_node e, const std::map<long long, std::string>& brdfs, Notes& notes) {
+Material convertMaterial(const Context& ctx, pugi::xml_node e, const std::map<long long, pugi::xml_node>& brdfs, Notes& notes) {
     Material m;
     m.name = "material " + idText(e, "?");
     const bool degamma = e.attribute("degamma") && booleanValue(ctx, e, e.attribute("degamma").value(), "degamma");
     const ColourReader colour(ctx, e, degamma);
+    std::optional<pugi::xml_node> brdfElement;
     if (pugi::xml_attribute brdf = e.attribute("BRDF")) {
         const std::vector<std::string_view> t = tokens(brdf.value());
         if (t.size() != 1 || !brdfs.count(toInteger(ctx, e, t[0]))) ctx.fail(e, "unknown BRDF " + quote(brdf.value()));
+        brdfElement = brdfs.at(toInteger(ctx, e, t[0]));
     }
     const std::string type = lowercase(e.attribute("type").value());
     if (type == "mirror") convertMirror(notes, colour, m);
@@ -120,14 +155,14 @@ Material convertMaterial(const Context& ctx, pugi::xml_node e, const std::map<lo
     else if (type == "conductor") convertConductor(ctx, notes, e, colour, m);
     else {
         if (!type.empty()) notes.push_back("material type " + quote(type) + " (rendered diffuse)");
-        convertDiffuse(notes, colour, m);
+        convertDiffuse(ctx, notes, e, colour, brdfElement, m);
     }
     if (const auto r = optionalScalar(ctx, e, "Roughness"); r && *r > 0.0f) notes.push_back("rough specular (rendered smooth)");
     return m;
 }
 
 MaterialTable MaterialTable::read(const Context& ctx, pugi::xml_node scene, std::vector<Material>& out) {
-    const std::map<long long, std::string> brdfs = readBrdfs(ctx, scene);
+    const std::map<long long, pugi::xml_node> brdfs = readBrdfs(ctx, scene);
     MaterialTable table;
     for (pugi::xml_node list : scene.children("Materials"))
         for (pugi::xml_node e : list.children("Material")) {

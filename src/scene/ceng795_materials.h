@@ -27,7 +27,8 @@ private:
 
 // One course <Material> element as a scene Material (exposed for tests); approximations made
 // are appended to `notes`.
-Material convertMaterial(const Context& ctx, pugi::xml_node element, const std::map<long long, std::string>& brdfs,
+// `brdfs` maps each <BRDFs> child's id to its element.
+Material convertMaterial(const Context& ctx, pugi::xml_node element, const std::map<long long, pugi::xml_node>& brdfs,
     std::vector<std::string>& notes);
 
 // A copy of materials[base] that emits `radiance`, for LightMesh and LightSphere: the course

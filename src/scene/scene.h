@@ -11,7 +11,10 @@
 
 namespace pt {
 
-enum class MaterialType { Diffuse, Mirror, Dielectric, Conductor };
+enum class MaterialType { Diffuse, Mirror, Dielectric, Conductor, Glossy };
+
+// The CENG795 course's BRDF models: a Lambertian term plus one specular lobe of exponent p.
+enum class GlossyModel { OriginalPhong, OriginalBlinnPhong, ModifiedPhong, ModifiedBlinnPhong, TorranceSparrow };
 
 struct Material {
     std::string name;
@@ -26,6 +29,13 @@ struct Material {
     // Conductor (complex index of refraction eta + i k), tinted by baseColor.
     glm::vec3 conductorEta{1.0f};
     glm::vec3 conductorK{0.0f};
+    // Glossy (course BRDF): baseColor is kd, specular is ks. Torrance-Sparrow's Fresnel uses
+    // conductorEta and conductorK.
+    GlossyModel glossyModel = GlossyModel::ModifiedBlinnPhong;
+    glm::vec3 specular{0.0f};
+    float exponent = 1.0f;
+    bool normalized = false; // Modified Phong / Blinn-Phong: energy-normalised lobes
+    bool kdFresnel = false;  // Torrance-Sparrow: diffuse term scaled by (1 - F)
 
     bool emissive() const { return emission.x > 0 || emission.y > 0 || emission.z > 0; }
 };

@@ -483,11 +483,27 @@ TEST_F(Ceng795, DefaultMaterialIsDiffuse) {
     EXPECT_FALSE(contains(s.unsupported, "course BRDF specular lobes (rendered diffuse)"));
 }
 
-TEST_F(Ceng795, SpecularLobesAreNotedOnlyForUsedMaterials) {
-    const std::string brdfs = "<BRDFs><ModifiedPhong id=\"1\" normalized=\"true\"><Exponent>90</Exponent></ModifiedPhong></BRDFs>";
+TEST_F(Ceng795, BrdfsBecomeGlossyMaterials) {
+    const std::string brdfs = "<BRDFs><ModifiedPhong id=\"1\" normalized=\"true\"><Exponent>90</Exponent></ModifiedPhong>"
+        "<TorranceSparrow id=\"2\" kdfresnel=\"true\"><Exponent>50</Exponent></TorranceSparrow></BRDFs>";
     const pt::Scene used = load(materialScene("<Material id=\"5\" BRDF=\"1\"><DiffuseReflectance>0.5 0.5 0.5</DiffuseReflectance>"
         "<SpecularReflectance>0.3 0.3 0.3</SpecularReflectance></Material>", brdfs));
-    EXPECT_TRUE(contains(used.unsupported, "course BRDF specular lobes (rendered diffuse)"));
+    EXPECT_TRUE(used.unsupported.empty()) << used.unsupported.front();
+    EXPECT_EQ(used.materials[0].type, pt::MaterialType::Glossy);
+    EXPECT_EQ(used.materials[0].glossyModel, pt::GlossyModel::ModifiedPhong);
+    EXPECT_EQ(used.materials[0].exponent, 90.0f);
+    EXPECT_TRUE(used.materials[0].normalized);
+    const pt::Scene ts = load(materialScene("<Material id=\"5\" BRDF=\"2\"><DiffuseReflectance>0.5 0.5 0.5</DiffuseReflectance>"
+        "<SpecularReflectance>1 0.86 0.57</SpecularReflectance><RefractionIndex>0.37</RefractionIndex>"
+        "<AbsorptionIndex>2.82</AbsorptionIndex></Material>", brdfs));
+    EXPECT_EQ(ts.materials[0].glossyModel, pt::GlossyModel::TorranceSparrow);
+    EXPECT_TRUE(ts.materials[0].kdFresnel);
+    EXPECT_FLOAT_EQ(ts.materials[0].conductorK.x, 2.82f);
+    // Without a BRDF, a specular colour means the course's default Blinn-Phong with PhongExponent.
+    const pt::Scene classic = load(materialScene("<Material id=\"5\"><DiffuseReflectance>0.5 0.5 0.5</DiffuseReflectance>"
+        "<SpecularReflectance>0.3 0.3 0.3</SpecularReflectance><PhongExponent>40</PhongExponent></Material>"));
+    EXPECT_EQ(classic.materials[0].glossyModel, pt::GlossyModel::OriginalBlinnPhong);
+    EXPECT_EQ(classic.materials[0].exponent, 40.0f);
     // The HW6 Cornell files carry unused leftovers (e.g. a <Transparency> material): no warning.
     const pt::Scene unused = load(materialScene("<Material id=\"5\"><DiffuseReflectance>0.5 0.5 0.5</DiffuseReflectance></Material>"
         "<Material id=\"6\"><SpecularReflectance>0.3 0.3 0.3</SpecularReflectance><Transparency>0.99 0.99 0.99</Transparency></Material>"));

@@ -29,14 +29,15 @@ void GpuTest::TearDown() {
 }
 
 std::vector<glm::vec4> runTestKernel(uint32_t mode, uint32_t count, const GpuScene* scene, std::span<const std::byte> inputs,
-    glm::vec3 point, glm::vec3 normal, uint32_t seed) {
+    glm::vec3 point, glm::vec3 normal, uint32_t seed, uint32_t materialIndex) {
     VulkanContext& ctx = sharedContext();
     static std::unique_ptr<ComputePipeline> pipeline = std::make_unique<ComputePipeline>(ctx,
         std::span<const uint32_t>(pt_test_kernels_spv), static_cast<uint32_t>(sizeof(gpu::GpuTestPush)),
         FeatureSet::all(IntegratorSettings{}).constants(8, 8), "test kernels");
     GpuBuffer input(ctx, std::max<size_t>(inputs.size(), 16), "test input");
     input.upload(inputs.data(), inputs.size());
-    GpuBuffer output(ctx, sizeof(glm::vec4) * count, "test output");
+    // Two vec4 per item: most modes write only the first half (BSDF sampling writes both).
+    GpuBuffer output(ctx, sizeof(glm::vec4) * count * 2, "test output");
     gpu::GpuTestPush push{};
     push.sceneParams = scene ? scene->paramsAddress() : 0;
     push.inputs = input.address();
@@ -45,6 +46,7 @@ std::vector<glm::vec4> runTestKernel(uint32_t mode, uint32_t count, const GpuSce
     push.count = count;
     push.point = point;
     push.normal = normal;
+    push.materialIndex = materialIndex;
     push.seed = seed;
     ctx.submitAndWait([&](VkCommandBuffer cmd) {
         pipeline->bindAndPush(cmd, &push, sizeof(push));
@@ -55,8 +57,8 @@ std::vector<glm::vec4> runTestKernel(uint32_t mode, uint32_t count, const GpuSce
         vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &barrier, 0,
             nullptr, 0, nullptr);
     });
-    std::vector<glm::vec4> result(count);
-    output.download(result.data(), sizeof(glm::vec4) * count);
+    std::vector<glm::vec4> result(mode == TEST_MODE_BSDF_SAMPLE ? 2 * count : count);
+    output.download(result.data(), sizeof(glm::vec4) * result.size());
     return result;
 }
 

@@ -31,10 +31,11 @@ private:
 };
 
 // Runs shaders/tests/test_kernels.comp in `mode` over `count` items. `scene` may be null for
-// modes that need none; `inputs` is uploaded as the kernel's input array.
+// modes that need none; `inputs` is uploaded as the kernel's input array. TEST_MODE_BSDF_SAMPLE
+// returns 2 x count values: (wi, pdf) per sample, then (weight, valid) per sample.
 std::vector<glm::vec4> runTestKernel(uint32_t mode, uint32_t count, const GpuScene* scene,
     std::span<const std::byte> inputs = {}, glm::vec3 point = glm::vec3(0.0f), glm::vec3 normal = glm::vec3(0, 0, 1),
-    uint32_t seed = 1);
+    uint32_t seed = 1, uint32_t materialIndex = 0);
 
 // Procedural geometry.
 Mesh makeIcosphere(int subdivisions, glm::vec3 centre, float radius, uint32_t material);
