@@ -36,6 +36,7 @@ vec3 estimateDirect(SurfaceInteraction si, Frame frame, vec3 woLocal, GpuMateria
         tMax = FLOAT_MAX;
     } else {
         // Offset the light end too (surfaces only), then stop just short of it.
+        // (Lights no ray can hit have nothing to offset from.)
         vec3 target = ls.isDelta ? ls.point : offsetRayOrigin(ls.point, dot(ls.normal, ls.wi) < 0.0 ? ls.normal : -ls.normal);
         shadow.direction = target - shadow.origin;
     }

@@ -10,7 +10,7 @@ struct LightSample {
     vec3 wi;       // unit direction from the shading point to the light
     float distance; // FLOAT_MAX for directional lights
     float pdf;     // solid angle, times the selection pmf; for delta lights the pmf alone
-    bool isDelta;  // point and directional: no BSDF sample can hit them, so no MIS
+    bool isDelta;  // no BSDF sample can hit this light (delta or invisible), so no MIS
 };
 
 LightSample noLightSample() {

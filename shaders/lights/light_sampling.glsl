@@ -13,6 +13,8 @@ LightSample sampleLight(vec3 x, float uSelect, vec2 uPoint) {
     if (HAS_SPHERES && light.type == LIGHT_SPHERE) return sampleSphereLight(light, x, uPoint);
     if (HAS_PUNCTUAL_LIGHTS && light.type == LIGHT_POINT) return samplePointLight(light, x);
     if (HAS_PUNCTUAL_LIGHTS && light.type == LIGHT_DIRECTIONAL) return sampleDirectionalLight(light, x);
+    if (HAS_PUNCTUAL_LIGHTS && light.type == LIGHT_SPOT) return sampleSpotLight(light, x);
+    if (HAS_PUNCTUAL_LIGHTS && light.type == LIGHT_SQUARE) return sampleSquareLight(light, x, uPoint);
     return sampleTriangleLight(light, x, uPoint);
 }
 

@@ -29,4 +29,38 @@ LightSample sampleDirectionalLight(GpuLight light, vec3 x) {
     return s;
 }
 
+// A point light limited to a cone, with the course's smooth band between the falloff and the
+// coverage angle: ((cos a - cos coverage) / (cos falloff - cos coverage))^4.
+LightSample sampleSpotLight(GpuLight light, vec3 x) {
+    LightSample s = samplePointLight(light, x);
+    float cosAngle = dot(-s.wi, light.direction);
+    float band = max(light.cosFalloff - light.cosCoverage, 1e-7);
+    float t = clamp((cosAngle - light.cosCoverage) / band, 0.0, 1.0);
+    float t2 = t * t;
+    s.radiance *= t2 * t2;
+    return s;
+}
+
+// The course's AreaLight: a square of edge `radius` centred at `position`, emitting radiance
+// `intensity` on the side its normal `direction` faces. No ray can hit it, so it is found by
+// light sampling only (a uniform point on the square, pdf dist^2 / (area cos) per solid angle).
+LightSample sampleSquareLight(GpuLight light, vec3 x, vec2 u) {
+    LightSample s = noLightSample();
+    vec3 t, b;
+    buildBasis(light.direction, t, b);
+    s.point = light.position + light.radius * ((u.x - 0.5) * t + (u.y - 0.5) * b);
+    s.normal = light.direction;
+    vec3 d = s.point - x;
+    float dist2 = dot(d, d);
+    if (!(dist2 > 0.0)) return s;
+    s.distance = sqrt(dist2);
+    s.wi = d / s.distance;
+    float cosLight = dot(light.direction, -s.wi);
+    if (cosLight <= 0.0) return s;
+    s.radiance = light.intensity;
+    s.pdf = light.pmf * dist2 / (light.area * cosLight);
+    s.isDelta = true;
+    return s;
+}
+
 #endif

@@ -136,6 +136,8 @@ PT_CHECK_SIZE(GpuSphere, 112);
 #define LIGHT_SPHERE 1u
 #define LIGHT_POINT 2u
 #define LIGHT_DIRECTIONAL 3u
+#define LIGHT_SPOT 4u
+#define LIGHT_SQUARE 5u // an invisible one-sided square emitter (the course's AreaLight)
 
 // One emitter in the light-selection table (all kinds share one power CDF).
 struct GpuLight {
@@ -143,12 +145,14 @@ struct GpuLight {
     uint primitive; // triangle or sphere index (BVH order)
     float pmf;      // probability of choosing this light
     float area;     // triangle: area; sphere: |det| of its linear map (area scale of the unit sphere)
-    vec3 position;  // point light: position; round sphere: centre
-    float radius;   // round sphere: radius, sampled by solid angle; 0: ellipsoid, sampled by area
-    vec3 intensity; // point: radiant intensity (W/sr); directional: irradiance on a facing surface
-    uint pad0;
-    vec3 direction; // directional: the direction the light travels
-    float pad1;
+    vec3 position;  // point, spot: position; round sphere, square: centre
+    float radius;   // round sphere: radius, sampled by solid angle; 0: ellipsoid, sampled by area;
+                    // square: edge length
+    vec3 intensity; // point, spot: radiant intensity (W/sr); directional: irradiance on a facing
+                    // surface; square: radiance
+    float cosFalloff;  // spot: full intensity inside this cone
+    vec3 direction; // directional: the direction light travels; spot: axis; square: normal
+    float cosCoverage; // spot: nothing outside this cone
 };
 PT_CHECK_SIZE(GpuLight, 64);
 

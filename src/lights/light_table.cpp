@@ -92,6 +92,21 @@ LightTable buildLightTable(std::span<gpu::GpuTriangle> triangles, std::span<gpu:
             light.type = LIGHT_POINT;
             light.position = pl.position;
             p = 4.0 * kPi * colourWeight(pl.intensity);
+        } else if (pl.type == PunctualLight::Type::Spot) {
+            light.type = LIGHT_SPOT;
+            light.position = pl.position;
+            light.direction = glm::normalize(pl.direction);
+            light.cosFalloff = pl.cosFalloff;
+            light.cosCoverage = pl.cosCoverage;
+            // Power of the cone out to the mid-point of the falloff band.
+            p = 2.0 * kPi * (1.0 - 0.5 * (double(pl.cosFalloff) + pl.cosCoverage)) * colourWeight(pl.intensity);
+        } else if (pl.type == PunctualLight::Type::Square) {
+            light.type = LIGHT_SQUARE;
+            light.position = pl.position;
+            light.direction = glm::normalize(pl.direction);
+            light.radius = pl.size;
+            light.area = pl.size * pl.size;
+            p = kPi * colourWeight(pl.intensity) * double(pl.size) * pl.size;
         } else {
             light.type = LIGHT_DIRECTIONAL;
             light.direction = glm::normalize(pl.direction);

@@ -39,7 +39,7 @@ FeatureSet computeFeatures(const FlatScene& scene, const IntegratorSettings& set
     f.triangles = !scene.triangles.empty();
     f.spheres = !scene.spheres.empty();
     f.punctualLights = false;
-    for (const auto& l : scene.lights.lights) f.punctualLights |= l.type == LIGHT_POINT || l.type == LIGHT_DIRECTIONAL;
+    for (const auto& l : scene.lights.lights) f.punctualLights |= l.type >= LIGHT_POINT; // point, directional, spot, square
     // Light sampling needs something to sample and a non-delta surface that can use it.
     f.nee = settings.nee && !scene.lights.lights.empty() && (f.diffuse || f.glossy);
     f.mis = f.nee && settings.mis;

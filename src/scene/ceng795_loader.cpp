@@ -72,6 +72,55 @@ PunctualLight readDirectionalLight(const Context& ctx, pugi::xml_node e) {
     return l;
 }
 
+glm::vec3 unitDirection(const Context& ctx, pugi::xml_node e, const char* child) {
+    pugi::xml_node d = required(ctx, e, child);
+    const glm::vec3 v = vec3(ctx, d);
+    const float length = glm::length(v);
+    if (!(length > 0.0f) || !std::isfinite(length)) ctx.fail(d, "must be non-zero");
+    return v / length;
+}
+
+glm::vec3 nonNegativeColour(const Context& ctx, pugi::xml_node e, const char* child) {
+    pugi::xml_node c = required(ctx, e, child);
+    const glm::vec3 v = vec3(ctx, c);
+    if (v.x < 0.0f || v.y < 0.0f || v.z < 0.0f) ctx.fail(c, "must not be negative");
+    return v;
+}
+
+float angleDegrees(const Context& ctx, pugi::xml_node e, const char* child) {
+    pugi::xml_node a = required(ctx, e, child);
+    const float v = scalar(ctx, a);
+    if (!(v > 0.0f && v <= 360.0f)) ctx.fail(a, "must be an angle in (0, 360] degrees");
+    return v;
+}
+
+// SpotLight: CoverageAngle and FalloffAngle are full cone angles in degrees.
+PunctualLight readSpotLight(const Context& ctx, pugi::xml_node e) {
+    PunctualLight l;
+    l.type = PunctualLight::Type::Spot;
+    l.position = vec3(ctx, required(ctx, e, "Position"));
+    l.direction = unitDirection(ctx, e, "Direction");
+    l.intensity = nonNegativeColour(ctx, e, "Intensity");
+    const float coverage = angleDegrees(ctx, e, "CoverageAngle");
+    const float falloff = std::min(angleDegrees(ctx, e, "FalloffAngle"), coverage);
+    l.cosCoverage = std::cos(glm::radians(0.5f * coverage));
+    l.cosFalloff = std::cos(glm::radians(0.5f * falloff));
+    return l;
+}
+
+// AreaLight: an invisible square (edge Size) emitting Radiance on the side Normal faces.
+PunctualLight readAreaLight(const Context& ctx, pugi::xml_node e) {
+    PunctualLight l;
+    l.type = PunctualLight::Type::Square;
+    l.position = vec3(ctx, required(ctx, e, "Position"));
+    l.direction = unitDirection(ctx, e, "Normal");
+    l.intensity = nonNegativeColour(ctx, e, "Radiance");
+    pugi::xml_node size = required(ctx, e, "Size");
+    l.size = scalar(ctx, size);
+    if (!(l.size > 0.0f) || !std::isfinite(l.size)) ctx.fail(size, "must be positive");
+    return l;
+}
+
 // Point and directional lights map onto the model's punctual lights; the others are named once
 // and skipped (object lights are objects, read with the geometry).
 void readLights(Context& ctx, pugi::xml_node root, Scene& s) {
@@ -84,8 +133,8 @@ void readLights(Context& ctx, pugi::xml_node root, Scene& s) {
                 if (vec3(ctx, l) != glm::vec3(0.0f)) ctx.note("ambient light (ignored)");
             } else if (type == "PointLight") s.punctualLights.push_back(readPointLight(ctx, l));
             else if (type == "DirectionalLight") s.punctualLights.push_back(readDirectionalLight(ctx, l));
-            else if (type == "AreaLight") ctx.note("area lights (ignored)");
-            else if (type == "SpotLight") ctx.note("spot lights (ignored)");
+            else if (type == "AreaLight") s.punctualLights.push_back(readAreaLight(ctx, l));
+            else if (type == "SpotLight") s.punctualLights.push_back(readSpotLight(ctx, l));
             else if (type == "SphericalDirectionalLight") ctx.note("environment lights (ignored)");
             else ctx.note(printable(type) + " lights (ignored)");
         }

@@ -102,13 +102,18 @@ struct RenderHints {
     std::optional<int> maxDepth;
 };
 
-// Lights without geometry: reached by light sampling only.
+// Lights without geometry: reached by light sampling only (BSDF rays never hit them).
 struct PunctualLight {
-    enum class Type { Point, Directional };
+    enum class Type { Point, Directional, Spot, Square };
     Type type = Type::Point;
-    glm::vec3 position{0.0f};        // point
-    glm::vec3 direction{0, -1, 0};   // directional: the direction light travels (unit)
-    glm::vec3 intensity{0.0f};       // point: radiant intensity (W/sr); directional: irradiance (W/m^2)
+    glm::vec3 position{0.0f};      // point, spot; square: centre
+    glm::vec3 direction{0, -1, 0}; // directional: the direction light travels; spot: cone axis;
+                                   // square: normal (it emits on that side) -- all unit
+    glm::vec3 intensity{0.0f};     // point, spot: radiant intensity (W/sr); directional: irradiance
+                                   // (W/m^2); square: radiance
+    float cosFalloff = 1.0f;       // spot: full intensity inside this cone (cosine of the half angle)
+    float cosCoverage = 1.0f;      // spot: nothing outside this cone
+    float size = 0.0f;             // square: edge length
 };
 
 struct Scene {

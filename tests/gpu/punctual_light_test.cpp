@@ -90,3 +90,79 @@ TEST_F(PunctualLights, ShadowsBlockPointLights) {
 
 } // namespace
 } // namespace pt::test
+
+namespace pt::test {
+namespace {
+
+// The course's spot light: full intensity inside the falloff cone, ((cos a - cos coverage) /
+// (cos falloff - cos coverage))^4 in the band, nothing outside the coverage cone.
+TEST_F(PunctualLights, SpotLightConeAndFalloffBand) {
+    const double rho = 0.6, intensity = 10.0, height = 2.0;
+    auto radianceBelow = [&](float offsetX) {
+        Scene scene = plane();
+        scene.materials[0].baseColor = glm::vec3(float(rho));
+        PunctualLight spot;
+        spot.type = PunctualLight::Type::Spot;
+        spot.position = glm::vec3(-offsetX, float(height), 0.0f); // the camera looks at the origin
+        spot.direction = glm::vec3(0.0f, -1.0f, 0.0f);
+        spot.intensity = glm::vec3(float(intensity));
+        spot.cosFalloff = std::cos(glm::radians(10.0f));
+        spot.cosCoverage = std::cos(glm::radians(20.0f));
+        scene.punctualLights.push_back(spot);
+        return render(scene).mean.at(4, 4)[0];
+    };
+    auto pointValue = [&](double x) {
+        const double d2 = x * x + height * height, cosTheta = height / std::sqrt(d2);
+        return rho / M_PI * intensity * cosTheta / d2;
+    };
+    // Inside the falloff cone (5 degrees off the axis): a plain point light.
+    const double inside = height * std::tan(glm::radians(5.0));
+    EXPECT_NEAR(radianceBelow(float(inside)), pointValue(inside), 3e-3 * pointValue(inside));
+    // In the band (15 degrees): scaled by the course's fourth-power blend.
+    const double band = height * std::tan(glm::radians(15.0));
+    const double t = (std::cos(glm::radians(15.0)) - std::cos(glm::radians(20.0))) /
+                     (std::cos(glm::radians(10.0)) - std::cos(glm::radians(20.0)));
+    EXPECT_NEAR(radianceBelow(float(band)), pointValue(band) * std::pow(t, 4), 5e-3 * pointValue(band));
+    // Outside the coverage cone (25 degrees): dark.
+    EXPECT_EQ(radianceBelow(float(height * std::tan(glm::radians(25.0)))), 0.0f);
+}
+
+// The course's AreaLight, an invisible square of radiance L: irradiance under its centre at
+// distance c is E = 4 L X / sqrt(1 + X^2) atan(X / sqrt(1 + X^2)), X = edge / (2 c).
+TEST_F(PunctualLights, SquareAreaLightGivesTheAnalyticIrradiance) {
+    const double rho = 0.5, L = 3.0, edge = 1.5, c = 2.0;
+    Scene scene = plane();
+    scene.materials[0].baseColor = glm::vec3(float(rho));
+    PunctualLight square;
+    square.type = PunctualLight::Type::Square;
+    square.position = glm::vec3(0.0f, float(c), 0.0f);
+    square.direction = glm::vec3(0.0f, -1.0f, 0.0f);
+    square.intensity = glm::vec3(float(L));
+    square.size = float(edge);
+    scene.punctualLights.push_back(square);
+    Camera camera;
+    camera.position = glm::vec3(0.0f, 1.0f, 0.0f); // below the light, which rays cannot see
+    camera.forward = glm::vec3(0.0f, -1.0f, 0.0f);
+    camera.up = glm::vec3(0.0f, 0.0f, -1.0f);
+    camera.yfov = 0.001f;
+    IntegratorSettings s;
+    s.maxDepth = 2;
+    auto r = renderScene(scene, s, camera, 8, 8, 256);
+    double sum = 0, var = 0;
+    for (int y = 0; y < 8; ++y)
+        for (int x = 0; x < 8; ++x) sum += r.mean.at(x, y)[0], var += r.varianceOfMean.at(x, y)[0];
+    const double X = edge / (2 * c), q = X / std::sqrt(1 + X * X);
+    const double expected = rho / M_PI * 4 * L * q * std::atan(q);
+    EXPECT_NEAR(sum / 64, expected, 4 * std::sqrt(var) / 64 + 1e-4 * expected);
+
+    // One-sided: a point above the square receives nothing from it.
+    camera.position = glm::vec3(0.0f, 5.0f, 0.0f);
+    Scene above = scene;
+    above.meshes.push_back(makeQuad({-2.0f, 4.0f, 2.0f}, {4.0f, 0.0f, 0.0f}, {0.0f, 0.0f, -4.0f}, 0)); // a floor above it
+    above.meshes.erase(above.meshes.begin());
+    auto dark = renderScene(above, s, camera, 4, 4, 16);
+    EXPECT_EQ(dark.mean.at(2, 2)[0], 0.0f);
+}
+
+} // namespace
+} // namespace pt::test

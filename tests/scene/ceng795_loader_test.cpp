@@ -597,12 +597,32 @@ TEST_F(Ceng795, PointAndDirectionalLightsArePunctualLights) {
 
 TEST_F(Ceng795, OtherLightsAreNamedOnce) {
     const pt::Scene s = load(triangleScene("", "", "<Lights><AmbientLight>25 25 25</AmbientLight>"
-        "<AreaLight id=\"1\"/><AreaLight id=\"2\"/><SpotLight id=\"1\"/><SphericalDirectionalLight id=\"1\"/></Lights>"));
-    EXPECT_EQ(s.unsupported, (std::vector<std::string>{"ambient light (ignored)", "area lights (ignored)",
-        "spot lights (ignored)", "environment lights (ignored)"}));
+        "<SphericalDirectionalLight id=\"1\"/><SphericalDirectionalLight id=\"2\"/></Lights>"));
+    EXPECT_EQ(s.unsupported, (std::vector<std::string>{"ambient light (ignored)", "environment lights (ignored)"}));
     EXPECT_TRUE(s.punctualLights.empty());
     const pt::Scene dark = load(triangleScene("", "", "<Lights><AmbientLight>0 0 0</AmbientLight></Lights>"));
     EXPECT_TRUE(dark.unsupported.empty());
+}
+
+TEST_F(Ceng795, SpotAndAreaLights) {
+    const pt::Scene s = load(triangleScene("", "", "<Lights>"
+        "<SpotLight id=\"1\"><Position>-0.93 1 0.9</Position><Direction>1 -1 -1</Direction><Intensity>600 600 600</Intensity>"
+        "<CoverageAngle>10</CoverageAngle><FalloffAngle>8</FalloffAngle></SpotLight>"
+        "<AreaLight id=\"1\"><Position>0 9.8 2</Position><Normal>0 -2 0</Normal><Size>3</Size><Radiance>15 15 15</Radiance></AreaLight>"
+        "</Lights>"));
+    ASSERT_EQ(s.punctualLights.size(), 2u);
+    const pt::PunctualLight& spot = s.punctualLights[0];
+    EXPECT_EQ(spot.type, pt::PunctualLight::Type::Spot);
+    EXPECT_TRUE(near3(spot.direction, glm::normalize(glm::vec3(1, -1, -1))));
+    EXPECT_NEAR(spot.cosCoverage, std::cos(glm::radians(5.0f)), 1e-6); // half of the full cone angle
+    EXPECT_NEAR(spot.cosFalloff, std::cos(glm::radians(4.0f)), 1e-6);
+    const pt::PunctualLight& square = s.punctualLights[1];
+    EXPECT_EQ(square.type, pt::PunctualLight::Type::Square);
+    EXPECT_TRUE(near3(square.direction, glm::vec3(0, -1, 0)));
+    EXPECT_EQ(square.size, 3.0f);
+    EXPECT_TRUE(s.unsupported.empty());
+    expectError(triangleScene("", "", "<Lights><AreaLight id=\"1\"><Position>0 0 0</Position><Normal>0 0 0</Normal>"
+        "<Size>1</Size><Radiance>1 1 1</Radiance></AreaLight></Lights>"), "AreaLight id=1", "non-zero");
 }
 
 TEST_F(Ceng795, BackgroundColour) {
