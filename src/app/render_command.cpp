@@ -102,7 +102,7 @@ std::vector<Camera> chooseCameras(const Scene& scene, const RenderOptions& o, bo
     return {scene.cameras[index]};
 }
 
-Job makeJob(const Scene& scene, const Camera& camera, const RenderOptions& o, bool severalImages) {
+Job makeJob(const Scene& scene, const Camera& camera, const RenderOptions& o, bool severalImages, bool course) {
     Job job;
     job.camera = camera;
     const CameraRenderSettings& cs = camera.settings;
@@ -123,7 +123,7 @@ Job makeJob(const Scene& scene, const Camera& camera, const RenderOptions& o, bo
     s.sampling = o.sampling.value_or(cs.importanceSampling.value_or(true) ? DirectionSampling::Cosine : DirectionSampling::Uniform);
     // The course's official path-tracing images apply Russian roulette without a depth cap
     // (FORMAT.md section 8): such cameras get a cap so high that only roulette ends paths.
-    const bool uncapped = isCourseScene(o.scene) && cs.russianRoulette.value_or(false) && !cs.maxDepth;
+    const bool uncapped = course && cs.russianRoulette.value_or(false) && !cs.maxDepth;
     const int fallbackDepth = uncapped ? kUncappedDepth : scene.hints.maxDepth.value_or(16);
     const int depth = o.maxDepth ? static_cast<int>(*o.maxDepth) : cs.maxDepth.value_or(fallbackDepth);
     if (depth < 1) throw std::runtime_error("max depth must be at least 1");
@@ -135,12 +135,22 @@ Job makeJob(const Scene& scene, const Camera& camera, const RenderOptions& o, bo
     job.target.tileSize = o.tileSize;
     job.tonemap = cs.tonemap.value_or(TonemapSettings{});
 
-    // Output: -o names the file (one image) or the folder (several); else out/<name>.
+    // Output: -o FILE.exr names the file (one image only); any other -o is a folder for the
+    // images, named by their ImageName (course scenes) or the scene; the default folder is out/.
     fs::path name = cs.imageName.empty() ? fs::path(sceneStem(o.scene) + ".exr") : fs::path(cs.imageName).filename();
     name.replace_extension(".exr");
-    if (!o.output.empty()) job.output = severalImages ? fs::path(o.output) / name : fs::path(o.output);
-    else job.output = fs::path("out") / name;
-    if (job.output.extension() != ".exr") throw std::runtime_error(job.output.string() + ": output must end in .exr");
+    const fs::path requested(o.output);
+    if (requested.extension() == ".exr") {
+        if (severalImages)
+            throw std::runtime_error(o.output + ": several cameras render several images: give a folder, or pick one with --camera");
+        job.output = requested;
+    } else if (!o.output.empty() && (course || fs::is_directory(requested))) {
+        job.output = requested / name;
+    } else if (!o.output.empty()) {
+        throw std::runtime_error(o.output + ": output must end in .exr (or be a folder)");
+    } else {
+        job.output = fs::path("out") / name;
+    }
     return job;
 }
 
@@ -204,7 +214,7 @@ int runRender(const RenderOptions& o) {
     const bool course = isCourseScene(o.scene);
     const std::vector<Camera> cameras = chooseCameras(scene, o, course);
     std::vector<Job> jobs;
-    for (const Camera& c : cameras) jobs.push_back(makeJob(scene, c, o, cameras.size() > 1));
+    for (const Camera& c : cameras) jobs.push_back(makeJob(scene, c, o, cameras.size() > 1, course));
 
     // Fail on a bad reference or output before spending time on rendering.
     std::optional<Image> reference;
