@@ -206,25 +206,40 @@ TEST(CliCorpus, ReadmeTableCoversEveryCorpusFile) {
     for (const auto& f : files) EXPECT_EQ(expected.count(f), 1u) << f << " has no row in README.md";
 }
 
-class MalformedCorpus : public CliTest, public ::testing::WithParamInterface<std::string> {};
+class MalformedCorpus : public CliTest, public ::testing::WithParamInterface<std::string> {
+protected:
+    // `pt render` on one corpus file: exit 1 within 5 s, one error line naming the file and
+    // containing the README's substring, and no output written.
+    void checkCorpusFile(const std::string& corpus, const std::string& name) {
+        const auto expected = pt::test::malformedCorpusExpectations(corpus);
+        const auto it = expected.find(name);
+        ASSERT_NE(it, expected.end()) << name << " has no expected substring in README.md";
+        const std::string file = (kTests / "data" / corpus / name).string();
 
-TEST_P(MalformedCorpus, FailsWithOneLineNamingFileAndProblem) {
-    const auto expected = expectedSubstrings();
-    const auto it = expected.find(GetParam());
-    ASSERT_NE(it, expected.end()) << GetParam() << " has no expected substring in README.md";
-    const std::string file = (kCorpus / GetParam()).string();
+        const RunResult r = run({"render", file, "--spp", "1", "--width", "8", "--height", "8", "-o", (dir_ / "x.exr").string()},
+            {}, 10);
+        EXPECT_EXIT_STATUS(r, 1);
+        EXPECT_LT(r.seconds, 5.0) << r;
+        const std::string line = r.errorLine();
+        EXPECT_NE(line.find(file), std::string::npos) << "the error does not name " << file << ": " << line;
+        const std::string problem = lower(removeAll(line.substr(std::strlen("pt: error: ")), file));
+        EXPECT_NE(problem.find(it->second), std::string::npos) << "expected '" << it->second << "' in: " << line;
+        EXPECT_FALSE(fs::exists(dir_ / "x.exr"));
+        EXPECT_FALSE(fs::exists(dir_ / "x.png"));
+        EXPECT_TRUE(outputs().empty()) << "left " << outputs().front();
+    }
+};
 
-    const RunResult r = run({"render", file, "--spp", "1", "--width", "8", "--height", "8", "-o", (dir_ / "x.exr").string()},
-        {}, 10);
-    EXPECT_EXIT_STATUS(r, 1);
-    EXPECT_LT(r.seconds, 5.0) << r;
-    const std::string line = r.errorLine();
-    EXPECT_NE(line.find(file), std::string::npos) << "the error does not name " << file << ": " << line;
-    const std::string problem = lower(removeAll(line.substr(std::strlen("pt: error: ")), file));
-    EXPECT_NE(problem.find(it->second), std::string::npos) << "expected '" << it->second << "' in: " << line;
-    EXPECT_FALSE(fs::exists(dir_ / "x.exr"));
-    EXPECT_FALSE(fs::exists(dir_ / "x.png"));
-    EXPECT_TRUE(outputs().empty()) << "left " << outputs().front();
+TEST_P(MalformedCorpus, FailsWithOneLineNamingFileAndProblem) { checkCorpusFile("malformed_gltf", GetParam()); }
+
+class MalformedXmlCorpus : public MalformedCorpus {};
+TEST_P(MalformedXmlCorpus, FailsWithOneLineNamingFileAndProblem) { checkCorpusFile("malformed_xml", GetParam()); }
+
+TEST(CliCorpus, XmlReadmeTableCoversEveryCorpusFile) {
+    const auto expected = pt::test::malformedCorpusExpectations("malformed_xml");
+    const auto files = pt::test::malformedCorpusFiles("malformed_xml");
+    EXPECT_GE(files.size(), 14u);
+    for (const auto& f : files) EXPECT_EQ(expected.count(f), 1u) << f << " has no row in README.md";
 }
 
 std::string paramName(const ::testing::TestParamInfo<std::string>& info) {
@@ -235,6 +250,8 @@ std::string paramName(const ::testing::TestParamInfo<std::string>& info) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Corpus, MalformedCorpus, ::testing::ValuesIn(corpusFiles()), paramName);
+INSTANTIATE_TEST_SUITE_P(XmlCorpus, MalformedXmlCorpus, ::testing::ValuesIn(pt::test::malformedCorpusFiles("malformed_xml")),
+    paramName);
 
 // ---------------------------------------------------------------------------------------------
 // Successful renders

@@ -16,7 +16,9 @@ std::string firstBackticked(const std::string& s) {
 
 } // namespace
 
-std::filesystem::path malformedCorpusDir() { return std::filesystem::path(PT_TEST_DATA_DIR) / "data" / "malformed_gltf"; }
+std::filesystem::path malformedCorpusDir(const std::string& corpus) {
+    return std::filesystem::path(PT_TEST_DATA_DIR) / "data" / corpus;
+}
 
 std::string trim(std::string s) {
     const char* ws = " \t\r\n";
@@ -25,27 +27,29 @@ std::string trim(std::string s) {
     return s;
 }
 
-// README.md's table: | `file` | problem | `substring` | tinygltf |
-std::map<std::string, std::string> malformedCorpusExpectations() {
-    std::ifstream in(malformedCorpusDir() / "README.md");
+// README.md table rows: | `file` | problem | `substring` | (more columns allowed)
+std::map<std::string, std::string> malformedCorpusExpectations(const std::string& corpus) {
+    std::ifstream in(malformedCorpusDir(corpus) / "README.md");
     std::map<std::string, std::string> out;
     for (std::string line; std::getline(in, line);) {
         if (line.rfind("| `", 0) != 0) continue;
         std::vector<std::string> cells;
         std::stringstream ss(line);
         for (std::string cell; std::getline(ss, cell, '|');) cells.push_back(trim(cell));
-        if (cells.size() < 5) continue; // cells[0]: the empty text before the first '|'
+        if (cells.size() < 4) continue; // cells[0]: the empty text before the first |
         const std::string file = firstBackticked(cells[1]), substring = firstBackticked(cells[3]);
         if (!file.empty() && !substring.empty()) out[file] = substring;
     }
     return out;
 }
 
-std::vector<std::string> malformedCorpusFiles() {
+std::vector<std::string> malformedCorpusFiles(const std::string& corpus) {
     std::vector<std::string> files;
-    for (const auto& e : std::filesystem::directory_iterator(malformedCorpusDir())) {
+    for (const auto& e : std::filesystem::directory_iterator(malformedCorpusDir(corpus))) {
         const std::string name = e.path().filename().string();
-        if (!e.is_regular_file() || name == "README.md" || name == "make_corpus.py" || e.path().extension() == ".bin")
+        // Data files the scenes refer to are not cases themselves.
+        const std::string ext = e.path().extension().string();
+        if (!e.is_regular_file() || name == "README.md" || name == "make_corpus.py" || ext == ".bin" || ext == ".ply")
             continue;
         files.push_back(name);
     }

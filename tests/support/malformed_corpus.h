@@ -1,6 +1,7 @@
 #pragma once
-// The malformed-glTF corpus (tests/data/malformed_gltf/): its files, and from its README's table
-// the lowercase substring each file's error message must contain (after removing the file's path).
+// The malformed-input corpora (tests/data/malformed_gltf/, tests/data/malformed_xml/): their
+// files, and from each README's table the lowercase substring each file's error message must
+// contain (after removing the file's path). `corpus` is the folder name; glTF by default.
 #include <filesystem>
 #include <map>
 #include <string>
@@ -8,9 +9,9 @@
 
 namespace pt::test {
 
-std::filesystem::path malformedCorpusDir();
-std::vector<std::string> malformedCorpusFiles();                 // file names, sorted
-std::map<std::string, std::string> malformedCorpusExpectations(); // file name -> substring
+std::filesystem::path malformedCorpusDir(const std::string& corpus = "malformed_gltf");
+std::vector<std::string> malformedCorpusFiles(const std::string& corpus = "malformed_gltf"); // sorted
+std::map<std::string, std::string> malformedCorpusExpectations(const std::string& corpus = "malformed_gltf");
 std::string trim(std::string s);
 
 } // namespace pt::test
