@@ -20,5 +20,6 @@ layout(constant_id = SPEC_HAS_TRIANGLES) const bool HAS_TRIANGLES = true;
 layout(constant_id = SPEC_HAS_CONDUCTOR) const bool HAS_CONDUCTOR = true;
 layout(constant_id = SPEC_HAS_PUNCTUAL_LIGHTS) const bool HAS_PUNCTUAL_LIGHTS = true;
 layout(constant_id = SPEC_HAS_GLOSSY) const bool HAS_GLOSSY = true;
+layout(constant_id = SPEC_HAS_ENVIRONMENT) const bool HAS_ENVIRONMENT = true;
 
 #endif

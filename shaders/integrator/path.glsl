@@ -54,7 +54,15 @@ vec3 tracePath(Ray ray, Rng rng) {
     for (uint depth = 1u;; ++depth) {
         Hit hit;
         if (!traceClosest(ray, FLOAT_MAX, hit)) {
-            L += beta * scene.background;
+            // Escaped: the environment, weighted against its light sampling like any emitter.
+            if (HAS_ENVIRONMENT && scene.envWidth > 0u) {
+                vec3 Le = envRadiance(ray.direction);
+                float pdfLight = environmentPdf(ray.direction);
+                if (!USE_NEE || prevDelta || pdfLight == 0.0) L += beta * Le;
+                else if (USE_MIS) L += beta * Le * powerHeuristic(prevPdfBsdf, pdfLight);
+            } else {
+                L += beta * scene.background;
+            }
             break;
         }
         SurfaceInteraction si = makeInteraction(ray, hit);

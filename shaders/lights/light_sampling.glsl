@@ -7,6 +7,7 @@
 #include "lights/triangle_light.glsl"
 #include "lights/sphere_light.glsl"
 #include "lights/punctual_light.glsl"
+#include "lights/environment_light.glsl"
 
 LightSample sampleLight(vec3 x, float uSelect, vec2 uPoint) {
     GpuLight light = sceneLights.v[selectLight(uSelect)];
@@ -15,6 +16,7 @@ LightSample sampleLight(vec3 x, float uSelect, vec2 uPoint) {
     if (HAS_PUNCTUAL_LIGHTS && light.type == LIGHT_DIRECTIONAL) return sampleDirectionalLight(light, x);
     if (HAS_PUNCTUAL_LIGHTS && light.type == LIGHT_SPOT) return sampleSpotLight(light, x);
     if (HAS_PUNCTUAL_LIGHTS && light.type == LIGHT_SQUARE) return sampleSquareLight(light, x, uPoint);
+    if (HAS_ENVIRONMENT && light.type == LIGHT_ENVIRONMENT) return sampleEnvironment(light, uPoint);
     return sampleTriangleLight(light, x, uPoint);
 }
 
@@ -25,6 +27,12 @@ float lightPdf(uint lightIndex, vec3 x, vec3 p, vec3 ng, float t, vec3 dir) {
     GpuLight light = sceneLights.v[lightIndex];
     if (HAS_SPHERES && light.type == LIGHT_SPHERE) return sphereLightPdf(light, x, p);
     return triangleLightPdf(light, t, dot(ng, dir));
+}
+
+// Solid-angle pdf of light sampling the environment in direction dir (0 without one).
+float environmentPdf(vec3 dir) {
+    if (!HAS_ENVIRONMENT || scene.envLightIndex == NO_LIGHT) return 0.0;
+    return envPdf(sceneLights.v[scene.envLightIndex].pmf, dir);
 }
 
 #endif

@@ -66,7 +66,8 @@ using uint64_t = std::uint64_t;
 #define SPEC_HAS_CONDUCTOR 14
 #define SPEC_HAS_PUNCTUAL_LIGHTS 15
 #define SPEC_HAS_GLOSSY 16
-#define SPEC_COUNT 17
+#define SPEC_HAS_ENVIRONMENT 17
+#define SPEC_COUNT 18
 
 // A triangle as the intersector reads it: world-space vertices plus the ids it needs at a hit.
 struct GpuTriangle {
@@ -138,6 +139,7 @@ PT_CHECK_SIZE(GpuSphere, 112);
 #define LIGHT_DIRECTIONAL 3u
 #define LIGHT_SPOT 4u
 #define LIGHT_SQUARE 5u // an invisible one-sided square emitter (the course's AreaLight)
+#define LIGHT_ENVIRONMENT 6u
 
 // One emitter in the light-selection table (all kinds share one power CDF).
 struct GpuLight {
@@ -181,7 +183,11 @@ struct GpuSceneParams {
     uint64_t accumulation; // vec4[2 * pixels]: (sum rgb, dropped count), (sum of squares rgb, 0)
     uint64_t spheres;      // GpuSphere[]
     uint64_t sphereNodes;  // GpuBvhNode[]: a second BVH, over the spheres
-    uint64_t pad0;
+    uint64_t envTexels;    // vec4[envWidth * envHeight]: radiance (scale applied), row 0 at the top
+    uint64_t envMarginal;  // float[envHeight + 1]: CDF over rows of the sampling weights
+    uint64_t envConditional; // float[envHeight * (envWidth + 1)]: CDF over columns, per row
+    uint64_t pad0;         // keeps the camera 16-byte aligned in C++ as in std430
+    uint64_t pad2;
     GpuCamera camera;
     vec3 background; // radiance of rays that escape
     uint numLights;
@@ -193,11 +199,15 @@ struct GpuSceneParams {
     uint numNodes;
     uint numSpheres;
     uint numSphereNodes;
+    uint envWidth;      // 0: no environment (escaping rays see `background`)
+    uint envHeight;
+    uint envLightIndex; // the environment's entry in the light table, or NO_LIGHT
+    float envRotationCos; // rotation about +y
+    float envRotationSin;
+    float envSamplingTotal; // sum of the sampling weights (for the pdf)
     uint pad1;
-    uint pad2;
-    uint pad3;
 };
-PT_CHECK_SIZE(GpuSceneParams, 80 + 80 + 64);
+PT_CHECK_SIZE(GpuSceneParams, 112 + 80 + 80);
 
 // Push constants of the render kernel: which pixels and which sample indices this dispatch adds.
 struct GpuRenderPush {

@@ -35,6 +35,8 @@ void main() {
         if (traceClosest(ray, FLOAT_MAX, hit)) {
             SurfaceInteraction si = makeInteraction(ray, hit);
             if (si.lightIndex != NO_LIGHT) pdf = lightPdf(si.lightIndex, ray.origin, si.p, si.ng, hit.t, ray.direction);
+        } else {
+            pdf = environmentPdf(ray.direction);
         }
         outputs.v[i] = vec4(pdf);
     } else if (push.mode == TEST_MODE_BSDF_SAMPLE) {

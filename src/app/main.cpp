@@ -56,6 +56,12 @@ int main(int argc, char** argv) {
     render->add_option("--reference", o.reference, "Reference EXR: log relMSE after every pass");
     render->add_option("--error-log", o.errorLog, "CSV of spp, seconds, relMSE after every pass (needs --reference)");
     render->add_option("--exposure", o.exposure, "Exposure in stops for the PNG");
+    render->add_option("--env", o.environment, "Environment: an equirectangular (lat-long) radiance map, .exr");
+    std::vector<float> envColour;
+    auto* envColourOpt = render->add_option("--env-colour", envColour, "Environment: a constant radiance R G B")->expected(3);
+    envColourOpt->excludes(render->get_option("--env"));
+    render->add_option("--env-scale", o.environmentScale, "Multiply the environment's radiance")->check(CLI::Range(0.0f, 1e30f));
+    render->add_option("--env-rotate", o.environmentRotation, "Rotate the environment about +y, in degrees");
     render->add_option("--tile", o.tileSize, "Split each pass into tiles of this many pixels square (same image)");
     render->add_option("--pass-spp", o.passSpp, "Samples per pass (default: passes of about half a second; same image)");
     render->add_flag("--validation", o.validation, "Enable the Vulkan validation layer; fail if it reports anything");
@@ -70,6 +76,7 @@ int main(int argc, char** argv) {
         return app.exit(e) == 0 ? 0 : 2;
     }
     if (const char* v = std::getenv("PT_VALIDATION"); v && std::string(v) == "1") o.validation = true;
+    if (envColour.size() == 3) o.environmentColour = glm::vec3(envColour[0], envColour[1], envColour[2]);
     if (!nee.empty()) o.nee = onOff(nee);
     if (!mis.empty()) o.mis = onOff(mis);
     if (!rr.empty()) o.rr = onOff(rr);

@@ -2,6 +2,8 @@
 // Parsed command line of `pt render`.
 #include "render/integrator_settings.h"
 
+#include <glm/glm.hpp>
+
 #include <optional>
 #include <string>
 
@@ -26,6 +28,10 @@ struct RenderOptions {
     bool validation = false;
     bool quiet = false;
     float exposure = 0.0f;
+    std::string environment;                   // --env FILE.exr: equirectangular radiance map
+    std::optional<glm::vec3> environmentColour; // --env-colour R G B: constant environment
+    float environmentScale = 1.0f;
+    float environmentRotation = 0.0f;          // degrees about +y
     IntegratorSettings integrator; // seed and rrStartDepth; the rest comes from the fields above
 };
 

@@ -208,6 +208,21 @@ int renderJob(VulkanContext& context, const Scene& scene, const FlatScene& flat,
 int runRender(const RenderOptions& o) {
     const auto loadStart = Clock::now();
     Scene scene = loadScene(o.scene);
+    if (!o.environment.empty()) {
+        Environment env;
+        env.image = readExr(o.environment);
+        env.source = o.environment;
+        scene.environment = env;
+    } else if (o.environmentColour) {
+        Environment env;
+        env.colour = *o.environmentColour;
+        env.source = "--env-colour";
+        scene.environment = env;
+    }
+    if (scene.environment) {
+        scene.environment->scale *= o.environmentScale;
+        scene.environment->rotationDegrees += o.environmentRotation;
+    }
     if (!scene.unsupported.empty())
         std::fprintf(stderr, "pt: warning: %s: not supported yet, rendered approximately: %s\n", scene.source.c_str(),
             joinNotes(scene.unsupported).c_str());
@@ -241,7 +256,7 @@ int runRender(const RenderOptions& o) {
     if (flat.degenerateSpheres > 0)
         std::fprintf(stderr, "pt: note: %s: dropped %zu spheres with a singular transform\n", scene.source.c_str(),
             flat.degenerateSpheres);
-    if (flat.lights.lights.empty() && scene.background == glm::vec3(0.0f))
+    if (flat.lights.lights.empty() && scene.background == glm::vec3(0.0f) && flat.environment.width == 0)
         std::fprintf(stderr, "pt: warning: %s: nothing emits light (no emissive surfaces or lights, black background): "
                              "the image will be black\n", scene.source.c_str());
     const double loadSeconds = secondsSince(loadStart);

@@ -39,7 +39,8 @@ bool roundRadius(const glm::dmat3& a, double& radius) {
 } // namespace
 
 LightTable buildLightTable(std::span<gpu::GpuTriangle> triangles, std::span<gpu::GpuSphere> spheres,
-    std::span<const PunctualLight> punctual, std::span<const Material> materials, float sceneRadius) {
+    std::span<const PunctualLight> punctual, std::span<const Material> materials, float sceneRadius,
+    double environmentRadiance) {
     LightTable table;
     std::vector<double> power;
     auto add = [&](const gpu::GpuLight& light, double p) {
@@ -115,6 +116,15 @@ LightTable buildLightTable(std::span<gpu::GpuTriangle> triangles, std::span<gpu:
         }
         light.intensity = pl.intensity;
         if (!(p > 0.0) || !std::isfinite(p)) continue;
+        add(light, p);
+    }
+
+    if (environmentRadiance >= 0.0) {
+        // The power it sends through a disc the size of the scene: pi R^2 x (pi x average radiance).
+        const double p = kPi * double(sceneRadius) * sceneRadius * kPi * std::max(environmentRadiance, 1e-6);
+        gpu::GpuLight light{};
+        light.type = LIGHT_ENVIRONMENT;
+        table.environmentIndex = static_cast<uint32_t>(table.lights.size());
         add(light, p);
     }
 

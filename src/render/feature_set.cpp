@@ -39,8 +39,11 @@ FeatureSet computeFeatures(const FlatScene& scene, const IntegratorSettings& set
     f.triangles = !scene.triangles.empty();
     f.spheres = !scene.spheres.empty();
     f.punctualLights = false;
-    for (const auto& l : scene.lights.lights) f.punctualLights |= l.type >= LIGHT_POINT; // point, directional, spot, square
+    for (const auto& l : scene.lights.lights)
+        f.punctualLights |= l.type == LIGHT_POINT || l.type == LIGHT_DIRECTIONAL || l.type == LIGHT_SPOT || l.type == LIGHT_SQUARE;
+    f.environment = scene.environment.width > 0;
     // Light sampling needs something to sample and a non-delta surface that can use it.
+    // (The environment is in the table too.)
     f.nee = settings.nee && !scene.lights.lights.empty() && (f.diffuse || f.glossy);
     f.mis = f.nee && settings.mis;
     f.rr = settings.rr;
@@ -67,6 +70,7 @@ std::vector<SpecializationConstant> FeatureSet::constants(uint32_t localSizeX, u
         {SPEC_HAS_CONDUCTOR, conductor},
         {SPEC_HAS_PUNCTUAL_LIGHTS, punctualLights},
         {SPEC_HAS_GLOSSY, glossy},
+        {SPEC_HAS_ENVIRONMENT, environment},
     };
 }
 
@@ -88,6 +92,7 @@ std::string FeatureSet::describe() const {
     add(shadingNormals, "shading-normals");
     add(emitters, "emitters");
     add(punctualLights, "punctual-lights");
+    add(environment, "environment");
     add(nee, "nee");
     add(mis, "mis");
     add(rr, "rr");

@@ -22,6 +22,7 @@ struct FeatureSet {
     bool shadingNormals = true;
     bool emitters = true;
     bool punctualLights = true;
+    bool environment = true;
     bool nee = true;
     bool mis = true;
     bool rr = true;

@@ -1,5 +1,7 @@
 #include "render/flat_scene.h"
 
+#include <glm/gtc/type_ptr.hpp>
+
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -92,6 +94,67 @@ void flattenSpheres(const Scene& scene, const BvhBuildOptions& bvhOptions, FlatS
     for (uint32_t original : bvh.primOrder) flat.spheres.push_back(spheres[original]);
 }
 
+// A constant environment becomes a small map so that one sampler serves both.
+constexpr uint32_t kConstantEnvWidth = 8, kConstantEnvHeight = 16;
+
+float luminanceOf(const glm::vec3& c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
+
+FlatEnvironment flattenEnvironment(const Environment& env, const std::string& source) {
+    FlatEnvironment out;
+    const bool constant = env.image.width == 0 || env.image.height == 0;
+    out.width = constant ? kConstantEnvWidth : static_cast<uint32_t>(env.image.width);
+    out.height = constant ? kConstantEnvHeight : static_cast<uint32_t>(env.image.height);
+    const float angle = glm::radians(env.rotationDegrees);
+    out.rotationCos = std::cos(angle);
+    out.rotationSin = std::sin(angle);
+    out.texels.resize(size_t(out.width) * out.height);
+    for (uint32_t y = 0; y < out.height; ++y)
+        for (uint32_t x = 0; x < out.width; ++x) {
+            glm::vec3 c = constant ? env.colour : glm::vec3(glm::make_vec3(env.image.at(int(x), int(y))));
+            c *= env.scale;
+            if (!finite(c) || c.x < 0 || c.y < 0 || c.z < 0)
+                throw std::runtime_error(source + ": environment texel (" + std::to_string(x) + ", " + std::to_string(y) +
+                                         ") is negative or not finite");
+            out.texels[size_t(y) * out.width + x] = glm::vec4(c, 0.0f);
+        }
+    // Sampling weights: luminance (with a floor for colours outside its weights) x sin(theta)
+    // at the row's centre, so the density follows solid angle and poles get no excess samples.
+    std::vector<double> rowSum(out.height, 0.0);
+    out.conditional.assign(size_t(out.height) * (out.width + 1), 0.0f);
+    double total = 0, radianceIntegral = 0;
+    for (uint32_t y = 0; y < out.height; ++y) {
+        const double sinTheta = std::sin(M_PI * (y + 0.5) / out.height);
+        std::vector<double> w(out.width);
+        double sum = 0;
+        for (uint32_t x = 0; x < out.width; ++x) {
+            const glm::vec3 c(out.texels[size_t(y) * out.width + x]);
+            const double l = std::max<double>(luminanceOf(c), 1e-3 * (c.x + c.y + c.z));
+            w[x] = l * sinTheta;
+            sum += w[x];
+            radianceIntegral += luminanceOf(c) * sinTheta;
+        }
+        float* cdf = &out.conditional[size_t(y) * (out.width + 1)];
+        double running = 0;
+        for (uint32_t x = 0; x < out.width; ++x) {
+            running += w[x];
+            cdf[x + 1] = sum > 0 ? static_cast<float>(running / sum) : static_cast<float>(double(x + 1) / out.width);
+        }
+        cdf[out.width] = 1.0f;
+        rowSum[y] = sum;
+        total += sum;
+    }
+    out.marginal.assign(out.height + 1, 0.0f);
+    double running = 0;
+    for (uint32_t y = 0; y < out.height; ++y) {
+        running += rowSum[y];
+        out.marginal[y + 1] = total > 0 ? static_cast<float>(running / total) : static_cast<float>(double(y + 1) / out.height);
+    }
+    out.marginal[out.height] = 1.0f;
+    // Average over the sphere: integral of L dOmega / 4 pi, dOmega = 2 pi^2 sin(theta) / (W H) per texel.
+    out.averageRadiance = radianceIntegral * 2.0 * M_PI * M_PI / (double(out.width) * out.height) / (4.0 * M_PI);
+    return out;
+}
+
 // Radius of a sphere around all geometry (sizes directional lights' power estimate).
 float sceneRadius(const FlatScene& flat) {
     Aabb box;
@@ -171,7 +234,9 @@ FlatScene flattenScene(const Scene& scene, const BvhBuildOptions& bvhOptions) {
         flat.shading.push_back(shading[original]);
     }
     flattenSpheres(scene, bvhOptions, flat);
-    flat.lights = buildLightTable(flat.triangles, flat.spheres, scene.punctualLights, scene.materials, sceneRadius(flat));
+    if (scene.environment) flat.environment = flattenEnvironment(*scene.environment, scene.source);
+    flat.lights = buildLightTable(flat.triangles, flat.spheres, scene.punctualLights, scene.materials, sceneRadius(flat),
+        flat.environment.width > 0 ? flat.environment.averageRadiance : -1.0);
     return flat;
 }
 

@@ -10,6 +10,16 @@
 
 namespace pt {
 
+// The environment as the kernel samples it (shaders/lights/environment_light.glsl).
+struct FlatEnvironment {
+    uint32_t width = 0, height = 0; // 0: none
+    std::vector<glm::vec4> texels;  // radiance with the scale applied, row 0 at the top
+    std::vector<float> marginal;    // height + 1: CDF over rows
+    std::vector<float> conditional; // height x (width + 1): CDF over columns, per row
+    float rotationCos = 1.0f, rotationSin = 0.0f;
+    double averageRadiance = 0;     // luminance averaged over the sphere (for its power)
+};
+
 struct FlatScene {
     std::vector<gpu::GpuTriangle> triangles;
     std::vector<gpu::GpuTriangleShading> shading;
@@ -17,6 +27,7 @@ struct FlatScene {
     std::vector<gpu::GpuSphere> spheres;         // BVH-ordered
     std::vector<gpu::GpuBvhNode> sphereNodes;    // a second BVH, over the spheres
     std::vector<gpu::GpuMaterial> materials;
+    FlatEnvironment environment;
     LightTable lights;
     size_t degenerateTriangles = 0; // zero-area or non-finite triangles dropped
     size_t degenerateSpheres = 0;   // singular or non-finite sphere transforms dropped

@@ -20,6 +20,9 @@ GpuScene::GpuScene(VulkanContext& context, const FlatScene& scene, gpu::GpuScene
     materials_ = makeBuffer(context, scene.materials, "materials");
     lights_ = makeBuffer(context, scene.lights.lights, "lights");
     lightCdf_ = makeBuffer(context, scene.lights.cdf, "light cdf");
+    envTexels_ = makeBuffer(context, scene.environment.texels, "environment texels");
+    envMarginal_ = makeBuffer(context, scene.environment.marginal, "environment marginal cdf");
+    envConditional_ = makeBuffer(context, scene.environment.conditional, "environment conditional cdf");
     accumulation_ = GpuBuffer(context, accumulationBytes, "accumulation");
     if (accumulationBytes > 0) accumulation_.fillZero();
 
@@ -32,6 +35,14 @@ GpuScene::GpuScene(VulkanContext& context, const FlatScene& scene, gpu::GpuScene
     params.lights = lights_.address();
     params.lightCdf = lightCdf_.address();
     params.accumulation = accumulation_.address();
+    params.envTexels = envTexels_.address();
+    params.envMarginal = envMarginal_.address();
+    params.envConditional = envConditional_.address();
+    params.envWidth = scene.environment.width;
+    params.envHeight = scene.environment.height;
+    params.envLightIndex = scene.lights.environmentIndex;
+    params.envRotationCos = scene.environment.rotationCos;
+    params.envRotationSin = scene.environment.rotationSin;
     params.numLights = static_cast<uint32_t>(scene.lights.lights.size());
     params.numTriangles = static_cast<uint32_t>(scene.triangles.size());
     params.numNodes = static_cast<uint32_t>(scene.nodes.size());

@@ -18,7 +18,8 @@ public:
     GpuBuffer& accumulation() { return accumulation_; }
 
 private:
-    GpuBuffer triangles_, shading_, nodes_, spheres_, sphereNodes_, materials_, lights_, lightCdf_, accumulation_, params_;
+    GpuBuffer triangles_, shading_, nodes_, spheres_, sphereNodes_, materials_, lights_, lightCdf_, envTexels_, envMarginal_,
+        envConditional_, accumulation_, params_;
 };
 
 } // namespace pt

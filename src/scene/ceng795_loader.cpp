@@ -1,5 +1,7 @@
 #include "scene/ceng795_loader.h"
 
+#include "render/image_io.h"
+
 #include "scene/ceng795_camera.h"
 #include "scene/ceng795_document.h"
 #include "scene/ceng795_geometry.h"
@@ -121,6 +123,32 @@ PunctualLight readAreaLight(const Context& ctx, pugi::xml_node e) {
     return l;
 }
 
+// SphericalDirectionalLight: a lat-long radiance map from <Textures><Images> (OpenEXR).
+void readEnvironmentLight(Context& ctx, pugi::xml_node root, pugi::xml_node e, Scene& s) {
+    if (s.environment) ctx.fail(e, "only one environment light is supported");
+    pugi::xml_node idNode = required(ctx, e, "ImageId");
+    const std::string id = std::string(idNode.child_value());
+    for (pugi::xml_node images : root.child("Textures").children("Images"))
+        for (pugi::xml_node image : images.children("Image")) {
+            if (std::string(image.attribute("id").value()) != id) continue;
+            const std::filesystem::path file = ctx.resolve(image.child_value());
+            if (file.extension() != ".exr") {
+                ctx.note("environment maps other than OpenEXR (ignored)");
+                return;
+            }
+            Environment env;
+            try {
+                env.image = readExr(file);
+            } catch (const std::exception& err) {
+                ctx.fail(e, err.what());
+            }
+            env.source = file.string();
+            s.environment = std::move(env);
+            return;
+        }
+    ctx.fail(idNode, "unknown image " + quote(id));
+}
+
 // Point and directional lights map onto the model's punctual lights; the others are named once
 // and skipped (object lights are objects, read with the geometry).
 void readLights(Context& ctx, pugi::xml_node root, Scene& s) {
@@ -135,7 +163,7 @@ void readLights(Context& ctx, pugi::xml_node root, Scene& s) {
             else if (type == "DirectionalLight") s.punctualLights.push_back(readDirectionalLight(ctx, l));
             else if (type == "AreaLight") s.punctualLights.push_back(readAreaLight(ctx, l));
             else if (type == "SpotLight") s.punctualLights.push_back(readSpotLight(ctx, l));
-            else if (type == "SphericalDirectionalLight") ctx.note("environment lights (ignored)");
+            else if (type == "SphericalDirectionalLight") readEnvironmentLight(ctx, root, l, s);
             else ctx.note(printable(type) + " lights (ignored)");
         }
 }

@@ -1,6 +1,8 @@
 #pragma once
 // The renderer's scene model: what every loader (glTF, course XML) produces and everything
 // downstream (BVH, light table, GPU upload) consumes. World space, no hierarchy left.
+#include "render/image.h"
+
 #include <glm/glm.hpp>
 
 #include <cstdint>
@@ -116,12 +118,24 @@ struct PunctualLight {
     float size = 0.0f;             // square: edge length
 };
 
+// Light arriving from infinitely far away in every direction: an equirectangular (lat-long)
+// radiance map, or a constant colour. Direction d maps to u = (1 + atan2(d.x, -d.z) / pi) / 2,
+// v = acos(d.y) / pi (the CENG795 course's convention; +y is up).
+struct Environment {
+    Image image;                 // linear RGB; empty for a constant environment
+    glm::vec3 colour{1.0f};      // the constant radiance when image is empty
+    float scale = 1.0f;          // multiplies the radiance
+    float rotationDegrees = 0.0f; // about +y
+    std::string source;          // file name, for messages
+};
+
 struct Scene {
     std::string source; // file name, or "built-in Cornell box"
     std::vector<Material> materials;
     std::vector<Mesh> meshes;
     std::vector<Sphere> spheres;
     std::vector<PunctualLight> punctualLights;
+    std::optional<Environment> environment; // replaces `background` for rays that escape
     std::vector<Camera> cameras;
     glm::vec3 background{0.0f};
     RenderHints hints;

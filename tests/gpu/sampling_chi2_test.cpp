@@ -320,6 +320,74 @@ TEST_F(SamplingTest, AreaSampledEllipsoidLightMatchesTheLightPdfFromInside) {
     checkLightSampling(uploaded);
 }
 
+// The environment map's 2D piecewise-constant sampling, with bright texels on a pole row and on
+// the seam, rotated: samples land in texels with the probabilities of the host's CDF tables
+// (chi-square in texel space, where the distribution is exactly piecewise constant), each
+// sample's pdf is the pdf escaping BSDF rays get for that direction, and that pdf integrates to 1.
+TEST_F(SamplingTest, EnvironmentSamplingMatchesItsPdf) {
+    pt::Scene scene;
+    scene.source = "environment sampling test";
+    pt::Environment env;
+    const int W = 16, H = 8;
+    env.image.width = W;
+    env.image.height = H;
+    env.image.rgba.assign(W * H * 4, 0.3f);
+    for (int c = 0; c < 3; ++c) {
+        env.image.at(5, 0)[c] = 40.0f; // top row: touches the pole
+        env.image.at(0, 4)[c] = 20.0f; // first column: on the seam
+        env.image.at(11, 6)[c] = 5.0f;
+    }
+    env.rotationDegrees = 40.0f;
+    scene.environment = env;
+    const LightTestScene uploaded = uploadScene(scene);
+    ASSERT_EQ(uploaded.flat.lights.lights.size(), 1u);
+    const pt::FlatEnvironment& fe = uploaded.flat.environment;
+    const double angle = glm::radians(40.0);
+    auto texelOf = [&](glm::vec3 d) {
+        // World to the map's frame (rotation about +y), then the course's lat-long mapping.
+        const double x = std::cos(angle) * d.x - std::sin(angle) * d.z, z = std::sin(angle) * d.x + std::cos(angle) * d.z;
+        const double u = 0.5 * (1.0 + std::atan2(x, -z) / M_PI), v = std::acos(std::clamp<double>(d.y, -1, 1)) / M_PI;
+        return std::min(H - 1, int(v * H)) * W + std::min(W - 1, int(u * W));
+    };
+    std::vector<double> expected(W * H);
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x)
+            expected[y * W + x] = kSamples * double(fe.marginal[y + 1] - fe.marginal[y]) *
+                                  double(fe.conditional[y * (W + 1) + x + 1] - fe.conditional[y * (W + 1) + x]);
+
+    const auto samples = pt::test::runTestKernel(TEST_MODE_LIGHT_SAMPLE, kSamples, uploaded.gpu.get(), {}, kShadingPoint);
+    std::vector<double> observed(W * H, 0.0);
+    std::vector<glm::vec4> dirs;
+    for (const auto& s : samples) {
+        observed[texelOf(glm::vec3(s))] += 1;
+        dirs.emplace_back(glm::vec3(s), 0.0f);
+    }
+    EXPECT_GT(pValue(observed, expected, "environment texels"), kMinPValue);
+
+    const std::vector<float> pdfAtSample = lightPdfs(*uploaded.gpu, dirs);
+    size_t mismatched = 0;
+    for (size_t i = 0; i < samples.size(); ++i)
+        mismatched += !(samples[i].w > 0.0f && std::abs(pdfAtSample[i] - samples[i].w) <= 1e-3f * samples[i].w);
+    EXPECT_EQ(mismatched, 0u) << "samples whose pdf differs from the pdf of their direction";
+
+    // Integral over the sphere: the pdf times sin(theta) is constant inside each texel.
+    std::vector<glm::vec4> centres;
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x) {
+            const double theta = M_PI * (y + 0.5) / H, phi = M_PI * (2.0 * (x + 0.5) / W - 1.0);
+            const glm::dvec3 local(std::sin(theta) * std::sin(phi), std::cos(theta), -std::sin(theta) * std::cos(phi));
+            const glm::dvec3 world(std::cos(angle) * local.x + std::sin(angle) * local.z, local.y,
+                -std::sin(angle) * local.x + std::cos(angle) * local.z);
+            centres.emplace_back(glm::vec3(world), 0.0f);
+        }
+    const std::vector<float> pdfAtCentres = lightPdfs(*uploaded.gpu, centres);
+    double integral = 0;
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x)
+            integral += pdfAtCentres[y * W + x] * std::sin(M_PI * (y + 0.5) / H) * (M_PI / H) * (2 * M_PI / W);
+    EXPECT_NEAR(integral, 1.0, 1e-4);
+}
+
 // Negative control for the light test: the same samples against the pdf of the same emitters with
 // equal radiance (so chosen by area instead of power) must be rejected; the test sees the CDF.
 TEST_F(SamplingTest, LightChiSquareRejectsTheWrongSelectionCdf) {

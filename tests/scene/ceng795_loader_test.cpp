@@ -1,6 +1,7 @@
 // The CENG795 course XML loader: one test per element family and per quirk of the format
 // (/work/shared/ceng795/FORMAT.md), hostile input, and three official course scenes copied into
 // tests/data/ceng795/ (provenance in its README.md).
+#include "render/image_io.h"
 #include "scene/ceng795_loader.h"
 #include "scene/scene_error.h"
 
@@ -597,8 +598,8 @@ TEST_F(Ceng795, PointAndDirectionalLightsArePunctualLights) {
 
 TEST_F(Ceng795, OtherLightsAreNamedOnce) {
     const pt::Scene s = load(triangleScene("", "", "<Lights><AmbientLight>25 25 25</AmbientLight>"
-        "<SphericalDirectionalLight id=\"1\"/><SphericalDirectionalLight id=\"2\"/></Lights>"));
-    EXPECT_EQ(s.unsupported, (std::vector<std::string>{"ambient light (ignored)", "environment lights (ignored)"}));
+        "<HeadLight id=\"1\"/><HeadLight id=\"2\"/></Lights>"));
+    EXPECT_EQ(s.unsupported, (std::vector<std::string>{"ambient light (ignored)", "HeadLight lights (ignored)"}));
     EXPECT_TRUE(s.punctualLights.empty());
     const pt::Scene dark = load(triangleScene("", "", "<Lights><AmbientLight>0 0 0</AmbientLight></Lights>"));
     EXPECT_TRUE(dark.unsupported.empty());
@@ -959,6 +960,32 @@ TEST(Ceng795Official, MetalGlassPlatesTransformsAndInstance) {
     ASSERT_EQ(s.cameras.size(), 1u);
     EXPECT_TRUE(near4(*s.cameras[0].window, glm::vec4(-1, 1, -1, 1)));
     EXPECT_EQ(s.hints.maxDepth, std::optional<int>(7));
+}
+
+} // namespace
+
+namespace {
+
+// SphericalDirectionalLight: the lat-long map named by ImageId, read from <Textures><Images>.
+TEST_F(Ceng795, SphericalDirectionalLightLoadsItsMap) {
+    pt::Image map;
+    map.width = 4;
+    map.height = 2;
+    map.rgba.assign(4 * 2 * 4, 0.5f);
+    fs::create_directories(dir_ / "textures");
+    pt::writeExr(dir_ / "textures" / "sky.exr", map, {});
+    const std::string lights = "<Textures><Images><Image id=\"3\">textures/sky.exr</Image></Images></Textures>"
+                               "<Lights><SphericalDirectionalLight id=\"1\"><ImageId>3</ImageId></SphericalDirectionalLight></Lights>";
+    const pt::Scene s = load(triangleScene("", "", lights));
+    ASSERT_TRUE(s.environment.has_value());
+    EXPECT_EQ(s.environment->image.width, 4);
+    EXPECT_EQ(s.environment->image.height, 2);
+    EXPECT_FLOAT_EQ(s.environment->image.rgba[0], 0.5f);
+    expectError(triangleScene("", "", "<Lights><SphericalDirectionalLight id=\"1\"><ImageId>9</ImageId></SphericalDirectionalLight></Lights>"),
+        "SphericalDirectionalLight id=1: ImageId", "unknown image");
+    expectError(triangleScene("", "", "<Textures><Images><Image id=\"3\">textures/none.exr</Image></Images></Textures>"
+        "<Lights><SphericalDirectionalLight id=\"1\"><ImageId>3</ImageId></SphericalDirectionalLight></Lights>"),
+        "SphericalDirectionalLight id=1", "none.exr");
 }
 
 } // namespace
