@@ -75,16 +75,8 @@ std::string readFile(const fs::path& p) {
     return s.str();
 }
 
-std::string lower(std::string s) {
-    std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    return s;
-}
-
-std::string removeAll(std::string s, const std::string& what) {
-    if (what.empty()) return s;
-    for (size_t at; (at = s.find(what)) != std::string::npos;) s.erase(at, what.size());
-    return s;
-}
+using pt::test::lower;
+using pt::test::removeAll;
 
 class CliTest : public ::testing::Test {
 protected:

@@ -383,16 +383,8 @@ using pt::test::trim;
 std::map<std::string, std::string> expectedSubstrings() { return pt::test::malformedCorpusExpectations(); }
 std::vector<std::string> corpusFiles() { return pt::test::malformedCorpusFiles(); }
 
-std::string lower(std::string s) {
-    std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    return s;
-}
-
-std::string removeAll(std::string s, const std::string& what) {
-    if (what.empty()) return s;
-    for (size_t at; (at = s.find(what)) != std::string::npos;) s.erase(at, what.size());
-    return s;
-}
+using pt::test::lower;
+using pt::test::removeAll;
 
 TEST(GltfLoaderCorpus, ReadmeTableCoversEveryCorpusFile) {
     const auto expected = expectedSubstrings();

@@ -27,6 +27,17 @@ std::string trim(std::string s) {
     return s;
 }
 
+std::string lower(std::string s) {
+    std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    return s;
+}
+
+std::string removeAll(std::string s, const std::string& what) {
+    if (what.empty()) return s;
+    for (size_t at; (at = s.find(what)) != std::string::npos;) s.erase(at, what.size());
+    return s;
+}
+
 // README.md table rows: | `file` | problem | `substring` | (more columns allowed)
 std::map<std::string, std::string> malformedCorpusExpectations(const std::string& corpus) {
     std::ifstream in(malformedCorpusDir(corpus) / "README.md");

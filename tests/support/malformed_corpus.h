@@ -13,5 +13,9 @@ std::filesystem::path malformedCorpusDir(const std::string& corpus = "malformed_
 std::vector<std::string> malformedCorpusFiles(const std::string& corpus = "malformed_gltf"); // sorted
 std::map<std::string, std::string> malformedCorpusExpectations(const std::string& corpus = "malformed_gltf");
 std::string trim(std::string s);
+// For checking error messages: lower-cased text, and text with every occurrence of `what` removed
+// (a file's own path can contain the word a test looks for).
+std::string lower(std::string s);
+std::string removeAll(std::string s, const std::string& what);
 
 } // namespace pt::test
