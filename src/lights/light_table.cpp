@@ -8,13 +8,6 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-float luminance(const glm::vec3& c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
-
-// Selection weight of a colour: its luminance, with a floor so that a colour outside the
-// luminance weights (pure blue emission, say) still gets a share.
-double colourWeight(const glm::vec3& c) {
-    return std::max<double>(luminance(c), 1e-3 * (c.x + c.y + c.z));
-}
 
 // Rows of the GpuSphere maps back into a matrix (the linear part is all we need).
 glm::dmat3 linearPart(const glm::vec4 rows[3]) {
@@ -38,6 +31,10 @@ bool roundRadius(const glm::dmat3& a, double& radius) {
 
 } // namespace
 
+float luminance(const glm::vec3& c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
+
+double selectionWeight(const glm::vec3& c) { return std::max<double>(luminance(c), 1e-3 * (c.x + c.y + c.z)); }
+
 LightTable buildLightTable(std::span<gpu::GpuTriangle> triangles, std::span<gpu::GpuSphere> spheres,
     std::span<const PunctualLight> punctual, std::span<const Material> materials, float sceneRadius,
     double environmentRadiance) {
@@ -55,7 +52,7 @@ LightTable buildLightTable(std::span<gpu::GpuTriangle> triangles, std::span<gpu:
         const Material& m = materials[tri.materialIndex];
         if (!m.emissive()) continue;
         const double area = 0.5 * glm::length(glm::dvec3(glm::cross(tri.p1 - tri.p0, tri.p2 - tri.p0)));
-        const double p = kPi * colourWeight(m.emission) * area * (m.doubleSided ? 2.0 : 1.0);
+        const double p = kPi * selectionWeight(m.emission) * area * (m.doubleSided ? 2.0 : 1.0);
         if (!(area > 0.0) || !(p > 0.0) || !std::isfinite(p)) continue;
         tri.lightIndex = static_cast<uint32_t>(table.lights.size());
         gpu::GpuLight light{};
@@ -73,7 +70,7 @@ LightTable buildLightTable(std::span<gpu::GpuTriangle> triangles, std::span<gpu:
         const double det = std::abs(glm::determinant(a));
         // Area estimate for the power only: 4 pi times the squared geometric-mean radius.
         const double area = 4.0 * kPi * std::pow(det, 2.0 / 3.0);
-        const double p = kPi * colourWeight(m.emission) * area * (m.doubleSided ? 2.0 : 1.0);
+        const double p = kPi * selectionWeight(m.emission) * area * (m.doubleSided ? 2.0 : 1.0);
         if (!(det > 0.0) || !(p > 0.0) || !std::isfinite(p)) continue;
         sphere.lightIndex = static_cast<uint32_t>(table.lights.size());
         gpu::GpuLight light{};
@@ -92,7 +89,7 @@ LightTable buildLightTable(std::span<gpu::GpuTriangle> triangles, std::span<gpu:
         if (pl.type == PunctualLight::Type::Point) {
             light.type = LIGHT_POINT;
             light.position = pl.position;
-            p = 4.0 * kPi * colourWeight(pl.intensity);
+            p = 4.0 * kPi * selectionWeight(pl.intensity);
         } else if (pl.type == PunctualLight::Type::Spot) {
             light.type = LIGHT_SPOT;
             light.position = pl.position;
@@ -100,19 +97,19 @@ LightTable buildLightTable(std::span<gpu::GpuTriangle> triangles, std::span<gpu:
             light.cosFalloff = pl.cosFalloff;
             light.cosCoverage = pl.cosCoverage;
             // Power of the cone out to the mid-point of the falloff band.
-            p = 2.0 * kPi * (1.0 - 0.5 * (double(pl.cosFalloff) + pl.cosCoverage)) * colourWeight(pl.intensity);
+            p = 2.0 * kPi * (1.0 - 0.5 * (double(pl.cosFalloff) + pl.cosCoverage)) * selectionWeight(pl.intensity);
         } else if (pl.type == PunctualLight::Type::Square) {
             light.type = LIGHT_SQUARE;
             light.position = pl.position;
             light.direction = glm::normalize(pl.direction);
             light.radius = pl.size;
             light.area = pl.size * pl.size;
-            p = kPi * colourWeight(pl.intensity) * double(pl.size) * pl.size;
+            p = kPi * selectionWeight(pl.intensity) * double(pl.size) * pl.size;
         } else {
             light.type = LIGHT_DIRECTIONAL;
             light.direction = glm::normalize(pl.direction);
             // The power reaching a disc the size of the scene, as pbrt estimates it.
-            p = kPi * double(sceneRadius) * sceneRadius * colourWeight(pl.intensity);
+            p = kPi * double(sceneRadius) * sceneRadius * selectionWeight(pl.intensity);
         }
         light.intensity = pl.intensity;
         if (!(p > 0.0) || !std::isfinite(p)) continue;

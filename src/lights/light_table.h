@@ -26,6 +26,12 @@ LightTable buildLightTable(std::span<gpu::GpuTriangle> triangles, std::span<gpu:
     std::span<const PunctualLight> punctual, std::span<const Material> materials, float sceneRadius,
     double environmentRadiance = -1.0);
 
+// Luminance (Rec. 709) of a linear RGB colour.
+float luminance(const glm::vec3& c);
+// Weight of a colour in light selection and environment sampling: its luminance, with a floor so
+// that a colour outside the luminance weights (pure blue emission, say) still gets a share.
+double selectionWeight(const glm::vec3& c);
+
 // Triangles only.
 LightTable buildLightTable(std::span<gpu::GpuTriangle> triangles, std::span<const Material> materials);
 

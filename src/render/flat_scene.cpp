@@ -48,6 +48,17 @@ gpu::GpuMaterial toGpu(const Material& m) {
 
 bool finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
+// The tree as the kernel reads it; `what` names it if it is too deep for the traversal stack.
+std::vector<gpu::GpuBvhNode> gpuNodes(const Bvh& bvh, const std::string& what) {
+    if (bvh.maxDepth >= kMaxTraversalDepth)
+        throw std::runtime_error(what + " depth " + std::to_string(bvh.maxDepth) + " exceeds the traversal stack (" +
+                                 std::to_string(kMaxTraversalDepth) + ")");
+    std::vector<gpu::GpuBvhNode> nodes;
+    nodes.reserve(bvh.nodes.size());
+    for (const BvhNode& n : bvh.nodes) nodes.push_back({n.lo, n.leftOrFirst, n.hi, n.count});
+    return nodes;
+}
+
 // World-space box of the unit sphere under the affine map m: the half-extent along each axis
 // is the length of that row of m's linear part.
 Aabb sphereBounds(const glm::mat4& m) {
@@ -87,17 +98,13 @@ void flattenSpheres(const Scene& scene, const BvhBuildOptions& bvhOptions, FlatS
         spheres.push_back(g);
         bounds.push_back(sphereBounds(s.objectToWorld));
     }
-    Bvh bvh = buildBvh(bounds, bvhOptions);
-    if (bvh.maxDepth >= kMaxTraversalDepth)
-        throw std::runtime_error(scene.source + ": sphere BVH depth " + std::to_string(bvh.maxDepth) + " exceeds the traversal stack");
-    for (const BvhNode& n : bvh.nodes) flat.sphereNodes.push_back({n.lo, n.leftOrFirst, n.hi, n.count});
+    const Bvh bvh = buildBvh(bounds, bvhOptions);
+    flat.sphereNodes = gpuNodes(bvh, scene.source + ": sphere BVH");
     for (uint32_t original : bvh.primOrder) flat.spheres.push_back(spheres[original]);
 }
 
 // A constant environment becomes a small map so that one sampler serves both.
 constexpr uint32_t kConstantEnvWidth = 8, kConstantEnvHeight = 16;
-
-float luminanceOf(const glm::vec3& c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
 
 FlatEnvironment flattenEnvironment(const Environment& env, const std::string& source) {
     FlatEnvironment out;
@@ -117,7 +124,7 @@ FlatEnvironment flattenEnvironment(const Environment& env, const std::string& so
                                          ") is negative or not finite");
             out.texels[size_t(y) * out.width + x] = glm::vec4(c, 0.0f);
         }
-    // Sampling weights: luminance (with a floor for colours outside its weights) x sin(theta)
+    // Sampling weights: the light table's selection weight x sin(theta)
     // at the row's centre, so the density follows solid angle and poles get no excess samples.
     std::vector<double> rowSum(out.height, 0.0);
     out.conditional.assign(size_t(out.height) * (out.width + 1), 0.0f);
@@ -128,10 +135,9 @@ FlatEnvironment flattenEnvironment(const Environment& env, const std::string& so
         double sum = 0;
         for (uint32_t x = 0; x < out.width; ++x) {
             const glm::vec3 c(out.texels[size_t(y) * out.width + x]);
-            const double l = std::max<double>(luminanceOf(c), 1e-3 * (c.x + c.y + c.z));
-            w[x] = l * sinTheta;
+            w[x] = selectionWeight(c) * sinTheta;
             sum += w[x];
-            radianceIntegral += luminanceOf(c) * sinTheta;
+            radianceIntegral += luminance(c) * sinTheta;
         }
         float* cdf = &out.conditional[size_t(y) * (out.width + 1)];
         double running = 0;
@@ -218,15 +224,11 @@ FlatScene flattenScene(const Scene& scene, const BvhBuildOptions& bvhOptions) {
         }
     }
 
-    Bvh bvh = buildBvh(bounds, bvhOptions);
-    if (bvh.maxDepth >= kMaxTraversalDepth)
-        throw std::runtime_error(scene.source + ": BVH depth " + std::to_string(bvh.maxDepth) + " exceeds the traversal stack (" +
-                                 std::to_string(kMaxTraversalDepth) + ")");
+    const Bvh bvh = buildBvh(bounds, bvhOptions);
+    flat.nodes = gpuNodes(bvh, scene.source + ": BVH");
     flat.bvhSeconds = bvh.buildSeconds;
     flat.sahCost = bvh.sahCost;
     flat.bvhDepth = bvh.maxDepth;
-    flat.nodes.reserve(bvh.nodes.size());
-    for (const BvhNode& n : bvh.nodes) flat.nodes.push_back({n.lo, n.leftOrFirst, n.hi, n.count});
     flat.triangles.reserve(triangles.size());
     flat.shading.reserve(triangles.size());
     for (uint32_t original : bvh.primOrder) {

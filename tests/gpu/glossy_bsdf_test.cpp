@@ -17,6 +17,19 @@ glm::vec3 direction(double z, double phi) {
     return glm::vec3(r * std::cos(phi), r * std::sin(phi), z);
 }
 
+constexpr double dz = 1.0 / kZBins / kSub, dphi = 2 * M_PI / kPhiBins / kSub;
+
+// kSub x kSub midpoint directions inside each (cos theta, phi) bin, bin after bin.
+std::vector<glm::vec4> midpointGrid() {
+    std::vector<glm::vec4> dirs;
+    for (int zi = 0; zi < kZBins; ++zi)
+        for (int pi = 0; pi < kPhiBins; ++pi)
+            for (int a = 0; a < kSub; ++a)
+                for (int b = 0; b < kSub; ++b)
+                    dirs.emplace_back(direction((zi * kSub + a + 0.5) * dz, (pi * kSub + b + 0.5) * dphi), 0.0f);
+    return dirs;
+}
+
 int binOf(const glm::vec3& w) {
     double phi = std::atan2(w.y, w.x);
     if (phi < 0) phi += 2 * M_PI;
@@ -79,13 +92,7 @@ TEST_F(GlossyBsdf, SamplingMatchesPdfAndWeightsAreFCosOverPdf) {
         const Case& c = all[index];
         const glm::vec3 wo(std::sqrt(1.0f - c.cosThetaO * c.cosThetaO), 0.0f, c.cosThetaO);
         // Expected counts: the pdf integrated over each bin by a kSub x kSub midpoint rule.
-        std::vector<glm::vec4> dirs;
-        const double dz = 1.0 / kZBins / kSub, dphi = 2 * M_PI / kPhiBins / kSub;
-        for (int zi = 0; zi < kZBins; ++zi)
-            for (int pi = 0; pi < kPhiBins; ++pi)
-                for (int a = 0; a < kSub; ++a)
-                    for (int b = 0; b < kSub; ++b)
-                        dirs.emplace_back(direction((zi * kSub + a + 0.5) * dz, (pi * kSub + b + 0.5) * dphi), 0.0f);
+        const std::vector<glm::vec4> dirs = midpointGrid();
         const auto values = evaluate(index, wo, dirs);
         std::vector<double> expected(kZBins * kPhiBins + 1, 0.0), observed(kZBins * kPhiBins + 1, 0.0);
         double albedo = 0, mass = 0;
@@ -133,13 +140,7 @@ TEST_F(GlossyBsdf, SamplingMatchesPdfAndWeightsAreFCosOverPdf) {
 TEST_F(GlossyBsdf, ChiSquareRejectsAWrongExponent) {
     // Negative control: samples of the p = 20 lobe judged by the pdf of a p = 50 lobe.
     const glm::vec3 wo(std::sqrt(1.0f - 0.75f * 0.75f), 0.0f, 0.75f);
-    std::vector<glm::vec4> dirs;
-    const double dz = 1.0 / kZBins / kSub, dphi = 2 * M_PI / kPhiBins / kSub;
-    for (int zi = 0; zi < kZBins; ++zi)
-        for (int pi = 0; pi < kPhiBins; ++pi)
-            for (int a = 0; a < kSub; ++a)
-                for (int b = 0; b < kSub; ++b)
-                    dirs.emplace_back(direction((zi * kSub + a + 0.5) * dz, (pi * kSub + b + 0.5) * dphi), 0.0f);
+    const std::vector<glm::vec4> dirs = midpointGrid();
     const auto wrong = evaluate(1, wo, dirs); // material 1: Blinn-Phong p 50
     std::vector<double> expected(kZBins * kPhiBins, 0.0), observed(kZBins * kPhiBins, 0.0);
     for (size_t k = 0; k < dirs.size(); ++k) expected[k / (kSub * kSub)] += wrong[k].w * dz * dphi * kSamples;
