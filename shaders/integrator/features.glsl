@@ -21,5 +21,12 @@ layout(constant_id = SPEC_HAS_CONDUCTOR) const bool HAS_CONDUCTOR = true;
 layout(constant_id = SPEC_HAS_PUNCTUAL_LIGHTS) const bool HAS_PUNCTUAL_LIGHTS = true;
 layout(constant_id = SPEC_HAS_GLOSSY) const bool HAS_GLOSSY = true;
 layout(constant_id = SPEC_HAS_ENVIRONMENT) const bool HAS_ENVIRONMENT = true;
+layout(constant_id = SPEC_HAS_TEXTURES) const bool HAS_TEXTURES = true;
+layout(constant_id = SPEC_HAS_NORMAL_MAPS) const bool HAS_NORMAL_MAPS = true;
+layout(constant_id = SPEC_HAS_ALPHA) const bool HAS_ALPHA = true;
+layout(constant_id = SPEC_HAS_PROCEDURAL) const bool HAS_PROCEDURAL = true;
+layout(constant_id = SPEC_HAS_UNLIT) const bool HAS_UNLIT = true;
+layout(constant_id = SPEC_HAS_MICROFACET) const bool HAS_MICROFACET = true;
+layout(constant_id = SPEC_HAS_PBR) const bool HAS_PBR = true;
 
 #endif

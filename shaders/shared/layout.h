@@ -27,6 +27,10 @@ using uint64_t = std::uint64_t;
 #define MATERIAL_DIELECTRIC 2u
 #define MATERIAL_CONDUCTOR 3u
 #define MATERIAL_GLOSSY 4u // Lambert + one course BRDF lobe (GLOSSY_*)
+#define MATERIAL_PBR 5u    // glTF metallic-roughness: Lambert under GGX dielectric, GGX metal, transmission
+// MATERIAL_CONDUCTOR and MATERIAL_DIELECTRIC with alpha > 0 are GGX-rough (alpha below
+// MIN_ROUGH_ALPHA stays a smooth delta surface).
+#define MIN_ROUGH_ALPHA 1e-3
 
 // ---- Glossy lobes (GpuMaterial::glossyModel), the CENG795 course's BRDFs ----
 #define GLOSSY_ORIGINAL_PHONG 0u
@@ -40,9 +44,33 @@ using uint64_t = std::uint64_t;
 #define MATERIAL_FLAG_ABSORBING 2u    // dielectric interior has Beer-Lambert absorption
 #define MATERIAL_FLAG_NORMALIZED 4u   // glossy: energy-normalised modified Phong / Blinn-Phong lobe
 #define MATERIAL_FLAG_KD_FRESNEL 8u   // glossy Torrance-Sparrow: diffuse term times (1 - F)
+#define MATERIAL_FLAG_BLEND_KD 16u    // course blend_kd: kd = (kd + texel) / 2 instead of kd * texel
+#define MATERIAL_FLAG_BUMP_MAP 32u    // normalTexture holds heights (course bump_normal), not normals
+#define MATERIAL_FLAG_UNLIT 64u       // course replace_all: shows baseColor (texture) as is, no shading
+#define MATERIAL_FLAG_ALPHA_MASK 128u // glTF alphaMode MASK: cut out where alpha < alphaCutoff
+#define MATERIAL_FLAG_ALPHA_BLEND 256u // glTF alphaMode BLEND: stochastic cut-out with probability 1 - alpha
+#define MATERIAL_FLAG_THIN_WALLED 512u // PBR transmission without KHR_materials_volume: no refraction bend
+
+// ---- Textures (GpuTexture) ----
+#define NO_TEXTURE 0xffffffffu
+#define TEXTURE_IMAGE 0u
+#define TEXTURE_CHECKERBOARD 1u // course checkerboard, from the world-space point
+#define TEXTURE_PERLIN 2u       // course Perlin noise, from the world-space point
+#define TEXTURE_FLAG_BILINEAR 1u
+#define TEXTURE_FLAG_SRGB 2u     // texels are sRGB-encoded (glTF colour textures)
+#define TEXTURE_FLAG_GAMMA_22 4u // texels are gamma 2.2 encoded (course degamma="true")
+#define TEXTURE_FLAG_FLOAT 8u    // texels are 4 floats (HDR images); otherwise one packed RGBA8 uint
+#define TEXTURE_FLAG_PERLIN_ABS 16u // Perlin: |n| (veins) instead of (n + 1) / 2
+#define TEXTURE_FLAG_TEXCOORD_1 32u // glTF TEXCOORD_1 (unused until meshes carry a second set)
+#define TEXTURE_WRAP_U_SHIFT 8u  // 2 bits each: TEXTURE_WRAP_*
+#define TEXTURE_WRAP_V_SHIFT 10u
+#define TEXTURE_WRAP_REPEAT 0u
+#define TEXTURE_WRAP_CLAMP 1u
+#define TEXTURE_WRAP_MIRROR 2u
 
 // ---- Triangle flags ----
 #define TRIANGLE_FLAG_SHADING_NORMALS 1u // interpolate n0..n2; otherwise use the geometric normal
+#define TRIANGLE_FLAG_ALPHA_TESTED 2u    // its material cuts out by alpha: any-hit test in traversal
 
 #define NO_LIGHT 0xffffffffu
 // Hit::primitive: triangles are plain indices, spheres carry this bit.
@@ -67,7 +95,14 @@ using uint64_t = std::uint64_t;
 #define SPEC_HAS_PUNCTUAL_LIGHTS 15
 #define SPEC_HAS_GLOSSY 16
 #define SPEC_HAS_ENVIRONMENT 17
-#define SPEC_COUNT 18
+#define SPEC_HAS_TEXTURES 18      // image textures on any material slot
+#define SPEC_HAS_NORMAL_MAPS 19   // normal or bump maps
+#define SPEC_HAS_ALPHA 20         // alpha-tested triangles
+#define SPEC_HAS_PROCEDURAL 21    // checkerboard or Perlin textures
+#define SPEC_HAS_UNLIT 22         // course replace_all surfaces
+#define SPEC_HAS_MICROFACET 23    // GGX-rough conductors or dielectrics
+#define SPEC_HAS_PBR 24           // glTF metallic-roughness materials
+#define SPEC_COUNT 25
 
 // A triangle as the intersector reads it: world-space vertices plus the ids it needs at a hit.
 struct GpuTriangle {
@@ -114,10 +149,44 @@ struct GpuMaterial {
     uint glossyModel;  // GLOSSY_*
     vec3 conductorK;   // imaginary part (absorption index)
     float exponent;    // glossy lobe exponent
-    vec3 specular;     // glossy: ks
-    float pad0;
+    vec3 specular;     // glossy: ks; PBR: KHR_materials_specular colour factor
+    float alpha;       // GGX alpha (perceptual roughness squared); below MIN_ROUGH_ALPHA: smooth
+    float metallic;    // PBR: metal blend
+    float transmission; // PBR: KHR_materials_transmission factor
+    float specularWeight; // PBR: KHR_materials_specular factor
+    float normalScale; // normal map scale, or the course BumpFactor for bump maps
+    // Texture slots (index into the texture table, or NO_TEXTURE). Colour slots multiply the
+    // factor above (course replace_* sets the factor to 1).
+    uint baseColorTexture; // rgb: baseColor (course kd), a: opacity
+    uint specularTexture;  // course replace_ks
+    uint metallicRoughnessTexture; // glTF: g roughness, b metallic
+    uint normalTexture;    // tangent-space normals, or heights with MATERIAL_FLAG_BUMP_MAP
+    uint emissiveTexture;
+    float alphaCutoff;     // MATERIAL_FLAG_ALPHA_MASK threshold
+    float opacity;         // baseColor alpha factor
+    uint pad0;
 };
-PT_CHECK_SIZE(GpuMaterial, 96);
+PT_CHECK_SIZE(GpuMaterial, 144);
+
+// A texture: an image in the texel buffer (with filter, wrap, encoding and a uv transform) or
+// a course procedural pattern.
+struct GpuTexture {
+    uint type;        // TEXTURE_*
+    uint flags;       // TEXTURE_FLAG_* and wrap modes
+    uint texelOffset; // first uint of the image in the texel buffer
+    uint width;
+    uint height;
+    float valueScale;    // multiplies every value (course: 255 / Normalizer)
+    float patternScale;  // checkerboard: Scale; Perlin: NoiseScale
+    float patternOffset; // checkerboard: Offset
+    vec4 uvRow0;      // uv' = (dot(uvRow0.xy, uv) + uvRow0.z, dot(uvRow1.xy, uv) + uvRow1.z)
+    vec4 uvRow1;      //   (KHR_texture_transform; identity otherwise)
+    vec3 colorA;      // checkerboard: BlackColor
+    float pad0;
+    vec3 colorB;      // checkerboard: WhiteColor
+    float pad1;
+};
+PT_CHECK_SIZE(GpuTexture, 96);
 
 // An analytic sphere: the unit sphere at the origin under an affine map (so ellipsoids too).
 // Both directions of the map are stored (rows of 3x4 matrices): rays go to object space for
@@ -186,8 +255,8 @@ struct GpuSceneParams {
     uint64_t envTexels;    // vec4[envWidth * envHeight]: radiance (scale applied), row 0 at the top
     uint64_t envMarginal;  // float[envHeight + 1]: CDF over rows of the sampling weights
     uint64_t envConditional; // float[envHeight * (envWidth + 1)]: CDF over columns, per row
-    uint64_t pad0;         // keeps the camera 16-byte aligned in C++ as in std430
-    uint64_t pad2;
+    uint64_t textures;     // GpuTexture[]
+    uint64_t texels;       // uint[]: packed RGBA8 or float texels of every image texture
     GpuCamera camera;
     vec3 background; // radiance of rays that escape
     uint numLights;
@@ -205,7 +274,7 @@ struct GpuSceneParams {
     float envRotationCos; // rotation about +y
     float envRotationSin;
     float envSamplingTotal; // sum of the sampling weights (for the pdf)
-    uint pad1;
+    uint backgroundTexture; // course replace_background: camera rays that escape see this, or NO_TEXTURE
 };
 PT_CHECK_SIZE(GpuSceneParams, 112 + 80 + 80);
 
@@ -229,6 +298,7 @@ PT_CHECK_SIZE(GpuRenderPush, 40);
 #define TEST_MODE_TRACE_BRUTE_FORCE 5u
 #define TEST_MODE_BSDF_SAMPLE 6u // outputs[i] = (wi local, pdf), outputs[count + i] = (weight, valid)
 #define TEST_MODE_BSDF_PDF 7u    // inputs: local wi; outputs[i] = (f cos, pdf)
+#define TEST_MODE_TEXTURE 8u     // texture materialIndex at inputs[i] = (u, v, _, _) or point (xyz); outputs[i] = value
 
 struct GpuTestRay {
     vec3 origin;

@@ -26,7 +26,21 @@ FeatureSet FeatureSet::all(const IntegratorSettings& settings) {
 FeatureSet computeFeatures(const FlatScene& scene, const IntegratorSettings& settings) {
     FeatureSet f;
     f.diffuse = f.mirror = f.dielectric = f.conductor = f.glossy = f.absorption = f.shadingNormals = f.emitters = false;
+    f.textures = f.normalMaps = f.alpha = f.procedural = f.unlit = f.microfacet = f.pbr = false;
+    auto usesTexture = [&](uint32_t slot) {
+        if (slot == NO_TEXTURE) return;
+        const uint32_t type = scene.textures[slot].type;
+        f.textures |= type == TEXTURE_IMAGE;
+        f.procedural |= type != TEXTURE_IMAGE;
+    };
     for (const auto& m : scene.materials) {
+        for (uint32_t slot : {m.baseColorTexture, m.specularTexture, m.metallicRoughnessTexture, m.normalTexture, m.emissiveTexture})
+            usesTexture(slot);
+        f.normalMaps |= m.normalTexture != NO_TEXTURE;
+        f.unlit |= (m.flags & MATERIAL_FLAG_UNLIT) != 0u;
+        f.pbr |= m.type == MATERIAL_PBR;
+        f.microfacet |= (m.type == MATERIAL_CONDUCTOR || m.type == MATERIAL_DIELECTRIC) && m.alpha > 0.0f;
+        f.emitters |= m.emissiveTexture != NO_TEXTURE || (m.flags & MATERIAL_FLAG_UNLIT) != 0u;
         f.diffuse |= m.type == MATERIAL_DIFFUSE;
         f.mirror |= m.type == MATERIAL_MIRROR;
         f.dielectric |= m.type == MATERIAL_DIELECTRIC;
@@ -35,7 +49,11 @@ FeatureSet computeFeatures(const FlatScene& scene, const IntegratorSettings& set
         f.absorption |= m.type == MATERIAL_DIELECTRIC && (m.flags & MATERIAL_FLAG_ABSORBING) != 0u;
         f.emitters |= m.emission.x > 0 || m.emission.y > 0 || m.emission.z > 0;
     }
-    for (const auto& t : scene.triangles) f.shadingNormals |= (t.flags & TRIANGLE_FLAG_SHADING_NORMALS) != 0u;
+    usesTexture(scene.backgroundTexture);
+    for (const auto& t : scene.triangles) {
+        f.shadingNormals |= (t.flags & TRIANGLE_FLAG_SHADING_NORMALS) != 0u;
+        f.alpha |= (t.flags & TRIANGLE_FLAG_ALPHA_TESTED) != 0u;
+    }
     f.triangles = !scene.triangles.empty();
     f.spheres = !scene.spheres.empty();
     f.punctualLights = false;
@@ -44,7 +62,7 @@ FeatureSet computeFeatures(const FlatScene& scene, const IntegratorSettings& set
     f.environment = scene.environment.width > 0;
     // Light sampling needs something to sample and a non-delta surface that can use it.
     // (The environment is in the table too.)
-    f.nee = settings.nee && !scene.lights.lights.empty() && (f.diffuse || f.glossy);
+    f.nee = settings.nee && !scene.lights.lights.empty() && (f.diffuse || f.glossy || f.pbr || f.microfacet);
     f.mis = f.nee && settings.mis;
     f.rr = settings.rr;
     f.cosineSampling = settings.sampling == DirectionSampling::Cosine;
@@ -71,6 +89,13 @@ std::vector<SpecializationConstant> FeatureSet::constants(uint32_t localSizeX, u
         {SPEC_HAS_PUNCTUAL_LIGHTS, punctualLights},
         {SPEC_HAS_GLOSSY, glossy},
         {SPEC_HAS_ENVIRONMENT, environment},
+        {SPEC_HAS_TEXTURES, textures},
+        {SPEC_HAS_NORMAL_MAPS, normalMaps},
+        {SPEC_HAS_ALPHA, alpha},
+        {SPEC_HAS_PROCEDURAL, procedural},
+        {SPEC_HAS_UNLIT, unlit},
+        {SPEC_HAS_MICROFACET, microfacet},
+        {SPEC_HAS_PBR, pbr},
     };
 }
 
@@ -88,11 +113,18 @@ std::string FeatureSet::describe() const {
     add(dielectric, "dielectric");
     add(conductor, "conductor");
     add(glossy, "glossy");
+    add(pbr, "pbr");
+    add(microfacet, "microfacet");
     add(absorption, "absorption");
     add(shadingNormals, "shading-normals");
     add(emitters, "emitters");
     add(punctualLights, "punctual-lights");
     add(environment, "environment");
+    add(textures, "textures");
+    add(procedural, "procedural-textures");
+    add(normalMaps, "normal-maps");
+    add(alpha, "alpha");
+    add(unlit, "unlit");
     add(nee, "nee");
     add(mis, "mis");
     add(rr, "rr");

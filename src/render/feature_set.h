@@ -23,6 +23,13 @@ struct FeatureSet {
     bool emitters = true;
     bool punctualLights = true;
     bool environment = true;
+    bool textures = true;      // image textures
+    bool normalMaps = true;    // normal or bump maps
+    bool alpha = true;         // alpha-tested triangles
+    bool procedural = true;    // checkerboard / Perlin textures
+    bool unlit = true;         // course replace_all
+    bool microfacet = true;    // GGX-rough conductors / dielectrics
+    bool pbr = true;           // glTF metallic-roughness
     bool nee = true;
     bool mis = true;
     bool rr = true;

@@ -28,7 +28,31 @@ gpu::GpuMaterial toGpu(const Material& m) {
     case MaterialType::Dielectric: g.type = MATERIAL_DIELECTRIC; break;
     case MaterialType::Conductor: g.type = MATERIAL_CONDUCTOR; break;
     case MaterialType::Glossy: g.type = MATERIAL_GLOSSY; break;
+    case MaterialType::Pbr: g.type = MATERIAL_PBR; break;
     }
+    // Microfacet: alpha = roughness^2 (the glTF / Disney perceptual mapping); below
+    // MIN_ROUGH_ALPHA the surface stays a smooth delta one so nothing overflows.
+    g.alpha = m.roughness * m.roughness;
+    if (!(g.alpha >= float(MIN_ROUGH_ALPHA))) g.alpha = 0.0f;
+    g.alpha = std::min(g.alpha, 1.0f);
+    g.metallic = m.metallic;
+    g.transmission = m.transmission;
+    g.specularWeight = m.specularWeight;
+    if (m.type == MaterialType::Pbr && m.thinWalled) g.flags |= MATERIAL_FLAG_THIN_WALLED;
+    auto slot = [](const std::optional<uint32_t>& t) { return t ? *t : NO_TEXTURE; };
+    g.baseColorTexture = slot(m.baseColorTexture);
+    g.specularTexture = slot(m.specularTexture);
+    g.metallicRoughnessTexture = slot(m.metallicRoughnessTexture);
+    g.normalTexture = slot(m.normalTexture);
+    g.emissiveTexture = slot(m.emissiveTexture);
+    g.normalScale = m.normalScale;
+    if (m.bumpMap) g.flags |= MATERIAL_FLAG_BUMP_MAP;
+    if (m.blendBaseColor) g.flags |= MATERIAL_FLAG_BLEND_KD;
+    if (m.unlit) g.flags |= MATERIAL_FLAG_UNLIT;
+    if (m.alphaMode == Material::AlphaMode::Mask) g.flags |= MATERIAL_FLAG_ALPHA_MASK;
+    if (m.alphaMode == Material::AlphaMode::Blend) g.flags |= MATERIAL_FLAG_ALPHA_BLEND;
+    g.alphaCutoff = m.alphaCutoff;
+    g.opacity = m.opacity;
     g.specular = m.specular;
     g.exponent = m.exponent;
     g.glossyModel = static_cast<uint32_t>(m.glossyModel); // same order as GLOSSY_*
@@ -44,6 +68,13 @@ gpu::GpuMaterial toGpu(const Material& m) {
         g.flags |= MATERIAL_FLAG_ABSORBING;
     }
     return g;
+}
+
+// Whether any-hit traversal must test this material's alpha (glTF MASK and BLEND).
+bool cutsOut(const Material& m) {
+    if (m.alphaMode == Material::AlphaMode::Opaque) return false;
+    if (m.baseColorTexture) return true;
+    return m.alphaMode == Material::AlphaMode::Mask ? m.opacity < m.alphaCutoff : m.opacity < 1.0f;
 }
 
 bool finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
@@ -177,6 +208,7 @@ float sceneRadius(const FlatScene& flat) {
 FlatScene flattenScene(const Scene& scene, const BvhBuildOptions& bvhOptions) {
     FlatScene flat;
     for (const Material& m : scene.materials) flat.materials.push_back(toGpu(m));
+    flattenTextures(scene, flat);
 
     // Gather valid triangles in scene order; zero-area ones can never be hit and would only
     // cost traversal time (and break light sampling if emissive).
@@ -199,6 +231,7 @@ FlatScene flattenScene(const Scene& scene, const BvhBuildOptions& bvhOptions) {
             }
             tri.materialIndex = mesh.material;
             tri.lightIndex = NO_LIGHT;
+            if (cutsOut(scene.materials[mesh.material])) tri.flags |= TRIANGLE_FLAG_ALPHA_TESTED;
             gpu::GpuTriangleShading sh{};
             if (!mesh.normals.empty()) {
                 sh.n0 = mesh.normals[t.x];

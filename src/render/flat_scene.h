@@ -27,6 +27,9 @@ struct FlatScene {
     std::vector<gpu::GpuSphere> spheres;         // BVH-ordered
     std::vector<gpu::GpuBvhNode> sphereNodes;    // a second BVH, over the spheres
     std::vector<gpu::GpuMaterial> materials;
+    std::vector<gpu::GpuTexture> textures;
+    std::vector<uint32_t> texels; // every image texture's texels, packed (see GpuTexture)
+    uint32_t backgroundTexture = NO_TEXTURE;
     FlatEnvironment environment;
     LightTable lights;
     size_t degenerateTriangles = 0; // zero-area or non-finite triangles dropped
@@ -37,6 +40,9 @@ struct FlatScene {
 };
 
 FlatScene flattenScene(const Scene& scene, const BvhBuildOptions& bvhOptions = {});
+
+// The scene's textures and their images as the kernel reads them (src/render/flat_textures.cpp).
+void flattenTextures(const Scene& scene, FlatScene& flat);
 
 // Deepest BVH the kernel's traversal stack (shaders/geometry/traverse.glsl) can hold.
 constexpr int kMaxTraversalDepth = 64;

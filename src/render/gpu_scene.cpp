@@ -23,6 +23,8 @@ GpuScene::GpuScene(VulkanContext& context, const FlatScene& scene, gpu::GpuScene
     envTexels_ = makeBuffer(context, scene.environment.texels, "environment texels");
     envMarginal_ = makeBuffer(context, scene.environment.marginal, "environment marginal cdf");
     envConditional_ = makeBuffer(context, scene.environment.conditional, "environment conditional cdf");
+    textures_ = makeBuffer(context, scene.textures, "textures");
+    texels_ = makeBuffer(context, scene.texels, "texels");
     accumulation_ = GpuBuffer(context, accumulationBytes, "accumulation");
     if (accumulationBytes > 0) accumulation_.fillZero();
 
@@ -38,6 +40,9 @@ GpuScene::GpuScene(VulkanContext& context, const FlatScene& scene, gpu::GpuScene
     params.envTexels = envTexels_.address();
     params.envMarginal = envMarginal_.address();
     params.envConditional = envConditional_.address();
+    params.textures = textures_.address();
+    params.texels = texels_.address();
+    params.backgroundTexture = scene.backgroundTexture;
     params.envWidth = scene.environment.width;
     params.envHeight = scene.environment.height;
     params.envLightIndex = scene.lights.environmentIndex;

@@ -13,7 +13,10 @@
 
 namespace pt {
 
-enum class MaterialType { Diffuse, Mirror, Dielectric, Conductor, Glossy };
+// Pbr: the glTF metallic-roughness model (Lambert base under a GGX dielectric coat, a GGX
+// metal blended by `metallic`, optional transmission). Conductor and Dielectric are GGX-rough
+// when `roughness` > 0.
+enum class MaterialType { Diffuse, Mirror, Dielectric, Conductor, Glossy, Pbr };
 
 // The CENG795 course's BRDF models: a Lambertian term plus one specular lobe of exponent p.
 enum class GlossyModel { OriginalPhong, OriginalBlinnPhong, ModifiedPhong, ModifiedBlinnPhong, TorranceSparrow };
@@ -39,7 +42,59 @@ struct Material {
     bool normalized = false; // Modified Phong / Blinn-Phong: energy-normalised lobes
     bool kdFresnel = false;  // Torrance-Sparrow: diffuse term scaled by (1 - F)
 
-    bool emissive() const { return emission.x > 0 || emission.y > 0 || emission.z > 0; }
+    // Microfacet (GGX) and glTF PBR parameters.
+    float roughness = 0.0f;      // perceptual roughness; GGX alpha = roughness^2
+    float metallic = 0.0f;       // Pbr
+    float transmission = 0.0f;   // Pbr: KHR_materials_transmission
+    float specularWeight = 1.0f; // Pbr: KHR_materials_specular factor (colour in `specular`)
+    bool thinWalled = true;      // Pbr transmission: no KHR_materials_volume, so no bending
+
+    // Textures: indices into Scene::textures. Colour slots multiply the factor above.
+    std::optional<uint32_t> baseColorTexture; // rgb: baseColor, a: opacity
+    std::optional<uint32_t> specularTexture;  // the course's replace_ks
+    std::optional<uint32_t> metallicRoughnessTexture;
+    std::optional<uint32_t> normalTexture;    // tangent-space normal map, or heights if bumpMap
+    std::optional<uint32_t> emissiveTexture;
+    float normalScale = 1.0f; // normal map strength; the course's BumpFactor for bump maps
+    bool bumpMap = false;     // normalTexture holds heights (the course's bump_normal)
+    bool blendBaseColor = false; // the course's blend_kd: kd = (kd + texel) / 2
+    bool unlit = false;          // the course's replace_all: the base colour is shown unshaded
+
+    enum class AlphaMode { Opaque, Mask, Blend };
+    AlphaMode alphaMode = AlphaMode::Opaque;
+    float alphaCutoff = 0.5f;
+    float opacity = 1.0f; // baseColor alpha factor
+
+    bool emissive() const { return emission.x > 0 || emission.y > 0 || emission.z > 0 || (unlit && baseColorTexture); }
+};
+
+// An image a texture reads: 8-bit RGBA (packed, as in the file) or float RGBA.
+struct TextureImage {
+    int width = 0, height = 0;
+    std::vector<uint32_t> rgba8;   // row 0 at the top; R in the low byte
+    std::vector<glm::vec4> rgbaF;  // used instead when the file is HDR
+    std::string source;            // file name, for messages
+};
+
+enum class TextureWrap { Repeat, Clamp, Mirror };
+
+// What a material slot samples: an image (with filter, wrap, encoding, uv transform) or one of
+// the course's procedural patterns, evaluated at the world-space point.
+struct Texture {
+    enum class Type { Image, Checkerboard, Perlin };
+    enum class Encoding { Linear, Srgb, Gamma22 };
+    Type type = Type::Image;
+    uint32_t image = 0; // index into Scene::textureImages
+    Encoding encoding = Encoding::Linear;
+    bool bilinear = true;
+    TextureWrap wrapU = TextureWrap::Repeat, wrapV = TextureWrap::Repeat;
+    float valueScale = 1.0f; // course: 255 / Normalizer
+    // KHR_texture_transform as a 2x3 matrix: uv' = (dot(row0.xy, uv) + row0.z, dot(row1.xy, uv) + row1.z)
+    glm::vec3 uvRow0{1, 0, 0}, uvRow1{0, 1, 0};
+    // Checkerboard
+    glm::vec3 black{0.0f}, white{1.0f};
+    float scale = 1.0f, offset = 0.0f; // also Perlin's NoiseScale (scale)
+    bool perlinAbs = false;            // Perlin: |n| instead of (n + 1) / 2
 };
 
 struct Mesh {
@@ -132,6 +187,9 @@ struct Environment {
 struct Scene {
     std::string source; // file name, or "built-in Cornell box"
     std::vector<Material> materials;
+    std::vector<Texture> textures;
+    std::vector<TextureImage> textureImages;
+    std::optional<uint32_t> backgroundTexture; // the course's replace_background (camera rays)
     std::vector<Mesh> meshes;
     std::vector<Sphere> spheres;
     std::vector<PunctualLight> punctualLights;
