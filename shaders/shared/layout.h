@@ -102,7 +102,16 @@ using uint64_t = std::uint64_t;
 #define SPEC_HAS_UNLIT 22         // course replace_all surfaces
 #define SPEC_HAS_MICROFACET 23    // GGX-rough conductors or dielectrics
 #define SPEC_HAS_PBR 24           // glTF metallic-roughness materials
-#define SPEC_COUNT 25
+#define SPEC_DEBUG_VIEW 25        // DEBUG_VIEW_*: the viewer's diagnostic images instead of radiance
+#define SPEC_COUNT 26
+
+// ---- Debug views (SPEC_DEBUG_VIEW) ----
+#define DEBUG_VIEW_NONE 0u
+#define DEBUG_VIEW_ALBEDO 1u
+#define DEBUG_VIEW_NORMAL 2u
+#define DEBUG_VIEW_DEPTH 3u
+#define DEBUG_VIEW_BVH_COST 4u
+#define DEBUG_VIEW_NAN_MASK 5u
 
 // A triangle as the intersector reads it: world-space vertices plus the ids it needs at a hit.
 struct GpuTriangle {
@@ -285,7 +294,7 @@ struct GpuRenderPush {
     uvec2 tileSize;
     uint sampleStart; // global index of the first sample added to each pixel
     uint sampleCount;
-    uint pad0;
+    float sampleClamp; // > 0: clamp each sample's largest component to this (biased; off by default)
 };
 PT_CHECK_SIZE(GpuRenderPush, 40);
 

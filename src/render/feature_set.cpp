@@ -96,6 +96,7 @@ std::vector<SpecializationConstant> FeatureSet::constants(uint32_t localSizeX, u
         {SPEC_HAS_UNLIT, unlit},
         {SPEC_HAS_MICROFACET, microfacet},
         {SPEC_HAS_PBR, pbr},
+        {SPEC_DEBUG_VIEW, debugView},
     };
 }
 

@@ -34,6 +34,7 @@ struct FeatureSet {
     bool mis = true;
     bool rr = true;
     bool cosineSampling = true;
+    uint32_t debugView = 0; // DEBUG_VIEW_*
 
     // Every feature on: the unspecialised kernel, for comparison and for tests.
     static FeatureSet all(const IntegratorSettings& settings);
