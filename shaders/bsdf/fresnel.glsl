@@ -37,7 +37,8 @@ vec3 fresnelConductor(float cosI, vec3 eta, vec3 k) {
     vec3 rs = (t1 - t2) / (t1 + t2);
     vec3 t3 = c2 * a2plusb2 + s2 * s2;
     vec3 t4 = t2 * s2;
-    vec3 rp = rs * (t3 - t4) / (t3 + t4);
+    // At normal incidence of an index with eta = k = 0 (reflectance 1) t3 = t4 = 0: rp = rs there.
+    vec3 rp = mix(rs, rs * (t3 - t4) / (t3 + t4), greaterThan(t3 + t4, vec3(0.0)));
     return clamp(0.5 * (rp + rs), 0.0, 1.0);
 }
 

@@ -1,28 +1,54 @@
-// The non-delta surfaces (Lambert, course glossy BRDFs) behind one interface, so light
-// sampling and MIS treat them alike. Local frame: z is the shading normal on the side of wo.
+// The non-delta surfaces (Lambert, course glossy BRDFs, GGX-rough conductors and dielectrics,
+// the glTF metallic-roughness material) behind one interface, so light sampling and MIS treat
+// them alike. Local frame: z is the shading normal on the side of wo, except for transmissive
+// surfaces (isTransmissiveSurface), whose z is the front-side shading normal (wo.z < 0: inside).
+// Every branch sits behind its specialization constant: a kernel without microfacet or PBR
+// materials compiles none of their code.
 #ifndef PT_BSDF_SURFACE_BSDF_GLSL
 #define PT_BSDF_SURFACE_BSDF_GLSL
 #include "bsdf/lambert.glsl"
 #include "bsdf/glossy.glsl"
+#include "bsdf/rough_conductor.glsl"
+#include "bsdf/rough_dielectric.glsl"
+#include "bsdf/gltf_pbr.glsl"
 #include "integrator/features.glsl"
 
+// GGX-rough conductor or dielectric (alpha 0 keeps the smooth delta models).
+bool isRough(GpuMaterial m) { return HAS_MICROFACET && m.alpha > 0.0; }
+bool isRoughConductor(GpuMaterial m) { return HAS_CONDUCTOR && isRough(m) && m.type == MATERIAL_CONDUCTOR; }
+bool isRoughDielectric(GpuMaterial m) { return HAS_DIELECTRIC && isRough(m) && m.type == MATERIAL_DIELECTRIC; }
+bool isPbr(GpuMaterial m) { return HAS_PBR && m.type == MATERIAL_PBR; }
+
+// Surfaces that both sides of shade (light passes through them).
+bool isTransmissiveSurface(GpuMaterial m) { return isRoughDielectric(m) || (isPbr(m) && m.transmission > 0.0); }
+
 bool isSurfaceBsdf(GpuMaterial m) {
-    return (HAS_DIFFUSE && m.type == MATERIAL_DIFFUSE) || (HAS_GLOSSY && m.type == MATERIAL_GLOSSY);
+    return (HAS_DIFFUSE && m.type == MATERIAL_DIFFUSE) || (HAS_GLOSSY && m.type == MATERIAL_GLOSSY) || isPbr(m) ||
+           isRoughConductor(m) || isRoughDielectric(m);
 }
 
-// f * cos(theta_i)
+// f * |cos(theta_i)|
 vec3 surfaceEval(GpuMaterial m, vec3 wo, vec3 wi) {
     if (HAS_GLOSSY && m.type == MATERIAL_GLOSSY) return glossyEval(m, wo, wi);
+    if (isPbr(m)) return pbrEval(m, wo, wi);
+    if (isRoughConductor(m)) return roughConductorEval(m, wo, wi);
+    if (isRoughDielectric(m)) return roughDielectricEval(m, wo, wi);
     return lambertEval(m.baseColor, wo, wi);
 }
 
 float surfacePdf(GpuMaterial m, vec3 wo, vec3 wi) {
     if (HAS_GLOSSY && m.type == MATERIAL_GLOSSY) return glossyPdf(m, wo, wi);
+    if (isPbr(m)) return pbrPdf(m, wo, wi);
+    if (isRoughConductor(m)) return roughConductorPdf(m, wo, wi);
+    if (isRoughDielectric(m)) return roughDielectricPdf(m, wo, wi);
     return lambertPdf(wo, wi);
 }
 
 BsdfSample surfaceSample(GpuMaterial m, Frame frame, vec3 wo, float uLobe, vec2 u) {
     if (HAS_GLOSSY && m.type == MATERIAL_GLOSSY) return glossySample(m, frame, wo, uLobe, u);
+    if (isPbr(m)) return pbrSample(m, frame, wo, uLobe, u);
+    if (isRoughConductor(m)) return roughConductorSample(m, frame, wo, u);
+    if (isRoughDielectric(m)) return roughDielectricSample(m, frame, wo, uLobe, u);
     return lambertSample(m.baseColor, frame, wo, u);
 }
 

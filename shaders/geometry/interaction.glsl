@@ -12,10 +12,26 @@ struct SurfaceInteraction {
     bool frontFace;  // the ray arrived from the front side
     uint materialIndex;
     uint lightIndex;
+    // Texture coordinates and their derivatives; filled only when the kernel has textures.
+    vec2 uv;
+    vec3 dpdu;
+    vec3 dpdv;
 };
+
+bool needsSurfaceCoordinates() { return HAS_TEXTURES || HAS_PROCEDURAL || HAS_NORMAL_MAPS; }
+
+// A tangent basis for surfaces whose uvs are degenerate (absent or collapsed): any frame works
+// for colour lookups, and normal maps then rotate about an arbitrary but consistent axis.
+void fallbackTangents(inout SurfaceInteraction si) {
+    Frame f = makeFrame(si.ng);
+    si.dpdu = f.t;
+    si.dpdv = f.b;
+}
 
 SurfaceInteraction makeSphereInteraction(Ray ray, Hit hit) {
     SurfaceInteraction si;
+    si.uv = vec2(0.0);
+    si.dpdu = si.dpdv = vec3(0.0);
     GpuSphere sphere = SphereRef(scene.spheres).v[hit.primitive & ~SPHERE_BIT];
     // Recompute the hit in object space and project it onto the unit sphere: the world point
     // then lies on the surface to within the map's rounding, whatever the distance travelled.
@@ -29,12 +45,27 @@ SurfaceInteraction makeSphereInteraction(Ray ray, Hit hit) {
     si.frontFace = dot(ray.direction, si.ng) < 0.0;
     si.materialIndex = sphere.materialIndex;
     si.lightIndex = sphere.lightIndex;
+    if (needsSurfaceCoordinates()) {
+        // The course's sphere mapping in the untransformed sphere: u = (pi - atan2(z, x)) / 2pi,
+        // v = acos(y) / pi (v = 0 at the north pole, the image's top row).
+        float phi = atan(po.z, po.x);
+        float theta = acos(clamp(po.y, -1.0, 1.0));
+        si.uv = vec2((PI - phi) / (2.0 * PI), theta / PI);
+        vec3 dpduObject = 2.0 * PI * vec3(po.z, 0.0, -po.x);
+        vec3 dpdvObject = PI * vec3(cos(theta) * cos(phi), -sin(theta), cos(theta) * sin(phi));
+        si.dpdu = transformVector(sphere.objectToWorld, dpduObject);
+        si.dpdv = transformVector(sphere.objectToWorld, dpdvObject);
+        // At the poles dp/du vanishes.
+        if (dot(si.dpdu, si.dpdu) < 1e-20 * dot(si.dpdv, si.dpdv)) fallbackTangents(si);
+    }
     return si;
 }
 
 SurfaceInteraction makeInteraction(Ray ray, Hit hit) {
     if (HAS_SPHERES && (hit.primitive & SPHERE_BIT) != 0u) return makeSphereInteraction(ray, hit);
     SurfaceInteraction si;
+    si.uv = vec2(0.0);
+    si.dpdu = si.dpdv = vec3(0.0);
     GpuTriangle tri = sceneTriangles.v[hit.primitive];
     float b0 = 1.0 - hit.bary.x - hit.bary.y;
     si.p = b0 * tri.p0 + hit.bary.x * tri.p1 + hit.bary.y * tri.p2;
@@ -53,6 +84,21 @@ SurfaceInteraction makeInteraction(Ray ray, Hit hit) {
     si.frontFace = dot(ray.direction, si.ng) < 0.0;
     si.materialIndex = tri.materialIndex;
     si.lightIndex = tri.lightIndex;
+    if (needsSurfaceCoordinates()) {
+        GpuTriangleShading sh = sceneShading.v[hit.primitive];
+        vec2 uv0 = vec2(sh.u0, sh.v.x), uv1 = vec2(sh.u1, sh.v.y), uv2 = vec2(sh.u2, sh.v.z);
+        si.uv = b0 * uv0 + hit.bary.x * uv1 + hit.bary.y * uv2;
+        // Solve p - p0 = (u - u0) dpdu + (v - v0) dpdv over the triangle's two edges.
+        vec2 duv1 = uv1 - uv0, duv2 = uv2 - uv0;
+        vec3 dp1 = tri.p1 - tri.p0, dp2 = tri.p2 - tri.p0;
+        float det = duv1.x * duv2.y - duv1.y * duv2.x;
+        if (abs(det) > 1e-20) {
+            float inv = 1.0 / det;
+            si.dpdu = (duv2.y * dp1 - duv1.y * dp2) * inv;
+            si.dpdv = (duv1.x * dp2 - duv2.x * dp1) * inv;
+        }
+        if (!(abs(det) > 1e-20) || !allFinite(si.dpdu) || !allFinite(si.dpdv)) fallbackTangents(si);
+    }
     return si;
 }
 

@@ -7,6 +7,7 @@
 #include "geometry/triangle.glsl"
 #include "geometry/sphere.glsl"
 #include "integrator/features.glsl"
+#include "textures/alpha.glsl"
 
 // Depth of the traversal stack. The builder caps tree depth below this (src/accel/bvh.cpp).
 const int TRAVERSAL_STACK_SIZE = 64;
@@ -61,6 +62,10 @@ float boxEntry(vec3 lo, vec3 hi, BoxRay r, float tMax) {
     return entry <= exit ? entry : MISS;
 }
 
+// Nodes visited by this invocation's traversals, counted only for the viewer's BVH-cost view
+// (the increment is removed by specialization otherwise). debug_view.glsl resets and reads it.
+uint traversalNodeVisits = 0u;
+
 // One traversal loop for both trees (triangles, spheres): `sphereTree` is a literal at every
 // call, so the compiler keeps only one kind of leaf test in each inlined copy. `anyHit` stops
 // at the first hit (shadow rays).
@@ -75,6 +80,7 @@ bool traverseTree(bool sphereTree, bool anyHit, Ray ray, WatertightRay wray, Box
     uint nodeIndex = 0u;
     bool found = false;
     while (true) {
+        if (DEBUG_VIEW == DEBUG_VIEW_BVH_COST) ++traversalNodeVisits;
         GpuBvhNode node = nodes.v[nodeIndex];
         if (node.count > 0u) {
             for (uint i = node.leftOrFirst; i < node.leftOrFirst + node.count; ++i) {
@@ -86,6 +92,8 @@ bool traverseTree(bool sphereTree, bool anyHit, Ray ray, WatertightRay wray, Box
                 } else {
                     GpuTriangle tri = sceneTriangles.v[i];
                     hitPrimitive = intersectTriangle(wray, tri.p0, tri.p1, tri.p2, hit.t, t, bary);
+                    if (HAS_ALPHA && hitPrimitive && (tri.flags & TRIANGLE_FLAG_ALPHA_TESTED) != 0u)
+                        hitPrimitive = !alphaCutsOut(tri, i, bary, ray);
                 }
                 if (hitPrimitive) {
                     hit.t = t;

@@ -14,12 +14,20 @@
 #include "bsdf/conductor.glsl"
 #include "bsdf/dielectric.glsl"
 #include "integrator/features.glsl"
+#include "textures/material_textures.glsl"
 
 // Shadow rays stop this fraction short of the (offset) light point, the receiver's own offset
 // having already moved the origin off its surface.
 const float SHADOW_RAY_FAR = 0.9999;
 
-// Direct light at a diffuse vertex by sampling the light table.
+// Dielectrics (smooth or rough, and PBR transmission with a volume) absorb inside, behind
+// their geometric front face.
+bool hasInteriorAbsorption(GpuMaterial mat) {
+    return (mat.type == MATERIAL_DIELECTRIC || mat.type == MATERIAL_PBR) && (mat.flags & MATERIAL_FLAG_ABSORBING) != 0u;
+}
+
+// Direct light at a non-delta vertex (isSurfaceBsdf) by sampling the light table. Transmissive
+// surfaces reach lights on either side: the shadow ray leaves on the side of wi.
 vec3 estimateDirect(SurfaceInteraction si, Frame frame, vec3 woLocal, GpuMaterial mat, Rng rng, uint depth) {
     float uSelect = rng1(rng, bounceDimension(depth, DIM_LIGHT_SELECT));
     vec2 uPoint = rng2(rng, bounceDimension(depth, DIM_LIGHT_POINT));
@@ -41,8 +49,23 @@ vec3 estimateDirect(SurfaceInteraction si, Frame frame, vec3 woLocal, GpuMateria
         shadow.direction = target - shadow.origin;
     }
     if (traceAny(shadow, tMax)) return vec3(0.0);
+    // A shadow ray into an absorbing interior (a light inside the glass) is attenuated like
+    // the path segments that reach it.
+    if (HAS_ABSORPTION && ls.distance != FLOAT_MAX && dot(ls.wi, si.ng) < 0.0 && isTransmissiveSurface(mat) &&
+        hasInteriorAbsorption(mat))
+        fCos *= exp(-mat.sigmaA * ls.distance);
     float weight = (USE_MIS && !ls.isDelta) ? powerHeuristic(ls.pdf, surfacePdf(mat, woLocal, wiLocal)) : 1.0;
     return fCos * ls.radiance * (weight / ls.pdf);
+}
+
+// The course's replace_background: the texture spans the camera's image window, so the camera
+// ray's direction gives the film position (v = 0 at the top).
+vec3 backgroundTexel(vec3 direction) {
+    GpuCamera c = scene.camera;
+    float z = dot(direction, c.forward);
+    vec2 film = vec2(dot(direction, c.right), dot(direction, c.up)) / max(z, 1e-20);
+    vec2 uv = vec2((film.x - c.window.x) / (c.window.y - c.window.x), (c.window.w - film.y) / (c.window.w - c.window.z));
+    return evalTexture(scene.backgroundTexture, uv, direction).rgb;
 }
 
 vec3 tracePath(Ray ray, Rng rng) {
@@ -60,6 +83,8 @@ vec3 tracePath(Ray ray, Rng rng) {
                 float pdfLight = environmentPdf(ray.direction);
                 if (!USE_NEE || prevDelta || pdfLight == 0.0) L += beta * Le;
                 else if (USE_MIS) L += beta * Le * powerHeuristic(prevPdfBsdf, pdfLight);
+            } else if ((HAS_TEXTURES || HAS_PROCEDURAL) && depth == 1u && scene.backgroundTexture != NO_TEXTURE) {
+                L += beta * backgroundTexel(ray.direction);
             } else {
                 L += beta * scene.background;
             }
@@ -67,11 +92,11 @@ vec3 tracePath(Ray ray, Rng rng) {
         }
         SurfaceInteraction si = makeInteraction(ray, hit);
         GpuMaterial mat = sceneMaterials.v[si.materialIndex];
+        applyTextures(mat, si);
         bool doubleSided = (mat.flags & MATERIAL_FLAG_DOUBLE_SIDED) != 0u;
 
         // Beer-Lambert absorption along the segment just travelled inside a dielectric.
-        if (HAS_ABSORPTION && mat.type == MATERIAL_DIELECTRIC && !si.frontFace && (mat.flags & MATERIAL_FLAG_ABSORBING) != 0u)
-            beta *= exp(-mat.sigmaA * hit.t);
+        if (HAS_ABSORPTION && !si.frontFace && hasInteriorAbsorption(mat)) beta *= exp(-mat.sigmaA * hit.t);
 
         // Emission found by the BSDF-sampled ray, weighted against light sampling. Emitters
         // outside the light table (pdfLight 0) can only be found this way and count fully.
@@ -84,14 +109,28 @@ vec3 tracePath(Ray ray, Rng rng) {
                 L += beta * Le * powerHeuristic(prevPdfBsdf, pdfLight);
             }
         }
+        // The course's replace_all: the texture shown as is, unshaded (an emitter that no light
+        // sampling knows of, so found by BSDF rays only and counted fully).
+        if (HAS_UNLIT && (mat.flags & MATERIAL_FLAG_UNLIT) != 0u) {
+            if (si.frontFace || doubleSided) L += beta * mat.baseColor;
+            break;
+        }
         if (depth >= scene.maxDepth) break;
 
         vec3 wo = -ray.direction;
         BsdfSample bs = invalidBsdfSample();
-        if (HAS_DIELECTRIC && mat.type == MATERIAL_DIELECTRIC) {
+        if (HAS_DIELECTRIC && mat.type == MATERIAL_DIELECTRIC && !isRoughDielectric(mat)) {
             Frame frame = makeFrame(dot(si.ns, wo) < 0.0 ? -si.ns : si.ns);
             float uLobe = rng1(rng, bounceDimension(depth, DIM_BSDF_LOBE));
             bs = dielectricSample(mat.baseColor, mat.ior, si.frontFace, frame, toLocal(frame, wo), uLobe);
+        } else if (isTransmissiveSurface(mat)) {
+            // Rough dielectrics and PBR transmission: both sides shade, light crosses the
+            // surface (NEE too); the frame keeps the front-side normal, wo.z < 0 is inside.
+            Frame frame = makeFrame(si.ns);
+            vec3 woLocal = toLocal(frame, wo);
+            if (USE_NEE && scene.numLights > 0u) L += beta * estimateDirect(si, frame, woLocal, mat, rng, depth);
+            bs = surfaceSample(mat, frame, woLocal, rng1(rng, bounceDimension(depth, DIM_BSDF_LOBE)),
+                rng2(rng, bounceDimension(depth, DIM_BSDF_DIRECTION)));
         } else {
             // Opaque surfaces: one-sided ones are black from behind; double-sided ones flip.
             if (!si.frontFace && !doubleSided) break;
@@ -100,7 +139,7 @@ vec3 tracePath(Ray ray, Rng rng) {
             vec3 woLocal = toLocal(frame, wo);
             if (HAS_MIRROR && mat.type == MATERIAL_MIRROR) {
                 bs = mirrorSample(mat.baseColor, frame, woLocal);
-            } else if (HAS_CONDUCTOR && mat.type == MATERIAL_CONDUCTOR) {
+            } else if (HAS_CONDUCTOR && mat.type == MATERIAL_CONDUCTOR && !isRoughConductor(mat)) {
                 bs = conductorSample(mat.baseColor, mat.conductorEta, mat.conductorK, frame, woLocal);
             } else if (isSurfaceBsdf(mat)) {
                 if (USE_NEE && scene.numLights > 0u) L += beta * estimateDirect(si, frame, woLocal, mat, rng, depth);

@@ -9,6 +9,7 @@
 #include "integrator/features.glsl"
 #include "integrator/camera.glsl"
 #include "integrator/path.glsl"
+#include "integrator/debug_view.glsl"
 
 layout(local_size_x_id = SPEC_LOCAL_SIZE_X, local_size_y_id = SPEC_LOCAL_SIZE_Y) in;
 
@@ -28,7 +29,10 @@ void main() {
         Rng rng = rngCreate(pixel, push.sampleStart + s, scene.seed);
         vec2 jitter = rng2(rng, DIM_PIXEL); // box filter: uniform over the pixel
         Ray ray = cameraRay(scene.camera, vec2(pixel) + jitter, scene.imageSize, rng2(rng, DIM_LENS));
-        vec3 L = tracePath(ray, rng);
+        vec3 L = DEBUG_VIEW == DEBUG_VIEW_NONE ? tracePath(ray, rng) : debugView(ray, rng);
+        // Firefly clamp (viewer option, biased): scale the sample down to a largest component
+        // of sampleClamp. NaN fails the comparison and is still dropped below.
+        if (push.sampleClamp > 0.0 && maxComponent(L) > push.sampleClamp) L *= push.sampleClamp / maxComponent(L);
         if (allFinite(L)) {
             sum.rgb += L;
             sumSquares.rgb += L * L;

@@ -3,6 +3,7 @@
 #define PT_LIGHTS_TRIANGLE_LIGHT_GLSL
 #include "lights/light_common.glsl"
 #include "common/sampling.glsl"
+#include "textures/texture.glsl"
 
 // Solid-angle pdf of a point at distance dist whose emitter normal makes cosine cosLight with
 // the direction: pmf / area * dist^2 / |cos|.
@@ -22,7 +23,15 @@ LightSample sampleTriangleLight(GpuLight light, vec3 x, vec2 u) {
     s.distance = sqrt(dist2);
     s.wi = toLight / s.distance;
     float cosLight = dot(s.normal, -s.wi);
-    s.radiance = emittedRadiance(sceneMaterials.v[tri.materialIndex], cosLight > 0.0);
+    GpuMaterial mat = sceneMaterials.v[tri.materialIndex];
+    s.radiance = emittedRadiance(mat, cosLight > 0.0);
+    // Textured emission: the same texel a ray hitting this point would see. (The light table's
+    // power uses the emission factor alone, which only changes how often the light is picked.)
+    if ((HAS_TEXTURES || HAS_PROCEDURAL) && mat.emissiveTexture != NO_TEXTURE) {
+        GpuTriangleShading sh = sceneShading.v[light.primitive];
+        vec2 uv = (1.0 - b.x - b.y) * vec2(sh.u0, sh.v.x) + b.x * vec2(sh.u1, sh.v.y) + b.y * vec2(sh.u2, sh.v.z);
+        s.radiance *= evalTexture(mat.emissiveTexture, uv, s.point).rgb;
+    }
     s.pdf = dist2 > 0.0 ? triangleLightPdf(light, s.distance, cosLight) : 0.0;
     return s;
 }

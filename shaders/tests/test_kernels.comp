@@ -46,6 +46,10 @@ void main() {
         BsdfSample bs = surfaceSample(m, frame, normalize(push.normal), rng1(rng, 2u), u);
         outputs.v[i] = vec4(bs.wi, bs.valid ? bs.pdf : 0.0);
         outputs.v[push.count + i] = vec4(bs.weight, bs.valid ? 1.0 : 0.0);
+    } else if (push.mode == TEST_MODE_TEXTURE) {
+        // Texture push.materialIndex at uv = inputs[i].xy (images) or point inputs[i].xyz.
+        vec4 at = Vec4Ref(push.inputs).v[i];
+        outputs.v[i] = evalTexture(push.materialIndex, at.xy, at.xyz);
     } else if (push.mode == TEST_MODE_BSDF_PDF) {
         GpuMaterial m = sceneMaterials.v[push.materialIndex];
         vec3 wo = normalize(push.normal);

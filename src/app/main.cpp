@@ -1,6 +1,7 @@
-// pt: a path tracer on Vulkan compute. Subcommands: render, devices.
+// pt: a path tracer on Vulkan compute. Subcommands: render, view, devices.
 #include "app/options.h"
 #include "app/render_command.h"
+#include "app/view_command.h"
 #include "gpu/vulkan_context.h"
 
 #include <CLI/CLI.hpp>
@@ -27,45 +28,77 @@ int listDevices() {
 
 bool onOff(const std::string& v) { return v == "on"; }
 
+// Switches given as words on the command line, converted after parsing.
+struct SwitchWords {
+    std::string nee, mis, rr, sampling;
+    std::vector<float> envColour;
+};
+
+// Options `pt render` and `pt view` share: what to render and how.
+void addSceneOptions(CLI::App* cmd, pt::RenderOptions& o, SwitchWords& w) {
+    cmd->add_option("scene", o.scene, "Scene file");
+    cmd->add_option("--width", o.width, "Image width (default: the scene's, else 512)")->check(CLI::Range(1, 1 << 30));
+    cmd->add_option("--height", o.height, "Image height (default: the scene's, else from the camera aspect)")->check(CLI::Range(1, 1 << 30));
+    cmd->add_option("--max-depth", o.maxDepth, "Ray segments per path including the camera ray (1: emitters only, 2: direct light); default 16")
+        ->check(CLI::Range(1u, 65536u));
+    cmd->add_option("--rr-start", o.integrator.rrStartDepth, "Russian roulette starts after this many segments (default 5)");
+    cmd->add_option("--seed", o.integrator.seed, "Random seed (default 0)");
+    cmd->add_option("--nee", w.nee, "Next event estimation (light sampling): on|off (default on)")->check(CLI::IsMember({"on", "off"}));
+    cmd->add_option("--mis", w.mis, "Multiple importance sampling of light and BSDF samples: on|off (default on)")->check(CLI::IsMember({"on", "off"}));
+    cmd->add_option("--rr", w.rr, "Russian roulette: on|off (default on)")->check(CLI::IsMember({"on", "off"}));
+    cmd->add_option("--sampling", w.sampling, "BSDF direction sampling: cosine|uniform (default cosine)")->check(CLI::IsMember({"cosine", "uniform"}));
+    cmd->add_option("--camera", o.camera, "Camera to render: glTF: its index (default 0); course XML: its id (default: every camera)");
+    cmd->add_option("--device", o.device, "Use the first Vulkan device whose name contains this (see 'pt devices')");
+    cmd->add_option("--exposure", o.exposure, "Exposure in stops for the PNG");
+    cmd->add_option("--env", o.environment, "Environment: an equirectangular (lat-long) radiance map, .exr");
+    auto* envColourOpt = cmd->add_option("--env-colour", w.envColour, "Environment: a constant radiance R G B")->expected(3);
+    envColourOpt->excludes(cmd->get_option("--env"));
+    cmd->add_option("--env-scale", o.environmentScale, "Multiply the environment's radiance")->check(CLI::Range(0.0f, 1e30f));
+    cmd->add_option("--env-rotate", o.environmentRotation, "Rotate the environment about +y, in degrees");
+    cmd->add_flag("--validation", o.validation, "Enable the Vulkan validation layer; fail if it reports anything");
+}
+
+void applySwitchWords(const SwitchWords& w, pt::RenderOptions& o) {
+    if (const char* v = std::getenv("PT_VALIDATION"); v && std::string(v) == "1") o.validation = true;
+    if (w.envColour.size() == 3) o.environmentColour = glm::vec3(w.envColour[0], w.envColour[1], w.envColour[2]);
+    if (!w.nee.empty()) o.nee = onOff(w.nee);
+    if (!w.mis.empty()) o.mis = onOff(w.mis);
+    if (!w.rr.empty()) o.rr = onOff(w.rr);
+    if (!w.sampling.empty()) o.sampling = w.sampling == "cosine" ? pt::DirectionSampling::Cosine : pt::DirectionSampling::Uniform;
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
     CLI::App app{"pt: a physically based path tracer on Vulkan compute shaders"};
     app.require_subcommand(1);
     pt::RenderOptions o;
-    std::string nee, mis, rr, sampling;
+    SwitchWords words;
 
     CLI::App* render = app.add_subcommand("render", "Render a scene (glTF .gltf/.glb; none: the built-in Cornell box) to EXR and PNG");
-    render->add_option("scene", o.scene, "Scene file");
+    addSceneOptions(render, o, words);
     render->add_option("-o,--output", o.output, "Output EXR (default out/<scene>.exr); a tonemapped PNG is written beside it");
     auto* sppOpt = render->add_option("--spp", o.spp, "Samples per pixel (default 64)")->check(CLI::Range(1u, 1u << 30));
     auto* timeOpt = render->add_option("--time", o.seconds, "Render for this many seconds instead of a fixed spp")->check(CLI::Range(0.001, 1e7));
     sppOpt->excludes(timeOpt);
-    render->add_option("--width", o.width, "Image width (default: the scene's, else 512)")->check(CLI::Range(1, 1 << 30));
-    render->add_option("--height", o.height, "Image height (default: the scene's, else from the camera aspect)")->check(CLI::Range(1, 1 << 30));
-    render->add_option("--max-depth", o.maxDepth, "Ray segments per path including the camera ray (1: emitters only, 2: direct light); default 16")
-        ->check(CLI::Range(1u, 65536u));
-    render->add_option("--rr-start", o.integrator.rrStartDepth, "Russian roulette starts after this many segments (default 5)");
-    render->add_option("--seed", o.integrator.seed, "Random seed (default 0)");
-    render->add_option("--nee", nee, "Next event estimation (light sampling): on|off (default on)")->check(CLI::IsMember({"on", "off"}));
-    render->add_option("--mis", mis, "Multiple importance sampling of light and BSDF samples: on|off (default on)")->check(CLI::IsMember({"on", "off"}));
-    render->add_option("--rr", rr, "Russian roulette: on|off (default on)")->check(CLI::IsMember({"on", "off"}));
-    render->add_option("--sampling", sampling, "BSDF direction sampling: cosine|uniform (default cosine)")->check(CLI::IsMember({"cosine", "uniform"}));
-    render->add_option("--camera", o.camera, "Camera to render: glTF: its index (default 0); course XML: its id (default: every camera)");
-    render->add_option("--device", o.device, "Use the first Vulkan device whose name contains this (see 'pt devices')");
     render->add_option("--reference", o.reference, "Reference EXR: log relMSE after every pass");
     render->add_option("--error-log", o.errorLog, "CSV of spp, seconds, relMSE after every pass (needs --reference)");
-    render->add_option("--exposure", o.exposure, "Exposure in stops for the PNG");
-    render->add_option("--env", o.environment, "Environment: an equirectangular (lat-long) radiance map, .exr");
-    std::vector<float> envColour;
-    auto* envColourOpt = render->add_option("--env-colour", envColour, "Environment: a constant radiance R G B")->expected(3);
-    envColourOpt->excludes(render->get_option("--env"));
-    render->add_option("--env-scale", o.environmentScale, "Multiply the environment's radiance")->check(CLI::Range(0.0f, 1e30f));
-    render->add_option("--env-rotate", o.environmentRotation, "Rotate the environment about +y, in degrees");
     render->add_option("--tile", o.tileSize, "Split each pass into tiles of this many pixels square (same image)");
     render->add_option("--pass-spp", o.passSpp, "Samples per pass (default: passes of about half a second; same image)");
-    render->add_flag("--validation", o.validation, "Enable the Vulkan validation layer; fail if it reports anything");
     render->add_flag("-q,--quiet", o.quiet, "Only print the summary line and errors");
+
+    pt::ViewOptions v;
+    v.render.tileSize = 64;
+    SwitchWords viewWords;
+    CLI::App* view = app.add_subcommand("view", "Interactive progressive preview in a window (keys: see README or press H)");
+    addSceneOptions(view, v.render, viewWords);
+    view->add_option("--spp", v.render.spp, "Stop refining at this many samples per pixel (default 1024)")->check(CLI::Range(1u, 1u << 30));
+    view->add_option("--tile", v.render.tileSize, "Tile side of a full-resolution pass spread over frames (default 64)")
+        ->check(CLI::Range(8u, 4096u));
+    view->add_option("--frame-ms", v.frameBudgetMs, "Rendering work per frame in ms, bounds input latency (default 25)")
+        ->check(CLI::Range(1.0, 10000.0));
+    view->add_option("-o,--output-dir", v.outputDir, "Folder for saved images and screenshots (default out)");
+    view->add_option("--script", v.script, "Run timed inputs from FILE (tests, benchmarks; format in README)");
 
     CLI::App* devices = app.add_subcommand("devices", "List Vulkan devices");
 
@@ -75,18 +108,15 @@ int main(int argc, char** argv) {
         // CLI11 prints the message; its own exit codes vary, ours are 0 (help) or 2 (usage).
         return app.exit(e) == 0 ? 0 : 2;
     }
-    if (const char* v = std::getenv("PT_VALIDATION"); v && std::string(v) == "1") o.validation = true;
-    if (envColour.size() == 3) o.environmentColour = glm::vec3(envColour[0], envColour[1], envColour[2]);
-    if (!nee.empty()) o.nee = onOff(nee);
-    if (!mis.empty()) o.mis = onOff(mis);
-    if (!rr.empty()) o.rr = onOff(rr);
-    if (!sampling.empty()) o.sampling = sampling == "cosine" ? pt::DirectionSampling::Cosine : pt::DirectionSampling::Uniform;
+    applySwitchWords(words, o);
+    applySwitchWords(viewWords, v.render);
     if (!o.errorLog.empty() && o.reference.empty()) {
         std::fprintf(stderr, "pt: error: --error-log needs --reference\n");
         return 2;
     }
     try {
         if (*devices) return listDevices();
+        if (*view) return pt::runView(v);
         return pt::runRender(o);
     } catch (const std::exception& e) {
         std::fprintf(stderr, "pt: error: %s\n", e.what());

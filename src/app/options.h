@@ -1,5 +1,5 @@
 #pragma once
-// Parsed command line of `pt render`.
+// Parsed command lines of `pt render` and `pt view`.
 #include "render/integrator_settings.h"
 
 #include <glm/glm.hpp>
@@ -33,6 +33,15 @@ struct RenderOptions {
     float environmentScale = 1.0f;
     float environmentRotation = 0.0f;          // degrees about +y
     IntegratorSettings integrator; // seed and rrStartDepth; the rest comes from the fields above
+};
+
+// `pt view`: the scene, size, switches, camera, device and environment options of `pt render`
+// (render.spp is the sample cap, render.tileSize the tile of a full-resolution pass).
+struct ViewOptions {
+    RenderOptions render;
+    std::string script;           // --script FILE: timed inputs (tests, benchmarks)
+    double frameBudgetMs = 25.0;  // rendering work per frame
+    std::string outputDir = "out"; // where F5 and F6 save
 };
 
 } // namespace pt

@@ -32,7 +32,7 @@ int deviceTypeRank(VkPhysicalDeviceType type) {
     }
 }
 
-VkInstance createInstance(bool validation) {
+VkInstance createInstance(bool validation, const std::vector<std::string>& extraExtensions = {}) {
     if (validation) {
         uint32_t count = 0;
         vkEnumerateInstanceLayerProperties(&count, nullptr);
@@ -48,6 +48,7 @@ VkInstance createInstance(bool validation) {
     app.pApplicationName = "pt";
     app.apiVersion = VK_API_VERSION_1_2;
     std::vector<const char*> extensions;
+    for (const auto& e : extraExtensions) extensions.push_back(e.c_str());
     std::vector<const char*> layers;
     if (validation) {
         extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
@@ -83,6 +84,31 @@ int findComputeQueueFamily(VkPhysicalDevice device) {
     for (uint32_t i = 0; i < count; ++i)
         if (families[i].queueFlags & VK_QUEUE_COMPUTE_BIT) return static_cast<int>(i);
     return -1;
+}
+
+// A compute queue family that can also present to `surface` (the viewer records compute,
+// copies and presents on one queue), or -1.
+int findPresentQueueFamily(VkPhysicalDevice device, VkSurfaceKHR surface) {
+    uint32_t count = 0;
+    vkGetPhysicalDeviceQueueFamilyProperties(device, &count, nullptr);
+    std::vector<VkQueueFamilyProperties> families(count);
+    vkGetPhysicalDeviceQueueFamilyProperties(device, &count, families.data());
+    for (uint32_t i = 0; i < count; ++i) {
+        VkBool32 present = VK_FALSE;
+        if ((families[i].queueFlags & VK_QUEUE_COMPUTE_BIT) &&
+            vkGetPhysicalDeviceSurfaceSupportKHR(device, i, surface, &present) == VK_SUCCESS && present)
+            return static_cast<int>(i);
+    }
+    return -1;
+}
+
+bool hasDeviceExtension(VkPhysicalDevice device, const char* name) {
+    uint32_t count = 0;
+    vkEnumerateDeviceExtensionProperties(device, nullptr, &count, nullptr);
+    std::vector<VkExtensionProperties> extensions(count);
+    vkEnumerateDeviceExtensionProperties(device, nullptr, &count, extensions.data());
+    return std::any_of(extensions.begin(), extensions.end(),
+        [&](const VkExtensionProperties& e) { return std::strcmp(e.extensionName, name) == 0; });
 }
 
 DeviceInfo describeDevice(VkPhysicalDevice device, uint32_t index) {
@@ -139,7 +165,7 @@ std::vector<DeviceInfo> VulkanContext::listDevices() {
 }
 
 VulkanContext::VulkanContext(const ContextOptions& options) {
-    instance_ = createInstance(options.validation);
+    instance_ = createInstance(options.validation, options.instanceExtensions);
     try {
         if (options.validation) {
             auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
@@ -154,6 +180,7 @@ VulkanContext::VulkanContext(const ContextOptions& options) {
             info.pUserData = this;
             if (create) vkCheck(create(instance_, &info, nullptr, &messenger_), "creating the validation messenger");
         }
+        if (options.createSurface) surface_ = options.createSurface(instance_);
 
         // Pick a device: the first match for --device, else the best-ranked usable one.
         auto devices = enumerateDevices(instance_);
@@ -165,6 +192,10 @@ VulkanContext::VulkanContext(const ContextOptions& options) {
         for (uint32_t i = 0; i < devices.size(); ++i) {
             DeviceInfo info = describeDevice(devices[i], i);
             if (!options.deviceSubstring.empty() && info.name.find(options.deviceSubstring) == std::string::npos) continue;
+            if (info.usable && surface_ && !hasDeviceExtension(devices[i], VK_KHR_SWAPCHAIN_EXTENSION_NAME))
+                info.usable = false, info.whyNotUsable = "no VK_KHR_swapchain";
+            else if (info.usable && surface_ && findPresentQueueFamily(devices[i], surface_) < 0)
+                info.usable = false, info.whyNotUsable = "cannot present to the window from a compute queue";
             if (!info.usable) {
                 rejected += (rejected.empty() ? "" : "; ") + info.name + ": " + info.whyNotUsable;
                 continue;
@@ -189,7 +220,8 @@ VulkanContext::VulkanContext(const ContextOptions& options) {
         slowLavapipe_ = driverIsSlowLavapipe(physicalDevice_);
         vkGetPhysicalDeviceProperties(physicalDevice_, &properties_);
         vkGetPhysicalDeviceMemoryProperties(physicalDevice_, &memoryProperties_);
-        queueFamily_ = static_cast<uint32_t>(findComputeQueueFamily(physicalDevice_));
+        queueFamily_ = static_cast<uint32_t>(surface_ ? findPresentQueueFamily(physicalDevice_, surface_)
+                                                       : findComputeQueueFamily(physicalDevice_));
 
         float priority = 1.0f;
         VkDeviceQueueCreateInfo queueInfo{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
@@ -205,6 +237,11 @@ VulkanContext::VulkanContext(const ContextOptions& options) {
         deviceInfo.pNext = &features;
         deviceInfo.queueCreateInfoCount = 1;
         deviceInfo.pQueueCreateInfos = &queueInfo;
+        const char* swapchainExtension = VK_KHR_SWAPCHAIN_EXTENSION_NAME;
+        if (surface_) {
+            deviceInfo.enabledExtensionCount = 1;
+            deviceInfo.ppEnabledExtensionNames = &swapchainExtension;
+        }
         vkCheck(vkCreateDevice(physicalDevice_, &deviceInfo, nullptr, &device_), "creating the Vulkan device");
         vkGetDeviceQueue(device_, queueFamily_, 0, &queue_);
 
@@ -227,6 +264,10 @@ VulkanContext::~VulkanContext() {
         if (commandPool_) vkDestroyCommandPool(device_, commandPool_, nullptr);
         vkDestroyDevice(device_, nullptr);
         device_ = VK_NULL_HANDLE;
+    }
+    if (surface_) {
+        vkDestroySurfaceKHR(instance_, surface_, nullptr);
+        surface_ = VK_NULL_HANDLE;
     }
     if (messenger_) {
         auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(

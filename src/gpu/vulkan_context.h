@@ -21,6 +21,13 @@ struct DeviceInfo {
 struct ContextOptions {
     bool validation = false;    // enable VK_LAYER_KHRONOS_validation and count its messages
     std::string deviceSubstring; // pick the first usable device whose name contains this
+
+    // Presentation (pt view); the headless path leaves both empty. `instanceExtensions` are
+    // enabled on the instance (glfwGetRequiredInstanceExtensions). `createSurface`, called once
+    // the instance exists, returns the window's surface; the context then owns it, enables
+    // VK_KHR_swapchain and picks a device whose compute queue family can present to it.
+    std::vector<std::string> instanceExtensions;
+    std::function<VkSurfaceKHR(VkInstance)> createSurface;
 };
 
 class VulkanContext {
@@ -38,6 +45,8 @@ public:
     VkDevice device() const { return device_; }
     VkQueue queue() const { return queue_; }
     uint32_t queueFamily() const { return queueFamily_; }
+    // The window surface given through ContextOptions::createSurface, or VK_NULL_HANDLE.
+    VkSurfaceKHR surface() const { return surface_; }
     const DeviceInfo& info() const { return info_; }
     const VkPhysicalDeviceProperties& properties() const { return properties_; }
     const VkPhysicalDeviceMemoryProperties& memoryProperties() const { return memoryProperties_; }
@@ -57,6 +66,7 @@ private:
 
     VkInstance instance_ = VK_NULL_HANDLE;
     VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
+    VkSurfaceKHR surface_ = VK_NULL_HANDLE;
     VkPhysicalDevice physicalDevice_ = VK_NULL_HANDLE;
     VkDevice device_ = VK_NULL_HANDLE;
     VkQueue queue_ = VK_NULL_HANDLE;

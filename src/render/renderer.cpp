@@ -1,7 +1,9 @@
 #include "render/renderer.h"
 
+#include "pt_copy_words_spv.h" // generated: shaders/viewer/copy_words.comp
 #include "pt_render_spv.h" // generated: the SPIR-V of shaders/integrator/render.comp
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -37,7 +39,7 @@ gpu::GpuCamera toGpuCamera(const Camera& camera, int width, int height) {
 
 Renderer::Renderer(VulkanContext& context, const FlatScene& scene, const FeatureSet& features,
     const IntegratorSettings& settings, const Camera& camera, const FilmSettings& film)
-    : context_(context), film_(film) {
+    : context_(context), film_(film), camera_(camera), features_(features) {
     validateImageSize(film.width, film.height);
     gpu::GpuSceneParams params{};
     params.camera = toGpuCamera(camera, film.width, film.height);
@@ -48,6 +50,7 @@ Renderer::Renderer(VulkanContext& context, const FlatScene& scene, const Feature
     params.seed = settings.seed;
     const size_t pixels = size_t(film.width) * film.height;
     gpuScene_ = std::make_unique<GpuScene>(context, scene, params, pixels * 2 * sizeof(glm::vec4));
+    paramsAddress_ = gpuScene_->paramsAddress();
 
     pipeline_ = std::make_unique<ComputePipeline>(context, std::span<const uint32_t>(pt_render_spv),
         static_cast<uint32_t>(sizeof(gpu::GpuRenderPush)), features.constants(localSize_, localSize_), "render");
@@ -56,26 +59,8 @@ Renderer::Renderer(VulkanContext& context, const FlatScene& scene, const Feature
 void Renderer::addSamples(uint32_t count, uint32_t tileSize) {
     if (count == 0) return;
     if (uint64_t(samples_) + count > UINT32_MAX) throw std::runtime_error("sample count exceeds 2^32");
-    const uint32_t w = static_cast<uint32_t>(film_.width);
-    const uint32_t h = static_cast<uint32_t>(film_.height);
-    const uint32_t tw = tileSize ? std::min(tileSize, w) : w;
-    const uint32_t th = tileSize ? std::min(tileSize, h) : h;
-    const uint32_t start = samples_;
-    const ComputePipeline& pipeline = *pipeline_;
-    const VkDeviceAddress paramsAddress = gpuScene_->paramsAddress();
-    const uint32_t local = localSize_;
     context_.submitAndWait([&](VkCommandBuffer cmd) {
-        for (uint32_t y = 0; y < h; y += th)
-            for (uint32_t x = 0; x < w; x += tw) {
-                gpu::GpuRenderPush push{};
-                push.sceneParams = paramsAddress;
-                push.tileOrigin = glm::uvec2(x, y);
-                push.tileSize = glm::uvec2(std::min(tw, w - x), std::min(th, h - y));
-                push.sampleStart = start;
-                push.sampleCount = count;
-                pipeline.bindAndPush(cmd, &push, sizeof(push));
-                vkCmdDispatch(cmd, (push.tileSize.x + local - 1) / local, (push.tileSize.y + local - 1) / local, 1);
-            }
+        recordTiles(cmd, count, tileSize, 0, tileCount(tileSize));
         // Make the sums visible to the host (read back after the fence).
         VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
         barrier.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
@@ -83,13 +68,146 @@ void Renderer::addSamples(uint32_t count, uint32_t tileSize) {
         vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
             VK_PIPELINE_STAGE_HOST_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 1, &barrier, 0, nullptr, 0, nullptr);
     });
+    completePass(count);
+}
+
+uint32_t Renderer::tileCount(uint32_t tileSize) const {
+    const uint32_t w = static_cast<uint32_t>(film_.width);
+    const uint32_t h = static_cast<uint32_t>(film_.height);
+    const uint32_t tw = tileSize ? std::min(tileSize, w) : w;
+    const uint32_t th = tileSize ? std::min(tileSize, h) : h;
+    return ((w + tw - 1) / tw) * ((h + th - 1) / th);
+}
+
+void Renderer::recordTiles(VkCommandBuffer cmd, uint32_t count, uint32_t tileSize, uint32_t firstTile, uint32_t endTile) {
+    const uint32_t w = static_cast<uint32_t>(film_.width);
+    const uint32_t h = static_cast<uint32_t>(film_.height);
+    const uint32_t tw = tileSize ? std::min(tileSize, w) : w;
+    const uint32_t th = tileSize ? std::min(tileSize, h) : h;
+    const uint32_t tilesX = (w + tw - 1) / tw;
+    endTile = std::min(endTile, tileCount(tileSize));
+    if (count == 0 || firstTile >= endTile) return;
+    if (clearPending_) {
+        const VkDeviceSize bytes = VkDeviceSize(w) * h * 2 * sizeof(glm::vec4);
+        vkCmdFillBuffer(cmd, accumulation().handle(), 0, bytes, 0);
+        clearPending_ = false;
+    }
+    // Earlier passes (and the clear) wrote these sums: finish them before adding to them.
+    VkMemoryBarrier before{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+    before.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT;
+    before.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT;
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+        VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1, &before, 0, nullptr, 0, nullptr);
+    for (uint32_t tile = firstTile; tile < endTile; ++tile) {
+        const uint32_t x = (tile % tilesX) * tw;
+        const uint32_t y = (tile / tilesX) * th;
+        gpu::GpuRenderPush push{};
+        push.sceneParams = paramsAddress_;
+        push.tileOrigin = glm::uvec2(x, y);
+        push.tileSize = glm::uvec2(std::min(tw, w - x), std::min(th, h - y));
+        push.sampleStart = samples_;
+        push.sampleCount = count;
+        push.sampleClamp = sampleClamp_;
+        pipeline_->bindAndPush(cmd, &push, sizeof(push));
+        vkCmdDispatch(cmd, (push.tileSize.x + localSize_ - 1) / localSize_, (push.tileSize.y + localSize_ - 1) / localSize_, 1);
+    }
+}
+
+void Renderer::completePass(uint32_t count) {
+    if (uint64_t(samples_) + count > UINT32_MAX) throw std::runtime_error("sample count exceeds 2^32");
     samples_ += count;
+}
+
+void Renderer::reset() {
+    samples_ = 0;
+    clearPending_ = true;
+}
+
+// The scene block's buffer addresses exist only in device memory (GpuScene fills them in), so
+// the first interactive change copies the block on the device into a buffer of our own and
+// reads it back; from then on the host edits params_ and the kernel reads our copy.
+void Renderer::makeParamsEditable() {
+    if (ownParams_) return;
+    ownParams_ = std::make_unique<GpuBuffer>(context_, sizeof(gpu::GpuSceneParams), "editable scene params");
+    static_assert(sizeof(gpu::GpuSceneParams) % 4 == 0);
+    struct {
+        VkDeviceAddress source, destination;
+        uint32_t count;
+    } push{gpuScene_->paramsAddress(), ownParams_->address(), sizeof(gpu::GpuSceneParams) / 4};
+    ComputePipeline copy(context_, std::span<const uint32_t>(pt_copy_words_spv), sizeof(push), {}, "copy words");
+    context_.submitAndWait([&](VkCommandBuffer cmd) {
+        copy.bindAndPush(cmd, &push, sizeof(push));
+        vkCmdDispatch(cmd, (push.count + 63) / 64, 1, 1);
+        VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+        barrier.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
+        barrier.dstAccessMask = VK_ACCESS_HOST_READ_BIT | VK_ACCESS_TRANSFER_READ_BIT;
+        vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+            VK_PIPELINE_STAGE_HOST_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 1, &barrier, 0, nullptr, 0, nullptr);
+    });
+    ownParams_->download(&params_, sizeof(params_));
+    paramsAddress_ = ownParams_->address();
+}
+
+void Renderer::uploadParams() {
+    // The viewer only changes the block between frames, with nothing in flight.
+    ownParams_->upload(&params_, sizeof(params_));
+}
+
+void Renderer::setCamera(const Camera& camera) {
+    makeParamsEditable();
+    camera_ = camera;
+    params_.camera = toGpuCamera(camera_, film_.width, film_.height);
+    uploadParams();
+    reset();
+}
+
+void Renderer::setFilmSize(int width, int height) {
+    validateImageSize(width, height);
+    makeParamsEditable();
+    const VkDeviceSize bytes = VkDeviceSize(width) * height * 2 * sizeof(glm::vec4);
+    if (bytes > accumulation().size()) {
+        vkDeviceWaitIdle(context_.device());
+        ownAccumulation_.reset();
+        ownAccumulation_ = std::make_unique<GpuBuffer>(context_, bytes, "accumulation");
+    }
+    film_.width = width;
+    film_.height = height;
+    params_.accumulation = accumulation().address();
+    params_.imageSize = glm::uvec2(width, height);
+    params_.camera = toGpuCamera(camera_, width, height);
+    uploadParams();
+    reset();
+}
+
+void Renderer::setIntegrator(const IntegratorSettings& settings, const FeatureSet& features) {
+    makeParamsEditable();
+    params_.maxDepth = settings.maxDepth;
+    params_.rrStartDepth = settings.rrStartDepth;
+    params_.seed = settings.seed;
+    uploadParams();
+    const auto constants = features.constants(localSize_, localSize_);
+    const auto current = features_.constants(localSize_, localSize_);
+    const bool same = std::equal(constants.begin(), constants.end(), current.begin(), current.end(),
+        [](const SpecializationConstant& a, const SpecializationConstant& b) { return a.id == b.id && a.value == b.value; });
+    if (!same) {
+        auto fresh = std::make_unique<ComputePipeline>(context_, std::span<const uint32_t>(pt_render_spv),
+            static_cast<uint32_t>(sizeof(gpu::GpuRenderPush)), constants, "render");
+        vkDeviceWaitIdle(context_.device());
+        pipeline_ = std::move(fresh);
+        features_ = features;
+    }
+    reset();
+}
+
+void Renderer::setSampleClamp(float clamp) {
+    sampleClamp_ = clamp > 0.0f ? clamp : 0.0f;
+    reset();
 }
 
 Renderer::Readback Renderer::read() const {
     const size_t pixels = size_t(film_.width) * film_.height;
     std::vector<glm::vec4> sums(pixels * 2);
-    gpuScene_->accumulation().download(sums.data(), sums.size() * sizeof(glm::vec4));
+    accumulation().download(sums.data(), sums.size() * sizeof(glm::vec4));
     Readback r;
     r.mean.width = r.varianceOfMean.width = film_.width;
     r.mean.height = r.varianceOfMean.height = film_.height;

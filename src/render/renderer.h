@@ -35,6 +35,34 @@ public:
     // that many pixels (one dispatch each); the image is identical either way.
     void addSamples(uint32_t count, uint32_t tileSize = 0);
 
+    // ---- Interactive rendering (pt view): change what is rendered without reloading the scene.
+    // Every change discards the samples so far (as reset() does) and applies from the next pass.
+    void setCamera(const Camera& camera);
+    // Renders width x height from now on (the viewer renders a fraction of the window while the
+    // camera moves); the accumulation buffer grows when needed.
+    void setFilmSize(int width, int height);
+    // Depth, roulette start and seed go to the scene block; a different feature set (NEE, MIS,
+    // RR, sampling, debug view) recreates the pipeline.
+    void setIntegrator(const IntegratorSettings& settings, const FeatureSet& features);
+    // > 0: scale each sample down so its largest component is at most this. Biased (it removes
+    // energy); 0, the default, is off.
+    void setSampleClamp(float clamp);
+    // Drops the samples; the sums are cleared by the next recorded pass.
+    void reset();
+
+    // Building blocks of addSamples for callers that submit their own command buffers (the
+    // viewer spreads a pass over frames): records tiles [firstTile, endTile) of a pass adding
+    // `count` samples to each pixel from sample index samplesPerPixel(), preceded by the clear
+    // a reset left pending. Tiles are numbered row by row. Call completePass(count) once every
+    // tile of the pass has been recorded and submitted.
+    uint32_t tileCount(uint32_t tileSize) const;
+    void recordTiles(VkCommandBuffer cmd, uint32_t count, uint32_t tileSize, uint32_t firstTile, uint32_t endTile);
+    void completePass(uint32_t count);
+    // The sums: vec4[2 * width * height], laid out as GpuSceneParams::accumulation says.
+    VkDeviceAddress accumulationAddress() const { return accumulation().address(); }
+    const Camera& camera() const { return camera_; }
+    const FeatureSet& features() const { return features_; }
+
     uint32_t samplesPerPixel() const { return samples_; }
     int width() const { return film_.width; }
     int height() const { return film_.height; }
@@ -49,12 +77,26 @@ public:
     Readback read() const;
 
 private:
+    const GpuBuffer& accumulation() const { return ownAccumulation_ ? *ownAccumulation_ : gpuScene_->accumulation(); }
+    void makeParamsEditable();
+    void uploadParams();
+
     VulkanContext& context_;
     FilmSettings film_;
     uint32_t samples_ = 0;
     std::unique_ptr<GpuScene> gpuScene_;
     std::unique_ptr<ComputePipeline> pipeline_;
     uint32_t localSize_ = 8;
+    Camera camera_;
+    FeatureSet features_;
+    float sampleClamp_ = 0.0f;
+    bool clearPending_ = false;
+    // Interactive use only: a host-editable copy of the scene block, and an accumulation
+    // buffer that outgrew the one GpuScene made. Null on the headless path.
+    gpu::GpuSceneParams params_{};
+    std::unique_ptr<GpuBuffer> ownParams_;
+    std::unique_ptr<GpuBuffer> ownAccumulation_;
+    VkDeviceAddress paramsAddress_ = 0;
 };
 
 // Checks a requested image size; throws std::runtime_error with the reason.

@@ -168,27 +168,17 @@ void readLights(Context& ctx, pugi::xml_node root, Scene& s) {
         }
 }
 
-// A replace_background texture is used without any object naming it.
-void noteBackgroundTexture(Context& ctx, pugi::xml_node root) {
-    for (pugi::xml_node textures : root.children("Textures"))
-        for (pugi::xml_node map : textures.children("TextureMap")) {
-            const std::string mode = textOf(map.child("DecalMode"));
-            const std::vector<std::string_view> t = tokens(mode);
-            if (t.size() == 1 && lowercase(t[0]) == "replace_background") ctx.note("textures (ignored)");
-        }
-}
-
 Scene importScene(Context& ctx, pugi::xml_node root) {
     Scene s;
     s.source = ctx.file();
     noteUnknownElements(ctx, root);
     readSceneSettings(ctx, root, s);
     readLights(ctx, root, s);
-    noteBackgroundTexture(ctx, root);
     MaterialTable materials = MaterialTable::read(ctx, root, s.materials);
+    TextureTable textures = TextureTable::read(ctx, root, s);
     const Transforms transforms = Transforms::read(ctx, root);
     const VertexPool pool = readVertexPool(ctx, root);
-    readObjects(ctx, root, pool, transforms, materials, s);
+    readObjects(ctx, root, pool, transforms, materials, textures, s);
     materials.noteUsed(ctx);
     if (s.meshes.empty() && s.spheres.empty()) ctx.fail("no objects to render");
     s.cameras = readCameras(ctx, root, s.hints.maxDepth);

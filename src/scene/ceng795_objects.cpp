@@ -14,8 +14,9 @@ constexpr long long kAnyInteger = std::numeric_limits<long long>::max();
 
 class ObjectReader {
 public:
-    ObjectReader(Context& ctx, const VertexPool& pool, const Transforms& transforms, MaterialTable& materials, Scene& out)
-        : ctx_(ctx), faces_(ctx, pool), transforms_(transforms), materials_(materials), out_(out) {}
+    ObjectReader(Context& ctx, const VertexPool& pool, const Transforms& transforms, MaterialTable& materials,
+        TextureTable& textures, Scene& out)
+        : ctx_(ctx), faces_(ctx, pool), transforms_(transforms), materials_(materials), textures_(textures), out_(out) {}
 
     void read(pugi::xml_node scene) {
         for (pugi::xml_node objects : scene.children("Objects")) collectDefinitions(objects);
@@ -31,6 +32,7 @@ private:
         glm::mat4 transform;
         uint32_t material;
         bool smooth;
+        pugi::xml_node textures; // its <Textures>, or null
     };
     // Where an instance chain ends up: the root mesh's geometry, placed and shaded.
     struct Placement {
@@ -38,6 +40,7 @@ private:
         glm::mat4 transform;
         uint32_t material;
         bool smooth;
+        pugi::xml_node textures;
     };
 
     // Meshes and instances first, so instances may refer to objects later in the file.
@@ -47,7 +50,8 @@ private:
             if (meshes_.count(id)) ctx_.fail(e, "duplicate id");
             meshes_.emplace(id, MeshDefinition{faces_.faces(required(ctx_, e, "Faces")),
                                     transforms_.compose(ctx_, e.child("Transformations")),
-                                    materials_.lookup(ctx_, required(ctx_, e, "Material")), smoothShading(e).value_or(false)});
+                                    materials_.lookup(ctx_, required(ctx_, e, "Material")), smoothShading(e).value_or(false),
+                                    e.child("Textures")});
         }
         for (pugi::xml_node e : objects.children("MeshInstance")) {
             const long long id = idOf(ctx_, e);
@@ -68,7 +72,6 @@ private:
     }
 
     void noteUnmodelled(pugi::xml_node e) {
-        if (pugi::xml_node t = e.child("Textures"); t && !tokens(textOf(t)).empty()) ctx_.note("textures (ignored)");
         if (pugi::xml_node m = e.child("MotionBlur"); m && glm::length(vec3(ctx_, m)) > 0.0f) ctx_.note("motion blur (rendered static)");
     }
 
@@ -89,6 +92,7 @@ private:
 
     // Appends the world-space copy; returns false when every triangle was degenerate.
     bool emit(pugi::xml_node e, const ObjectMesh& geometry, const glm::mat4& transform, uint32_t material, bool smooth) {
+        if (geometry.uvs.empty() && hasUvTextures(material)) ctx_.note("image textures on meshes without TexCoordData (drawn with uv 0)");
         if (geometry.triangles.size() > kMaxSceneTriangles - triangles_)
             ctx_.fail(e, "the scene expands to more than " + std::to_string(kMaxSceneTriangles) + " triangles");
         Mesh mesh = toWorld(ctx_, e, geometry, transform, smooth);
@@ -100,10 +104,21 @@ private:
         return true;
     }
 
-    void emitMesh(pugi::xml_node e, const MeshDefinition& m) { emit(e, *m.geometry, m.transform, m.material, m.smooth); }
+    void emitMesh(pugi::xml_node e, const MeshDefinition& m) {
+        emit(e, *m.geometry, m.transform, textured(m.textures, m.material), m.smooth);
+    }
+
+    uint32_t textured(pugi::xml_node texturesNode, uint32_t material) { return textures_.apply(ctx_, texturesNode, material, out_); }
+
+    bool hasUvTextures(uint32_t material) const {
+        const Material& m = out_.materials[material];
+        for (const auto& slot : {m.baseColorTexture, m.specularTexture, m.normalTexture, m.emissiveTexture})
+            if (slot && out_.textures[*slot].type == Texture::Type::Image) return true;
+        return false;
+    }
 
     void emitLightMesh(pugi::xml_node e) {
-        const uint32_t base = materials_.lookup(ctx_, required(ctx_, e, "Material"));
+        const uint32_t base = textured(e.child("Textures"), materials_.lookup(ctx_, required(ctx_, e, "Material")));
         const uint32_t material = addEmissiveCopy(out_.materials, base, radiance(e), std::string(e.name()) + " " + idText(e, "?"));
         const auto geometry = faces_.faces(required(ctx_, e, "Faces"));
         // A light with no area emits nothing and would divide by zero when sampled.
@@ -113,13 +128,13 @@ private:
 
     void emitTriangle(pugi::xml_node e) {
         const ObjectMesh geometry = faces_.triangle(required(ctx_, e, "Indices"));
-        const uint32_t material = materials_.lookup(ctx_, required(ctx_, e, "Material"));
+        const uint32_t material = textured(e.child("Textures"), materials_.lookup(ctx_, required(ctx_, e, "Material")));
         emit(e, geometry, transforms_.compose(ctx_, e.child("Transformations")), material, false);
     }
 
     void emitInstance(pugi::xml_node e) {
         const Placement p = resolve(idOf(ctx_, e));
-        emit(e, *p.root->geometry, p.transform, p.material, p.smooth);
+        emit(e, *p.root->geometry, p.transform, textured(p.textures, p.material), p.smooth);
     }
 
     // An instance on top of what its base resolved to. resetTransform="true" places the raw base
@@ -132,6 +147,7 @@ private:
         p.transform = reset ? own : own * base.transform;
         if (pugi::xml_node m = e.child("Material")) p.material = materials_.lookup(ctx_, m);
         p.smooth = smoothShading(e).value_or(base.smooth);
+        if (pugi::xml_node t = e.child("Textures")) p.textures = t;
         return p;
     }
 
@@ -154,7 +170,7 @@ private:
             chain.push_back(inst);
             const long long baseId = baseMeshId(inst);
             if (auto m = meshes_.find(baseId); m != meshes_.end()) {
-                base = Placement{&m->second, m->second.transform, m->second.material, m->second.smooth};
+                base = Placement{&m->second, m->second.transform, m->second.material, m->second.smooth, m->second.textures};
                 break;
             }
             if (!instances_.count(baseId)) ctx_.fail(inst, "baseMeshId " + std::to_string(baseId) + " is neither a Mesh nor a MeshInstance");
@@ -205,7 +221,7 @@ private:
             for (int row = 0; row < 4; ++row)
                 if (!std::isfinite(s.objectToWorld[col][row])) ctx_.fail(e, "transformed sphere is not finite");
         if (!(std::fabs(glm::determinant(glm::mat3(s.objectToWorld))) > 0.0f)) ctx_.fail(e, "transformed sphere is degenerate");
-        s.material = materials_.lookup(ctx_, required(ctx_, e, "Material"));
+        s.material = textured(e.child("Textures"), materials_.lookup(ctx_, required(ctx_, e, "Material")));
         if (emission) s.material = addEmissiveCopy(out_.materials, s.material, *emission, s.name);
         out_.spheres.push_back(s);
     }
@@ -214,6 +230,7 @@ private:
     FaceReader faces_;
     const Transforms& transforms_;
     MaterialTable& materials_;
+    TextureTable& textures_;
     Scene& out_;
     std::map<long long, MeshDefinition> meshes_;
     std::map<long long, pugi::xml_node> instances_;
@@ -224,8 +241,8 @@ private:
 } // namespace
 
 void readObjects(Context& ctx, pugi::xml_node scene, const VertexPool& pool, const Transforms& transforms,
-    MaterialTable& materials, Scene& out) {
-    ObjectReader(ctx, pool, transforms, materials, out).read(scene);
+    MaterialTable& materials, TextureTable& textures, Scene& out) {
+    ObjectReader(ctx, pool, transforms, materials, textures, out).read(scene);
 }
 
 } // namespace pt::ceng795

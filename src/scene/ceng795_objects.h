@@ -4,6 +4,7 @@
 #include "scene/ceng795_document.h"
 #include "scene/ceng795_geometry.h"
 #include "scene/ceng795_materials.h"
+#include "scene/ceng795_textures.h"
 #include "scene/ceng795_transforms.h"
 #include "scene/scene.h"
 
@@ -15,6 +16,6 @@ constexpr size_t kMaxSceneTriangles = size_t(1) << 26;
 // Appends the objects of every <Objects> element, in file order, to out.meshes and
 // out.spheres; object lights also append their emissive materials to out.materials.
 void readObjects(Context& ctx, pugi::xml_node scene, const VertexPool& pool, const Transforms& transforms,
-    MaterialTable& materials, Scene& out);
+    MaterialTable& materials, TextureTable& textures, Scene& out);
 
 } // namespace pt::ceng795

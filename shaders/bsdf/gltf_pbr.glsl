@@ -1,0 +1,220 @@
+// The glTF 2.0 metallic-roughness material (glTF 2.0 specification, appendix B), with
+// KHR_materials_ior, KHR_materials_specular and KHR_materials_transmission:
+//   material   = mix(dielectric, metal, metallic)
+//   metal      = GGX reflection, Fresnel = Schlick with F0 = baseColor
+//   dielectric = GGX reflection with Fresnel Fs (from ior, scaled by the specular factors)
+//                over a base: mix(Lambert(baseColor), GGX transmission tinted by baseColor, transmission)
+// Lobes: diffuse (Lambert), specular (the dielectric and metal reflections share D and G2, so
+// they are one lobe with a blended Fresnel) and transmission. Each is sampled with a
+// probability from its estimated albedo at wo; eval and pdf are the sums over the lobes, so a
+// sample's weight is f cos / pdf of the whole material and MIS sees one pdf. When alpha == 0
+// the specular and transmission lobes are delta: eval and pdf leave them out, and sampling
+// returns them with isDelta and their discrete probability as pdf.
+//
+// Choices the appendix leaves open, and why:
+// - Fs is the exact dielectric Fresnel remapped so that Fs(normal incidence) = F0(ior) x
+//   specularColorFactor and Fs -> 1 at grazing angles, times specularFactor. With the default
+//   specular factors that is the exact Fresnel, so full transmission equals the rough
+//   dielectric (shaders/bsdf/rough_dielectric.glsl), total internal reflection included.
+// - The Lambertian base is scaled by (1 - max Fs(cos theta_o)) (1 - max Fs(cos theta_i)) instead
+//   of the appendix's 1 - F(V.H): the V.H form reflects up to ~1.9x the incident energy at
+//   grazing angles on smooth surfaces, the product form stays below 1 and is reciprocal.
+// - Transmission through a thin wall (MATERIAL_FLAG_THIN_WALLED: no KHR_materials_volume) does
+//   not bend: wi is the microfacet reflection mirrored through the surface plane, so roughness
+//   still spreads it. With a volume it refracts with ior (shaders/bsdf/rough_dielectric.glsl's
+//   geometry). From inside a volume (wo.z < 0) the lobes are the same, mirrored, with 1 / ior.
+// Local frame: opaque materials (transmission 0) have z on the side of wo, like every surface
+// BSDF; transmissive ones have z on the front (outside) side and wo.z < 0 inside.
+#ifndef PT_BSDF_GLTF_PBR_GLSL
+#define PT_BSDF_GLTF_PBR_GLSL
+#include "bsdf/ggx.glsl"
+#include "bsdf/fresnel.glsl"
+#include "bsdf/lambert.glsl"
+#include "bsdf/rough_dielectric.glsl"
+#include "bsdf/bsdf_sample.glsl"
+
+// Lower bounds on the lobe-selection estimates, so a lobe that can be non-zero somewhere is
+// never given probability 0 by an estimate made at wo only: the base share can be 0 at wo
+// (total internal reflection at the macro normal) while tilted facets still transmit, and
+// Schlick's F of a black metal vanishes at normal incidence but not at tilted facets.
+const float PBR_MIN_BASE_SHARE = 0.1;
+const float PBR_MIN_SPECULAR_ESTIMATE = 0.02;
+
+float average(vec3 c) { return (c.x + c.y + c.z) * (1.0 / 3.0); }
+bool pbrThin(GpuMaterial m) { return (m.flags & MATERIAL_FLAG_THIN_WALLED) != 0u; }
+bool pbrSmooth(GpuMaterial m) { return m.alpha <= 0.0; }
+
+// Fresnel reflectance of the dielectric layer (see the header): exact, remapped to the
+// KHR_materials_specular F0 and scaled by its factor.
+vec3 pbrDielectricFresnel(GpuMaterial m, float cosI, float eta) {
+    float cosT;
+    float F = fresnelDielectric(clamp(cosI, 0.0, 1.0), eta, cosT);
+    float r0 = (eta - 1.0) / (eta + 1.0);
+    float F0 = r0 * r0;
+    vec3 f0 = min(F0 * m.specular, vec3(1.0));
+    float t = F0 < 1.0 ? clamp((F - F0) / (1.0 - F0), 0.0, 1.0) : 1.0;
+    return m.specularWeight * (f0 + (1.0 - f0) * t);
+}
+
+// The blended Fresnel of the specular (reflection) lobe at a facet.
+vec3 pbrSpecularFresnel(GpuMaterial m, float cosI, float eta) {
+    return (1.0 - m.metallic) * pbrDielectricFresnel(m, cosI, eta) + m.metallic * fresnelSchlick(m.baseColor, cosI);
+}
+
+// The share of light the dielectric layer passes to the base at a facet.
+float pbrBaseShare(GpuMaterial m, float cosI, float eta) { return 1.0 - maxComponent(pbrDielectricFresnel(m, cosI, eta)); }
+
+// n_t / n_i seen from wo (1 / ior from inside a volume; a thin wall has air on both sides),
+// and both directions moved to the z > 0 side of wo.
+float pbrSide(GpuMaterial m, inout vec3 wo, inout vec3 wi) {
+    float eta = m.ior;
+    if (wo.z < 0.0) {
+        wo.z = -wo.z;
+        wi.z = -wi.z;
+        if (!pbrThin(m)) eta = 1.0 / m.ior;
+    }
+    return eta;
+}
+
+struct PbrLobeProbabilities {
+    float specular;
+    float transmission;
+    float diffuse;
+};
+
+// Lobe probabilities from the albedo each lobe would have at wo (wo.z > 0).
+PbrLobeProbabilities pbrLobeProbabilities(GpuMaterial m, vec3 wo, float eta) {
+    PbrLobeProbabilities p;
+    float dielectric = 1.0 - m.metallic;
+    float specular = dielectric * average(pbrDielectricFresnel(m, wo.z, eta)) + m.metallic * average(fresnelSchlick(m.baseColor, wo.z));
+    float specularMass = dielectric * m.specularWeight + m.metallic;
+    specular = max(specular, PBR_MIN_SPECULAR_ESTIMATE * specularMass);
+    float base = dielectric * max(pbrBaseShare(m, wo.z, eta), PBR_MIN_BASE_SHARE) * average(m.baseColor);
+    float transmission = base * m.transmission;
+    float diffuse = base * (1.0 - m.transmission);
+    float total = specular + transmission + diffuse;
+    float inv = total > 0.0 ? 1.0 / total : 0.0;
+    p.specular = specular * inv;
+    p.transmission = transmission * inv;
+    p.diffuse = diffuse * inv;
+    return p;
+}
+
+// The thin-wall transmitted direction's reflection partner: wi mirrored through the surface.
+vec3 mirrorThroughSurface(vec3 w) { return vec3(w.xy, -w.z); }
+
+// f * |cos(theta_i)| of the non-delta lobes; wo.z > 0, eta from pbrSide.
+vec3 pbrEvalUpper(GpuMaterial m, vec3 wo, vec3 wi, float eta) {
+    float dielectric = 1.0 - m.metallic;
+    if (wi.z > 0.0) {
+        vec3 f = dielectric * (1.0 - m.transmission) * m.baseColor * (INV_PI * wi.z) * pbrBaseShare(m, wo.z, eta) *
+                 pbrBaseShare(m, wi.z, eta);
+        if (!pbrSmooth(m)) {
+            vec3 wm = normalize(wo + wi);
+            f += pbrSpecularFresnel(m, dot(wo, wm), eta) * (ggxD(wm, m.alpha) * ggxG2OverCosO(wo, wi, m.alpha) * 0.25);
+        }
+        return f;
+    }
+    if (pbrSmooth(m) || m.transmission <= 0.0) return vec3(0.0);
+    vec3 tint = dielectric * m.transmission * m.baseColor;
+    if (pbrThin(m)) {
+        vec3 wr = mirrorThroughSurface(wi);
+        vec3 wm = normalize(wo + wr);
+        return tint * pbrBaseShare(m, dot(wo, wm), eta) * (ggxD(wm, m.alpha) * ggxG2OverCosO(wo, wr, m.alpha) * 0.25);
+    }
+    vec3 wm;
+    if (!refractionHalfVector(wo, wi, eta, wm)) return vec3(0.0);
+    return tint * pbrBaseShare(m, dot(wo, wm), eta) * ggxTransmissionNoFresnel(wo, wi, wm, eta, m.alpha);
+}
+
+float pbrPdfUpper(GpuMaterial m, vec3 wo, vec3 wi, float eta) {
+    PbrLobeProbabilities p = pbrLobeProbabilities(m, wo, eta);
+    if (wi.z > 0.0) {
+        float pdf = p.diffuse * lambertPdf(wo, wi);
+        if (!pbrSmooth(m)) pdf += p.specular * ggxReflectionPdf(wo, wi, m.alpha);
+        return pdf;
+    }
+    if (pbrSmooth(m) || p.transmission <= 0.0) return 0.0;
+    if (pbrThin(m)) return p.transmission * ggxReflectionPdf(wo, mirrorThroughSurface(wi), m.alpha);
+    vec3 wm;
+    if (!refractionHalfVector(wo, wi, eta, wm)) return 0.0;
+    return p.transmission * ggxVisibleNormalPdf(wo, wm, m.alpha) * refractionJacobian(wo, wi, wm, eta);
+}
+
+vec3 pbrEval(GpuMaterial m, vec3 wo, vec3 wi) {
+    if (wo.z == 0.0 || wi.z == 0.0) return vec3(0.0);
+    float eta = pbrSide(m, wo, wi);
+    return pbrEvalUpper(m, wo, wi, eta);
+}
+
+float pbrPdf(GpuMaterial m, vec3 wo, vec3 wi) {
+    if (wo.z == 0.0 || wi.z == 0.0) return 0.0;
+    float eta = pbrSide(m, wo, wi);
+    return pbrPdfUpper(m, wo, wi, eta);
+}
+
+BsdfSample pbrSample(GpuMaterial m, Frame frame, vec3 wo, float uLobe, vec2 u) {
+    BsdfSample s = invalidBsdfSample();
+    if (wo.z == 0.0) return s;
+    float side = wo.z > 0.0 ? 1.0 : -1.0;
+    vec3 woUp = wo, unused = vec3(0.0);
+    float eta = pbrSide(m, woUp, unused);
+    PbrLobeProbabilities p = pbrLobeProbabilities(m, woUp, eta);
+    vec3 wi;
+    if (uLobe < p.specular) {
+        if (pbrSmooth(m)) {
+            s.wi = toWorld(frame, vec3(-wo.xy, wo.z));
+            s.weight = pbrSpecularFresnel(m, woUp.z, eta) / p.specular;
+            s.pdf = p.specular;
+            s.isDelta = true;
+            s.valid = true;
+            return s;
+        }
+        wi = reflectAbout(woUp, ggxSampleVisibleNormal(woUp, m.alpha, u));
+        if (wi.z <= 0.0) return s;
+    } else if (uLobe < p.specular + p.transmission) {
+        bool thin = pbrThin(m);
+        vec3 tint = (1.0 - m.metallic) * m.transmission * m.baseColor;
+        if (pbrSmooth(m)) {
+            float cosT;
+            float share = pbrBaseShare(m, woUp.z, eta);
+            if (thin) {
+                wi = -woUp;
+                s.weight = tint * share / p.transmission;
+            } else {
+                fresnelDielectric(woUp.z, eta, cosT);
+                if (cosT <= 0.0) return s; // total internal reflection: nothing refracts
+                wi = vec3(-woUp.xy / eta, -cosT);
+                s.weight = tint * share / (eta * eta * p.transmission);
+                s.etaScale = eta * eta;
+            }
+            wi.z *= side;
+            s.wi = normalize(toWorld(frame, wi));
+            s.pdf = p.transmission;
+            s.isDelta = true;
+            s.valid = true;
+            return s;
+        }
+        vec3 wm = ggxSampleVisibleNormal(woUp, m.alpha, u);
+        if (thin) {
+            wi = mirrorThroughSurface(reflectAbout(woUp, wm));
+            if (wi.z >= 0.0) return s;
+        } else {
+            if (!refractAbout(woUp, wm, eta, wi) || wi.z >= 0.0) return s;
+            s.etaScale = eta * eta;
+        }
+    } else {
+        BsdfSample d = lambertSample(vec3(1.0), makeFrame(vec3(0.0, 0.0, 1.0)), woUp, u);
+        if (!d.valid) return s;
+        wi = d.wi;
+    }
+    s.pdf = pbrPdfUpper(m, woUp, wi, eta);
+    if (!(s.pdf > 0.0)) return invalidBsdfSample();
+    s.weight = pbrEvalUpper(m, woUp, wi, eta) / s.pdf;
+    wi.z *= side;
+    s.wi = toWorld(frame, wi);
+    s.valid = true;
+    return s;
+}
+
+#endif

@@ -1,0 +1,99 @@
+// Rough dielectric interface (Walter et al. 2007, "Microfacet Models for Refraction through
+// Rough Surfaces"): GGX reflection and refraction, the lobe chosen by the exact Fresnel
+// reflectance of the sampled visible microfacet. Transmission is tinted by the base colour
+// and carries the 1 / eta^2 radiance scaling, like the smooth dielectric.
+// Local frame: z is the shading normal on the FRONT (outside) side, so wo.z < 0 means wo is
+// inside the object (eta = 1 / ior); wi on the other side of the surface from wo refracts.
+// Everything is computed with both directions flipped to wo's side (the distribution is
+// symmetric about the surface plane).
+#ifndef PT_BSDF_ROUGH_DIELECTRIC_GLSL
+#define PT_BSDF_ROUGH_DIELECTRIC_GLSL
+#include "bsdf/ggx.glsl"
+#include "bsdf/fresnel.glsl"
+#include "bsdf/bsdf_sample.glsl"
+
+// An index ratio this close to 1 is no interface: light passes straight through (the
+// refraction half vector wo + eta wi degenerates there).
+const float INDEX_MATCHED_EPSILON = 1e-4;
+
+// n_t / n_i seen from wo, and both directions moved to the z > 0 side of wo.
+float dielectricSide(float ior, inout vec3 wo, inout vec3 wi) {
+    if (wo.z > 0.0) return ior;
+    wo.z = -wo.z;
+    wi.z = -wi.z;
+    return 1.0 / ior;
+}
+
+// G2 / cos(theta_o) D (wo . wm) |d wm / d wi| / eta^2: the GGX BTDF times cos(theta_i) without
+// its Fresnel factor (Walter et al. eq. 21); wo.z > 0 > wi.z, wm from refractionHalfVector.
+float ggxTransmissionNoFresnel(vec3 wo, vec3 wi, vec3 wm, float eta, float alpha) {
+    return ggxD(wm, alpha) * ggxG2OverCosO(wo, wi, alpha) * dot(wo, wm) * refractionJacobian(wo, wi, wm, eta) / (eta * eta);
+}
+
+// f * |cos(theta_i)|
+vec3 roughDielectricEval(GpuMaterial m, vec3 wo, vec3 wi) {
+    if (wo.z == 0.0 || wi.z == 0.0) return vec3(0.0);
+    float eta = dielectricSide(m.ior, wo, wi);
+    float cosT;
+    if (wi.z > 0.0) {
+        vec3 wm = normalize(wo + wi);
+        float F = fresnelDielectric(clamp(dot(wo, wm), 0.0, 1.0), eta, cosT);
+        return vec3(F * ggxD(wm, m.alpha) * ggxG2OverCosO(wo, wi, m.alpha) * 0.25);
+    }
+    vec3 wm;
+    if (!refractionHalfVector(wo, wi, eta, wm)) return vec3(0.0);
+    float F = fresnelDielectric(dot(wo, wm), eta, cosT);
+    return m.baseColor * ((1.0 - F) * ggxTransmissionNoFresnel(wo, wi, wm, eta, m.alpha));
+}
+
+float roughDielectricPdf(GpuMaterial m, vec3 wo, vec3 wi) {
+    if (wo.z == 0.0 || wi.z == 0.0) return 0.0;
+    float eta = dielectricSide(m.ior, wo, wi);
+    float cosT;
+    if (wi.z > 0.0) {
+        vec3 wm = normalize(wo + wi);
+        float F = fresnelDielectric(clamp(dot(wo, wm), 0.0, 1.0), eta, cosT);
+        return F * ggxReflectionPdf(wo, wi, m.alpha);
+    }
+    vec3 wm;
+    if (!refractionHalfVector(wo, wi, eta, wm)) return 0.0;
+    float F = fresnelDielectric(dot(wo, wm), eta, cosT);
+    return (1.0 - F) * ggxVisibleNormalPdf(wo, wm, m.alpha) * refractionJacobian(wo, wi, wm, eta);
+}
+
+BsdfSample roughDielectricSample(GpuMaterial m, Frame frame, vec3 wo, float uLobe, vec2 u) {
+    BsdfSample s = invalidBsdfSample();
+    if (wo.z == 0.0) return s;
+    if (abs(m.ior - 1.0) < INDEX_MATCHED_EPSILON) {
+        s.wi = toWorld(frame, -wo);
+        s.weight = m.baseColor;
+        s.pdf = 1.0;
+        s.isDelta = true;
+        s.valid = true;
+        return s;
+    }
+    float side = wo.z > 0.0 ? 1.0 : -1.0;
+    vec3 woUp = vec3(wo.xy, abs(wo.z));
+    float eta = wo.z > 0.0 ? m.ior : 1.0 / m.ior;
+    vec3 wm = ggxSampleVisibleNormal(woUp, m.alpha, u);
+    float cosT;
+    float F = fresnelDielectric(clamp(dot(woUp, wm), 0.0, 1.0), eta, cosT);
+    vec3 wi;
+    if (uLobe < F) {
+        // Reflection (always, under total internal reflection at this facet: F = 1).
+        wi = reflectAbout(woUp, wm);
+        if (wi.z <= 0.0) return s;
+    } else {
+        if (!refractAbout(woUp, wm, eta, wi) || wi.z >= 0.0) return s;
+        s.etaScale = eta * eta;
+    }
+    wi.z *= side; // back to the frame's sides
+    s.pdf = roughDielectricPdf(m, wo, wi);
+    if (!(s.pdf > 0.0)) return invalidBsdfSample();
+    s.weight = roughDielectricEval(m, wo, wi) / s.pdf;
+    s.wi = toWorld(frame, wi);
+    s.valid = true;
+    return s;
+}
+
+#endif

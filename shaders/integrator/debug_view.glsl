@@ -1,0 +1,59 @@
+// The viewer's diagnostic images (SPEC_DEBUG_VIEW): what the camera ray finds, instead of
+// radiance. They accumulate like radiance, so edges are antialiased by the pixel jitter.
+#ifndef PT_INTEGRATOR_DEBUG_VIEW_GLSL
+#define PT_INTEGRATOR_DEBUG_VIEW_GLSL
+#include "common/math.glsl"
+#include "geometry/interaction.glsl"
+#include "geometry/traverse.glsl"
+#include "integrator/features.glsl"
+#include "integrator/path.glsl"
+
+// BVH cost: node visits of the camera ray's closest-hit query (both trees), shown on a
+// blue-green-red ramp from 0 to this many visits (red saturates above it).
+const float BVH_COST_FULL_SCALE = 100.0;
+// NaN mask: finite samples show as a dim grey of their luminance, so the scene stays legible.
+const float NAN_MASK_GREY = 0.25;
+
+vec3 heatRamp(float x) {
+    x = clamp(x, 0.0, 1.0);
+    return x < 0.5 ? mix(vec3(0.0, 0.0, 1.0), vec3(0.0, 1.0, 0.0), 2.0 * x)
+                   : mix(vec3(0.0, 1.0, 0.0), vec3(1.0, 0.0, 0.0), 2.0 * x - 1.0);
+}
+
+// Diagonal of the scene's bounds (the roots of both BVHs): depth is shown as t over this.
+float sceneExtent() {
+    vec3 lo = vec3(FLOAT_MAX), hi = vec3(-FLOAT_MAX);
+    if (HAS_TRIANGLES && scene.numNodes > 0u) {
+        lo = min(lo, sceneNodes.v[0].lo);
+        hi = max(hi, sceneNodes.v[0].hi);
+    }
+    if (HAS_SPHERES && scene.numSphereNodes > 0u) {
+        GpuBvhNode root = NodeRef(scene.sphereNodes).v[0];
+        lo = min(lo, root.lo);
+        hi = max(hi, root.hi);
+    }
+    return all(lessThanEqual(lo, hi)) ? max(length(hi - lo), 1e-20) : 1.0;
+}
+
+vec3 debugView(Ray ray, Rng rng) {
+    if (DEBUG_VIEW == DEBUG_VIEW_NAN_MASK) {
+        // Red where the path's sample is NaN or infinite (the samples the kernel drops).
+        vec3 L = tracePath(ray, rng);
+        return allFinite(L) ? vec3(NAN_MASK_GREY * clamp(luminance(L), 0.0, 1.0)) : vec3(1.0, 0.0, 0.0);
+    }
+    Hit hit;
+    traversalNodeVisits = 0u;
+    bool found = traceClosest(ray, FLOAT_MAX, hit);
+    if (DEBUG_VIEW == DEBUG_VIEW_BVH_COST) return heatRamp(float(traversalNodeVisits) / BVH_COST_FULL_SCALE);
+    if (!found) return vec3(0.0);
+    SurfaceInteraction si = makeInteraction(ray, hit);
+    if (DEBUG_VIEW == DEBUG_VIEW_NORMAL) return 0.5 * si.ns + 0.5; // world-space shading normal
+    if (DEBUG_VIEW == DEBUG_VIEW_DEPTH) return vec3(hit.t / sceneExtent());
+    // DEBUG_VIEW_ALBEDO: the material's base colour (texture-free); emitters show their
+    // emission normalised to a largest component of 1.
+    GpuMaterial mat = sceneMaterials.v[si.materialIndex];
+    float e = maxComponent(mat.emission);
+    return e > 0.0 ? mat.emission / e : mat.baseColor;
+}
+
+#endif

@@ -1,0 +1,89 @@
+// A material's textures applied at a hit: colour slots scale (or, for the course's blend_kd,
+// average with) the material's factors, and normal or bump maps tilt the shading normal. The
+// BSDFs then see a plain GpuMaterial and know nothing about textures.
+#ifndef PT_TEXTURES_MATERIAL_TEXTURES_GLSL
+#define PT_TEXTURES_MATERIAL_TEXTURES_GLSL
+#include "geometry/interaction.glsl"
+#include "textures/texture.glsl"
+
+bool hasAnyTexture(GpuMaterial m) {
+    return (m.baseColorTexture & m.specularTexture & m.metallicRoughnessTexture & m.normalTexture & m.emissiveTexture) != NO_TEXTURE;
+}
+
+// Shading normal from a tangent-space normal map (+x along dp/du, +y towards decreasing v,
+// i.e. up the image, as glTF and OpenGL-style maps store it).
+vec3 normalFromMap(SurfaceInteraction si, vec3 texel, float scale) {
+    vec3 n = si.ns;
+    vec3 t = si.dpdu - n * dot(n, si.dpdu);
+    float tLen2 = dot(t, t);
+    if (!(tLen2 > 0.0) || isinf(tLen2)) return n;
+    t *= inversesqrt(tLen2);
+    // Bitangent up the image; mirrored uv layouts flip it with dp/dv, as generated tangents do.
+    vec3 b = cross(n, t);
+    if (dot(b, si.dpdv) > 0.0) b = -b;
+    vec3 m = texel * 2.0 - 1.0;
+    m.xy *= scale;
+    vec3 mapped = m.x * t + m.y * b + m.z * n;
+    float len2 = dot(mapped, mapped);
+    return (len2 > 0.0 && !isinf(len2)) ? mapped * inversesqrt(len2) : n;
+}
+
+float bumpHeight(uint index, vec2 uv, vec3 p) {
+    vec3 c = evalTexture(index, uv, p).rgb;
+    return (c.r + c.g + c.b) * (1.0 / 3.0);
+}
+
+// Bump mapping (Blinn 1978): the surface displaced by factor * h along n, its normal from the
+// displaced tangents. Image heights are differenced one texel apart in u and v; procedural ones
+// by a central difference in 3D, keeping the gradient's part in the tangent plane.
+vec3 normalFromBump(SurfaceInteraction si, uint index, float factor) {
+    vec3 n = si.ns;
+    GpuTexture tex = loadTexture(index);
+    vec3 bumped;
+    if (tex.type == TEXTURE_IMAGE) {
+        vec2 duv = 1.0 / vec2(max(tex.width, 1u), max(tex.height, 1u));
+        float h0 = bumpHeight(index, si.uv, si.p);
+        float dhdu = (bumpHeight(index, si.uv + vec2(duv.x, 0.0), si.p) - h0) / duv.x;
+        float dhdv = (bumpHeight(index, si.uv + vec2(0.0, duv.y), si.p) - h0) / duv.y;
+        vec3 qu = si.dpdu + factor * dhdu * n;
+        vec3 qv = si.dpdv + factor * dhdv * n;
+        bumped = cross(qu, qv);
+        if (dot(bumped, n) < 0.0) bumped = -bumped;
+    } else {
+        // Step relative to the noise's feature size.
+        float h = 1e-3 / max(abs(tex.patternScale), 1e-6);
+        vec3 g = vec3(bumpHeight(index, si.uv, si.p + vec3(h, 0, 0)) - bumpHeight(index, si.uv, si.p - vec3(h, 0, 0)),
+                     bumpHeight(index, si.uv, si.p + vec3(0, h, 0)) - bumpHeight(index, si.uv, si.p - vec3(0, h, 0)),
+                     bumpHeight(index, si.uv, si.p + vec3(0, 0, h)) - bumpHeight(index, si.uv, si.p - vec3(0, 0, h))) / (2.0 * h);
+        bumped = n - factor * (g - n * dot(g, n));
+    }
+    float len2 = dot(bumped, bumped);
+    return (len2 > 0.0 && !isinf(len2)) ? bumped * inversesqrt(len2) : n;
+}
+
+void applyTextures(inout GpuMaterial m, inout SurfaceInteraction si) {
+    if (!(HAS_TEXTURES || HAS_PROCEDURAL)) return;
+    if (!hasAnyTexture(m)) return;
+    if (m.baseColorTexture != NO_TEXTURE) {
+        vec4 c = evalTexture(m.baseColorTexture, si.uv, si.p);
+        m.baseColor = (m.flags & MATERIAL_FLAG_BLEND_KD) != 0u ? 0.5 * (m.baseColor + c.rgb) : m.baseColor * c.rgb;
+        m.opacity *= c.a;
+    }
+    if (m.specularTexture != NO_TEXTURE) m.specular *= evalTexture(m.specularTexture, si.uv, si.p).rgb;
+    if (m.metallicRoughnessTexture != NO_TEXTURE) {
+        vec4 c = evalTexture(m.metallicRoughnessTexture, si.uv, si.p);
+        // alpha = roughness^2, so the roughness channel scales sqrt(alpha).
+        float alpha = m.alpha * c.g * c.g;
+        m.alpha = alpha >= MIN_ROUGH_ALPHA ? min(alpha, 1.0) : 0.0;
+        m.metallic *= c.b;
+    }
+    if (m.emissiveTexture != NO_TEXTURE) m.emission *= evalTexture(m.emissiveTexture, si.uv, si.p).rgb;
+    if (HAS_NORMAL_MAPS && m.normalTexture != NO_TEXTURE) {
+        vec3 ns = (m.flags & MATERIAL_FLAG_BUMP_MAP) != 0u
+            ? normalFromBump(si, m.normalTexture, m.normalScale)
+            : normalFromMap(si, evalTexture(m.normalTexture, si.uv, si.p).rgb, m.normalScale);
+        si.ns = dot(ns, si.ng) < 0.0 ? -ns : ns;
+    }
+}
+
+#endif

@@ -1,0 +1,169 @@
+#include "app/scene_setup.h"
+
+#include "render/image_io.h"
+#include "render/renderer.h"
+#include "scene/scene_loader.h"
+
+#include <cmath>
+#include <cstdio>
+
+namespace pt {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string joinNotes(const std::vector<std::string>& notes) {
+    std::string s;
+    for (const auto& n : notes) s += (s.empty() ? "" : "; ") + n;
+    return s;
+}
+
+} // namespace
+
+Scene loadSceneWithOptions(const RenderOptions& o) {
+    Scene scene = loadScene(o.scene);
+    if (!o.environment.empty()) {
+        Environment env;
+        env.image = readExr(o.environment);
+        env.source = o.environment;
+        scene.environment = env;
+    } else if (o.environmentColour) {
+        Environment env;
+        env.colour = *o.environmentColour;
+        env.source = "--env-colour";
+        scene.environment = env;
+    }
+    if (scene.environment) {
+        scene.environment->scale *= o.environmentScale;
+        scene.environment->rotationDegrees += o.environmentRotation;
+    }
+    if (!scene.unsupported.empty())
+        std::fprintf(stderr, "pt: warning: %s: not supported yet, rendered approximately: %s\n", scene.source.c_str(),
+            joinNotes(scene.unsupported).c_str());
+    return scene;
+}
+
+FlatScene flattenWithNotes(const Scene& scene) {
+    FlatScene flat = flattenScene(scene);
+    if (flat.degenerateTriangles > 0)
+        std::fprintf(stderr, "pt: note: %s: dropped %zu degenerate (zero-area) triangles\n", scene.source.c_str(),
+            flat.degenerateTriangles);
+    if (flat.degenerateSpheres > 0)
+        std::fprintf(stderr, "pt: note: %s: dropped %zu spheres with a singular transform\n", scene.source.c_str(),
+            flat.degenerateSpheres);
+    if (flat.lights.lights.empty() && scene.background == glm::vec3(0.0f) && flat.environment.width == 0)
+        std::fprintf(stderr, "pt: warning: %s: nothing emits light (no emissive surfaces or lights, black background): "
+                             "the image will be black\n", scene.source.c_str());
+    return flat;
+}
+
+std::string sceneStem(const std::string& scene) {
+    std::string stem = scene.empty() ? "cornell-box" : fs::path(scene).stem().string();
+    if (stem == "scene") stem = fs::path(scene).parent_path().filename().string(); // refs/<name>/scene.gltf
+    return stem.empty() ? "render" : stem;
+}
+
+bool isCourseScene(const std::string& scene) {
+    std::string ext = fs::path(scene).extension().string();
+    for (auto& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return ext == ".xml";
+}
+
+std::vector<Camera> chooseCameras(const Scene& scene, const RenderOptions& o, bool course) {
+    if (scene.cameras.empty()) {
+        if (o.camera && *o.camera != 0)
+            throw std::runtime_error(scene.source + ": --camera " + std::to_string(*o.camera) + ": the scene has no cameras");
+        // No camera in the file: look at the scene's bounding box from +z.
+        glm::vec3 lo(INFINITY), hi(-INFINITY);
+        for (const auto& m : scene.meshes)
+            for (const auto& p : m.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
+        for (const auto& s : scene.spheres) {
+            const glm::vec3 c(s.objectToWorld[3]);
+            const float r = glm::length(glm::vec3(s.objectToWorld[0])) + glm::length(glm::vec3(s.objectToWorld[1])) +
+                            glm::length(glm::vec3(s.objectToWorld[2]));
+            lo = glm::min(lo, c - r), hi = glm::max(hi, c + r);
+        }
+        Camera c;
+        c.name = "framing camera";
+        c.yfov = 0.8f;
+        const glm::vec3 centre = 0.5f * (lo + hi);
+        const float radius = 0.5f * glm::length(hi - lo);
+        c.position = centre + glm::vec3(0, 0, radius / std::tan(0.5f * c.yfov) + radius);
+        std::fprintf(stderr, "pt: note: %s has no camera; using one that frames the scene\n", scene.source.c_str());
+        return {c};
+    }
+    if (course) {
+        if (!o.camera) return scene.cameras;
+        for (const auto& c : scene.cameras)
+            if (c.id == *o.camera) return {c};
+        std::string ids;
+        for (const auto& c : scene.cameras) ids += (ids.empty() ? "" : " ") + std::to_string(c.id);
+        throw std::runtime_error(scene.source + ": --camera " + std::to_string(*o.camera) + ": no camera with that id (ids: " + ids + ")");
+    }
+    const int index = o.camera.value_or(0);
+    if (index < 0 || index >= static_cast<int>(scene.cameras.size()))
+        throw std::runtime_error(scene.source + ": --camera " + std::to_string(index) + " is out of range (the scene has " +
+                                 std::to_string(scene.cameras.size()) + " camera(s))");
+    return {scene.cameras[index]};
+}
+
+Job makeJob(const Scene& scene, const Camera& camera, const RenderOptions& o, bool severalImages, bool course) {
+    Job job;
+    job.camera = camera;
+    const CameraRenderSettings& cs = camera.settings;
+    // Size: command line, then the camera's, then the scene's hints, then 512 wide.
+    job.width = o.width.value_or(cs.width.value_or(scene.hints.width.value_or(512)));
+    if (o.height) job.height = *o.height;
+    else if (!o.width && cs.height) job.height = *cs.height;
+    else if (!o.width && scene.hints.height) job.height = *scene.hints.height;
+    else if (camera.aspectRatio > 0) job.height = std::max(1, static_cast<int>(std::lround(job.width / camera.aspectRatio)));
+    else job.height = job.width;
+    validateImageSize(job.width, job.height);
+
+    IntegratorSettings& s = job.settings;
+    s = o.integrator;
+    s.nee = o.nee.value_or(cs.nee.value_or(true));
+    s.mis = o.mis.value_or(true);
+    s.rr = o.rr.value_or(cs.russianRoulette.value_or(true));
+    s.sampling = o.sampling.value_or(cs.importanceSampling.value_or(true) ? DirectionSampling::Cosine : DirectionSampling::Uniform);
+    // The course's official path-tracing images apply Russian roulette without a depth cap
+    // (FORMAT.md section 8): such cameras get a cap so high that only roulette ends paths.
+    const bool uncapped = course && cs.russianRoulette.value_or(false) && !cs.maxDepth;
+    const int fallbackDepth = uncapped ? kUncappedDepth : scene.hints.maxDepth.value_or(16);
+    const int depth = o.maxDepth ? static_cast<int>(*o.maxDepth) : cs.maxDepth.value_or(fallbackDepth);
+    if (depth < 1) throw std::runtime_error("max depth must be at least 1");
+    s.maxDepth = static_cast<uint32_t>(depth);
+
+    job.target.spp = o.spp.value_or(o.seconds ? 0u : cs.spp.value_or(64u));
+    job.target.seconds = o.seconds.value_or(0.0);
+    job.target.passSpp = o.passSpp;
+    job.target.tileSize = o.tileSize;
+    job.tonemap = cs.tonemap.value_or(TonemapSettings{});
+
+    // Output: -o FILE.exr names the file (one image only); any other -o is a folder for the
+    // images, named by their ImageName (course scenes) or the scene; the default folder is out/.
+    fs::path name = cs.imageName.empty() ? fs::path(sceneStem(o.scene) + ".exr") : fs::path(cs.imageName).filename();
+    name.replace_extension(".exr");
+    const fs::path requested(o.output);
+    if (requested.extension() == ".exr") {
+        if (severalImages)
+            throw std::runtime_error(o.output + ": several cameras render several images: give a folder, or pick one with --camera");
+        job.output = requested;
+    } else if (!o.output.empty() && (course || fs::is_directory(requested))) {
+        job.output = requested / name;
+    } else if (!o.output.empty()) {
+        throw std::runtime_error(o.output + ": output must end in .exr (or be a folder)");
+    } else {
+        job.output = fs::path("out") / name;
+    }
+    return job;
+}
+
+void prepareOutputDirectory(const fs::path& output) {
+    if (output.parent_path().empty()) return;
+    std::error_code ec;
+    fs::create_directories(output.parent_path(), ec);
+    if (ec) throw std::runtime_error(output.parent_path().string() + ": cannot create directory (" + ec.message() + ")");
+}
+
+} // namespace pt

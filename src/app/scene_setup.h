@@ -1,0 +1,45 @@
+#pragma once
+// What `pt render` and `pt view` share: loading a scene with the command line's environment,
+// flattening it with the usual notes, and turning a camera plus options into an image job
+// (size, integrator settings, sample target, tone mapping, output file).
+#include "app/options.h"
+#include "render/flat_scene.h"
+#include "render/progressive_render.h"
+#include "scene/scene.h"
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace pt {
+
+// "No depth cap": deep enough that Russian roulette, not the cap, ends every path in practice.
+constexpr int kUncappedDepth = 256;
+
+// Output file stem for a scene path ("cornell-box" for the built-in scene).
+std::string sceneStem(const std::string& scene);
+bool isCourseScene(const std::string& scene);
+
+// One image to render: which camera, at what size, with which settings, to which file.
+struct Job {
+    Camera camera;
+    int width = 0, height = 0;
+    IntegratorSettings settings;
+    ProgressiveTarget target;
+    std::filesystem::path output; // .exr; the PNG goes beside it
+    TonemapSettings tonemap;
+};
+
+// Loads the scene (none: the built-in Cornell box), applies --env / --env-colour and their
+// scale and rotation, and warns once about anything rendered approximately.
+Scene loadSceneWithOptions(const RenderOptions& o);
+// flattenScene plus the notes about dropped primitives and the warning for a scene without light.
+FlatScene flattenWithNotes(const Scene& scene);
+
+// The cameras to render: --camera picks one (a glTF index, a course camera id); glTF renders
+// its first camera by default, a course scene every camera (one image each, as the course does).
+std::vector<Camera> chooseCameras(const Scene& scene, const RenderOptions& o, bool course);
+Job makeJob(const Scene& scene, const Camera& camera, const RenderOptions& o, bool severalImages, bool course);
+void prepareOutputDirectory(const std::filesystem::path& output);
+
+} // namespace pt

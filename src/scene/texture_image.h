@@ -1,0 +1,21 @@
+#pragma once
+// Decoding the images textures read: PNG, JPEG, BMP, TGA and the like through stb_image (kept as
+// 8-bit RGBA), Radiance .hdr through stb_image and OpenEXR through OpenEXR (kept as float).
+#include "scene/scene.h"
+
+#include <cstddef>
+#include <filesystem>
+#include <string>
+
+namespace pt {
+
+// Largest texture side accepted: a hostile header must not make us allocate gigabytes.
+constexpr int kMaxTextureSide = 16384;
+
+// Throws std::runtime_error "<source>: <problem>" when the file is missing or undecodable.
+TextureImage loadTextureImage(const std::filesystem::path& path);
+
+// Decodes an image held in memory (glTF buffer views and data URIs); `source` names it in errors.
+TextureImage decodeTextureImage(const unsigned char* bytes, size_t size, const std::string& source);
+
+} // namespace pt

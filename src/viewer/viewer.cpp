@@ -1,0 +1,355 @@
+#include "viewer/viewer.h"
+
+#include "gpu/vulkan_error.h"
+#include "render/feature_set.h"
+#include "viewer/viewer_session.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+namespace pt::viewer {
+namespace {
+
+double msSince(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
+
+// Bounds of the scene from the roots of its BVHs.
+void sceneBounds(const FlatScene& flat, glm::vec3& centre, float& radius) {
+    glm::vec3 lo(INFINITY), hi(-INFINITY);
+    if (!flat.nodes.empty()) lo = glm::min(lo, flat.nodes[0].lo), hi = glm::max(hi, flat.nodes[0].hi);
+    if (!flat.sphereNodes.empty()) lo = glm::min(lo, flat.sphereNodes[0].lo), hi = glm::max(hi, flat.sphereNodes[0].hi);
+    if (!(lo.x <= hi.x)) lo = hi = glm::vec3(0.0f);
+    centre = 0.5f * (lo + hi);
+    radius = std::max(0.5f * glm::length(hi - lo), 1e-3f);
+}
+
+CameraController makeController(const FlatScene& flat, const Camera& camera) {
+    glm::vec3 centre;
+    float radius;
+    sceneBounds(flat, centre, radius);
+    return CameraController(camera, centre, radius);
+}
+
+} // namespace
+
+Session::Session(Window& window, VulkanContext& context, const FlatScene& flat, const ViewerConfig& config)
+    : window_(window), context_(context), flat_(flat), config_(config), controller_(makeController(flat, config.job.camera)),
+      settings_(config.job.settings), ev_(config.exposure) {
+    if (config.job.tonemap.op == TonemapSettings::Operator::Photographic) op_ = DisplayOperator::Photographic;
+    windowSize_ = window.framebufferSize();
+    if (windowSize_.x <= 0 || windowSize_.y <= 0) windowSize_ = glm::ivec2(config.job.width, config.job.height);
+
+    FeatureSet features = computeFeatures(flat, settings_);
+    renderer_ = std::make_unique<Renderer>(context, flat, features, settings_, config.job.camera,
+        FilmSettings{windowSize_.x, windowSize_.y, config.background});
+    std::fprintf(stderr, "pt: view: kernel features: %s; pipeline %.3f s\n", features.describe().c_str(),
+        renderer_->pipelineSeconds());
+
+    swapchain_ = std::make_unique<Swapchain>(context, windowSize_.x, windowSize_.y);
+    windowSize_ = glm::ivec2(swapchain_->extent().width, swapchain_->extent().height);
+    display_ = std::make_unique<DisplayPass>(context);
+    display_->resize(windowSize_.x, windowSize_.y);
+    std::fprintf(stderr, "pt: view: swapchain %dx%d, %s presentation, %s\n", windowSize_.x, windowSize_.y,
+        swapchain_->presentModeName(), swapchain_->bgra() ? "BGRA" : "RGBA");
+
+    VkDevice device = context.device();
+    VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+    poolInfo.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
+    poolInfo.queueFamilyIndex = context.queueFamily();
+    vkCheck(vkCreateCommandPool(device, &poolInfo, nullptr, &pool_), "creating the viewer's command pool");
+    VkCommandBufferAllocateInfo alloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+    alloc.commandPool = pool_;
+    alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+    alloc.commandBufferCount = 1;
+    vkCheck(vkAllocateCommandBuffers(device, &alloc, &cmd_), "allocating the viewer's command buffer");
+    VkFenceCreateInfo fenceInfo{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+    vkCheck(vkCreateFence(device, &fenceInfo, nullptr, &fence_), "creating a fence");
+    VkSemaphoreCreateInfo semaphoreInfo{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
+    vkCheck(vkCreateSemaphore(device, &semaphoreInfo, nullptr, &acquired_), "creating a semaphore");
+
+    // GPU timestamps around the render dispatches and the display pass, when the queue has them.
+    uint32_t familyCount = 0;
+    vkGetPhysicalDeviceQueueFamilyProperties(context.physicalDevice(), &familyCount, nullptr);
+    std::vector<VkQueueFamilyProperties> families(familyCount);
+    vkGetPhysicalDeviceQueueFamilyProperties(context.physicalDevice(), &familyCount, families.data());
+    if (families[context.queueFamily()].timestampValidBits > 0) {
+        VkQueryPoolCreateInfo queryInfo{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
+        queryInfo.queryType = VK_QUERY_TYPE_TIMESTAMP;
+        queryInfo.queryCount = 3;
+        vkCheck(vkCreateQueryPool(device, &queryInfo, nullptr, &queries_), "creating a timestamp query pool");
+        timestampMs_ = context.properties().limits.timestampPeriod * 1e-6;
+    }
+}
+
+Session::~Session() {
+    VkDevice device = context_.device();
+    vkDeviceWaitIdle(device);
+    if (queries_) vkDestroyQueryPool(device, queries_, nullptr);
+    if (acquired_) vkDestroySemaphore(device, acquired_, nullptr);
+    if (fence_) vkDestroyFence(device, fence_, nullptr);
+    if (pool_) vkDestroyCommandPool(device, pool_, nullptr);
+}
+
+bool Session::workLeft() const {
+    if (paused_) return false;
+    return passActive_ || scale_ > 1 || renderer_->samplesPerPixel() < config_.sppCap;
+}
+
+bool Session::needFrame() const {
+    const bool scriptActive = config_.scripted && (scriptNext_ < config_.script.size() || waitFrames_ > 0 ||
+                                                     waitSpp_ >= 0 || repeatLeft_ > 0 || waitResize_ > 0);
+    return workLeft() || displayDirty_ || cameraDirty_ || integratorDirty_ || clampDirty_ || sizeDirty_ || scriptActive;
+}
+
+// The preview divides the window so that one pass fits the frame budget at the learnt cost.
+int Session::choosePreviewScale() const {
+    const double passMs = double(windowSize_.x) * windowSize_.y * costMs_;
+    return std::clamp(static_cast<int>(std::ceil(std::sqrt(passMs / config_.frameBudgetMs))), 1, 16);
+}
+
+void Session::resetPass() {
+    passActive_ = false;
+    passTilesDone_ = 0;
+    renderSeconds_ = 0;
+    termsSpp_ = 0;
+    displayDirty_ = true;
+}
+
+// Applies pending changes. Anything that restarts accumulation first renders a preview (the
+// window divided by a scale chosen from the measured speed), refined once the view is still.
+void Session::applyChanges() {
+    const bool changing = cameraDirty_ || integratorDirty_ || clampDirty_ || sizeDirty_;
+    if (integratorDirty_) {
+        FeatureSet features = computeFeatures(flat_, settings_);
+        features.debugView = debugView_;
+        const auto start = Clock::now();
+        renderer_->setIntegrator(settings_, features);
+        std::fprintf(stderr, "pt: view: %s (%.3f s)\n", settingsText().c_str(), msSince(start) * 1e-3);
+        integratorDirty_ = false;
+    }
+    if (clampDirty_) {
+        renderer_->setSampleClamp(clamp_);
+        clampDirty_ = false;
+    }
+    bool restarted = changing;
+    int wantScale = scale_;
+    if (changing) {
+        if (scale_ == 1) previewScale_ = choosePreviewScale();
+        wantScale = previewScale_;
+    } else if (scale_ > 1 && !passActive_ && renderer_->samplesPerPixel() >= 1) {
+        wantScale = 1; // the view is still: refine at full resolution
+    }
+    if (wantScale != scale_ || sizeDirty_) {
+        scale_ = wantScale;
+        renderer_->setFilmSize((windowSize_.x + scale_ - 1) / scale_, (windowSize_.y + scale_ - 1) / scale_);
+        sizeDirty_ = false;
+        restarted = true;
+    }
+    if (cameraDirty_) {
+        renderer_->setCamera(controller_.camera());
+        cameraDirty_ = false;
+    }
+    if (restarted) resetPass();
+    if (changing) changeTime_ = Clock::now();
+}
+
+uint64_t Session::tilePixels(uint32_t tileSize, uint32_t firstTile, uint32_t endTile) const {
+    const uint32_t w = static_cast<uint32_t>(renderer_->width()), h = static_cast<uint32_t>(renderer_->height());
+    const uint32_t tw = tileSize ? std::min(tileSize, w) : w, th = tileSize ? std::min(tileSize, h) : h;
+    const uint32_t tilesX = (w + tw - 1) / tw;
+    uint64_t pixels = 0;
+    for (uint32_t t = firstTile; t < endTile; ++t) {
+        const uint32_t x = (t % tilesX) * tw, y = (t / tilesX) * th;
+        pixels += uint64_t(std::min(tw, w - x)) * std::min(th, h - y);
+    }
+    return pixels;
+}
+
+// This frame's share of the work: a preview pass whole; at full resolution, as many samples
+// as fit the budget when a whole pass does, else one sample per pass spread over frames in
+// tiles.
+void Session::planWork(uint32_t& count, uint32_t& firstTile, uint32_t& endTile) {
+    count = firstTile = endTile = 0;
+    const uint32_t spp = renderer_->samplesPerPixel();
+    if (!passActive_) {
+        if (paused_ || (scale_ == 1 && spp >= config_.sppCap)) return;
+        const double passMs = double(renderer_->width()) * renderer_->height() * costMs_;
+        passTileSize_ = 0;
+        passCount_ = 1;
+        if (scale_ == 1 && passMs <= config_.frameBudgetMs)
+            passCount_ = static_cast<uint32_t>(std::clamp(std::floor(config_.frameBudgetMs / passMs), 1.0, double(config_.sppCap - spp)));
+        else if (scale_ == 1)
+            passTileSize_ = config_.tileSize;
+        passTiles_ = renderer_->tileCount(passTileSize_);
+        passTilesDone_ = 0;
+        passActive_ = true;
+    }
+    uint32_t tiles = 1;
+    if (passTileSize_ > 0) {
+        const double tileMs = double(passTileSize_) * passTileSize_ * passCount_ * costMs_;
+        tiles = static_cast<uint32_t>(std::clamp(std::floor(config_.frameBudgetMs / tileMs), 1.0, double(passTiles_)));
+    }
+    count = passCount_;
+    firstTile = passTilesDone_;
+    endTile = std::min(passTiles_, passTilesDone_ + tiles);
+}
+
+// Renders the rest of the pass in progress at once (before saving, so every pixel has the same
+// number of samples).
+void Session::finishPass() {
+    if (!passActive_) return;
+    context_.submitAndWait([&](VkCommandBuffer cmd) {
+        renderer_->recordTiles(cmd, passCount_, passTileSize_, passTilesDone_, passTiles_);
+        VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+        barrier.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
+        barrier.dstAccessMask = VK_ACCESS_HOST_READ_BIT | VK_ACCESS_TRANSFER_READ_BIT;
+        vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+            VK_PIPELINE_STAGE_HOST_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 1, &barrier, 0, nullptr, 0, nullptr);
+    });
+    renderer_->completePass(passCount_);
+    passActive_ = false;
+    displayDirty_ = true;
+}
+
+void Session::resizeWindow(glm::ivec2 size) {
+    swapchain_->recreate(size.x, size.y);
+    windowSize_ = glm::ivec2(swapchain_->extent().width, swapchain_->extent().height);
+    display_->resize(windowSize_.x, windowSize_.y);
+    sizeDirty_ = true;
+    std::fprintf(stderr, "pt: view: swapchain recreated at %dx%d\n", windowSize_.x, windowSize_.y);
+}
+
+void Session::updatePhotographicTerms(bool force) {
+    if (op_ != DisplayOperator::Photographic || renderer_->samplesPerPixel() == 0) return;
+    if (!force && (passActive_ || (termsSpp_ != 0 && std::chrono::duration<double>(Clock::now() - termsTime_).count() < 0.5)))
+        return;
+    if (!force && termsSpp_ == renderer_->samplesPerPixel()) return;
+    terms_ = photographicTerms(renderer_->read().mean, settingsFor(op_, config_.job.tonemap), ev_);
+    termsSpp_ = renderer_->samplesPerPixel();
+    termsTime_ = Clock::now();
+}
+
+void Session::frame() {
+    const auto start = Clock::now();
+    const glm::ivec2 fb = window_.framebufferSize();
+    if (fb.x <= 0 || fb.y <= 0) return; // minimised
+    if (fb != windowSize_) resizeWindow(fb);
+    applyChanges();
+    uint32_t count, firstTile, endTile;
+    planWork(count, firstTile, endTile);
+
+    uint32_t image = 0;
+    if (!swapchain_->acquire(acquired_, &image)) {
+        resizeWindow(fb);
+        return;
+    }
+    VkDevice device = context_.device();
+    vkCheck(vkResetCommandBuffer(cmd_, 0), "resetting the viewer's command buffer");
+    VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+    begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+    vkCheck(vkBeginCommandBuffer(cmd_, &begin), "recording a frame");
+    if (queries_) {
+        vkCmdResetQueryPool(cmd_, queries_, 0, 3);
+        vkCmdWriteTimestamp(cmd_, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, queries_, 0);
+    }
+    if (count > 0) renderer_->recordTiles(cmd_, count, passTileSize_, firstTile, endTile);
+    if (queries_) vkCmdWriteTimestamp(cmd_, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queries_, 1);
+
+    gpu::GpuDisplayPush push{};
+    push.accumulation = renderer_->accumulationAddress();
+    push.filmSize = glm::uvec2(renderer_->width(), renderer_->height());
+    push.spp = renderer_->samplesPerPixel();
+    push.passSamples = passActive_ ? passCount_ : 0;
+    push.passTiles = passActive_ ? endTile : 0;
+    push.tileSize = passTileSize_ ? passTileSize_ : std::max(push.filmSize.x, push.filmSize.y);
+    push.tilesX = (push.filmSize.x + push.tileSize - 1) / push.tileSize;
+    const bool debug = debugView_ != 0;
+    push.op = debug ? DISPLAY_TONEMAP_CLAMP
+                    : op_ == DisplayOperator::Photographic ? DISPLAY_TONEMAP_PHOTOGRAPHIC
+                    : op_ == DisplayOperator::Aces         ? DISPLAY_TONEMAP_ACES
+                                                           : DISPLAY_TONEMAP_CLAMP;
+    const TonemapSettings tm = settingsFor(op_, config_.job.tonemap);
+    push.flags = (debug || tm.srgb ? DISPLAY_FLAG_SRGB : 0u) | (swapchain_->bgra() ? DISPLAY_FLAG_BGRA : 0u);
+    push.exposure = debug ? 1.0f : std::exp2(ev_);
+    push.toL = terms_.toL;
+    push.invWhite2 = terms_.invWhite2;
+    push.saturation = tm.saturation;
+    push.invGamma = tm.srgb ? 1.0f : 1.0f / tm.gamma;
+    display_->record(cmd_, push, swapchain_->image(image));
+    if (queries_) vkCmdWriteTimestamp(cmd_, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queries_, 2);
+    vkCheck(vkEndCommandBuffer(cmd_), "recording a frame");
+
+    const VkPipelineStageFlags waitStage = VK_PIPELINE_STAGE_TRANSFER_BIT;
+    VkSemaphore rendered = swapchain_->renderedSemaphore(image);
+    VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+    submit.waitSemaphoreCount = 1;
+    submit.pWaitSemaphores = &acquired_;
+    submit.pWaitDstStageMask = &waitStage;
+    submit.commandBufferCount = 1;
+    submit.pCommandBuffers = &cmd_;
+    submit.signalSemaphoreCount = 1;
+    submit.pSignalSemaphores = &rendered;
+    vkCheck(vkResetFences(device, 1, &fence_), "resetting a fence");
+    vkCheck(vkQueueSubmit(context_.queue(), 1, &submit, fence_), "submitting a frame");
+    const bool presented = swapchain_->present(image, rendered);
+    vkCheck(vkWaitForFences(device, 1, &fence_, VK_TRUE, UINT64_MAX), "waiting for a frame");
+    if (!presented) resizeWindow(window_.framebufferSize());
+
+    // Bookkeeping: timings, the learnt cost per path, pass progress.
+    lastFrameMs_ = msSince(start);
+    lastRenderMs_ = lastGpuMs_ = 0;
+    if (queries_) {
+        uint64_t t[3] = {};
+        if (vkGetQueryPoolResults(device, queries_, 0, 3, sizeof t, t, sizeof(uint64_t), VK_QUERY_RESULT_64_BIT) == VK_SUCCESS) {
+            lastRenderMs_ = double(t[1] - t[0]) * timestampMs_;
+            lastGpuMs_ = double(t[2] - t[0]) * timestampMs_;
+        }
+    } else {
+        lastRenderMs_ = lastGpuMs_ = lastFrameMs_;
+    }
+    if (count > 0) {
+        const double paths = double(tilePixels(passTileSize_, firstTile, endTile)) * count;
+        const double measured = lastRenderMs_ / std::max(paths, 1.0);
+        costMs_ = stats_.pathSamples == 0 && frames_ < 2 ? measured : 0.7 * costMs_ + 0.3 * measured;
+        stats_.pathSamples += paths;
+        stats_.renderMs += lastRenderMs_;
+        passTilesDone_ = endTile;
+        if (passTilesDone_ >= passTiles_) {
+            renderer_->completePass(passCount_);
+            passActive_ = false;
+        }
+        renderSeconds_ += lastFrameMs_ * 1e-3;
+    }
+    displayDirty_ = false;
+    ++frames_;
+    ++stats_.frames;
+    stats_.sumMs += lastFrameMs_;
+    stats_.maxMs = std::max(stats_.maxMs, lastFrameMs_);
+    updatePhotographicTerms(false);
+    updateTitle(false);
+}
+
+int Session::run() {
+    auto last = Clock::now();
+    while (!quit_ && !window_.shouldClose()) {
+        if (needFrame()) window_.pollEvents();
+        else window_.waitEvents(); // idle: done, paused or nothing changed
+        const auto now = Clock::now();
+        const float seconds = std::min(std::chrono::duration<float>(now - last).count(), 0.1f);
+        last = now;
+        handleInput(window_.takeInput(), seconds);
+        if (config_.scripted) stepScript();
+        if (quit_) break;
+        if (needFrame()) frame();
+        else updateTitle(true);
+    }
+    vkDeviceWaitIdle(context_.device());
+    return status_;
+}
+
+int runViewer(Window& window, VulkanContext& context, const FlatScene& flat, const ViewerConfig& config) {
+    Session session(window, context, flat, config);
+    return session.run();
+}
+
+} // namespace pt::viewer
