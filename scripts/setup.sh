@@ -13,6 +13,7 @@ packages=(
   libvulkan-dev vulkan-validationlayers glslang-tools spirv-tools vulkan-tools
   libglm-dev libtinygltf-dev nlohmann-json3-dev libstb-dev libopenexr-dev libcli11-dev libpugixml-dev
   libgtest-dev mesa-vulkan-drivers
+  libglfw3-dev xvfb xauth
 )
 
 backports=/etc/apt/sources.list.d/bookworm-backports.sources

@@ -1,12 +1,12 @@
 // The viewer's diagnostic images (SPEC_DEBUG_VIEW): what the camera ray finds, instead of
-// radiance. They accumulate like radiance, so edges are antialiased by the pixel jitter.
+// radiance (or, for the NaN mask, a mark on radiance samples that are not finite). They
+// accumulate like radiance, so edges are antialiased by the pixel jitter.
 #ifndef PT_INTEGRATOR_DEBUG_VIEW_GLSL
 #define PT_INTEGRATOR_DEBUG_VIEW_GLSL
 #include "common/math.glsl"
 #include "geometry/interaction.glsl"
 #include "geometry/traverse.glsl"
 #include "integrator/features.glsl"
-#include "integrator/path.glsl"
 
 // BVH cost: node visits of the camera ray's closest-hit query (both trees), shown on a
 // blue-green-red ramp from 0 to this many visits (red saturates above it).
@@ -20,8 +20,9 @@ vec3 heatRamp(float x) {
                    : mix(vec3(0.0, 1.0, 0.0), vec3(1.0, 0.0, 0.0), 2.0 * x - 1.0);
 }
 
-// Diagonal of the scene's bounds (the roots of both BVHs): depth is shown as t over this.
-float sceneExtent() {
+// Distance from p to the farthest corner of the scene's bounds (the roots of both BVHs):
+// depth is shown as 1 - t / this, so near surfaces are bright and the far end is black.
+float farthestSceneDistance(vec3 p) {
     vec3 lo = vec3(FLOAT_MAX), hi = vec3(-FLOAT_MAX);
     if (HAS_TRIANGLES && scene.numNodes > 0u) {
         lo = min(lo, sceneNodes.v[0].lo);
@@ -32,15 +33,16 @@ float sceneExtent() {
         lo = min(lo, root.lo);
         hi = max(hi, root.hi);
     }
-    return all(lessThanEqual(lo, hi)) ? max(length(hi - lo), 1e-20) : 1.0;
+    return all(lessThanEqual(lo, hi)) ? max(length(max(abs(p - lo), abs(p - hi))), 1e-20) : 1.0;
 }
 
-vec3 debugView(Ray ray, Rng rng) {
-    if (DEBUG_VIEW == DEBUG_VIEW_NAN_MASK) {
-        // Red where the path's sample is NaN or infinite (the samples the kernel drops).
-        vec3 L = tracePath(ray, rng);
-        return allFinite(L) ? vec3(NAN_MASK_GREY * clamp(luminance(L), 0.0, 1.0)) : vec3(1.0, 0.0, 0.0);
-    }
+// Red where the radiance sample is NaN or infinite (the samples the kernel drops).
+vec3 nanMask(vec3 L) {
+    return allFinite(L) ? vec3(NAN_MASK_GREY * clamp(luminance(L), 0.0, 1.0)) : vec3(1.0, 0.0, 0.0);
+}
+
+// Albedo, normal, depth and BVH cost: what the camera ray's closest hit shows.
+vec3 debugView(Ray ray) {
     Hit hit;
     traversalNodeVisits = 0u;
     bool found = traceClosest(ray, FLOAT_MAX, hit);
@@ -48,7 +50,7 @@ vec3 debugView(Ray ray, Rng rng) {
     if (!found) return vec3(0.0);
     SurfaceInteraction si = makeInteraction(ray, hit);
     if (DEBUG_VIEW == DEBUG_VIEW_NORMAL) return 0.5 * si.ns + 0.5; // world-space shading normal
-    if (DEBUG_VIEW == DEBUG_VIEW_DEPTH) return vec3(hit.t / sceneExtent());
+    if (DEBUG_VIEW == DEBUG_VIEW_DEPTH) return vec3(clamp(1.0 - hit.t / farthestSceneDistance(ray.origin), 0.0, 1.0));
     // DEBUG_VIEW_ALBEDO: the material's base colour (texture-free); emitters show their
     // emission normalised to a largest component of 1.
     GpuMaterial mat = sceneMaterials.v[si.materialIndex];

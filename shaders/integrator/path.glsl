@@ -15,6 +15,8 @@
 #include "bsdf/dielectric.glsl"
 #include "integrator/features.glsl"
 #include "textures/material_textures.glsl"
+#include "integrator/background.glsl"
+#include "integrator/classic.glsl"
 
 // Shadow rays stop this fraction short of the (offset) light point, the receiver's own offset
 // having already moved the origin off its surface.
@@ -58,17 +60,8 @@ vec3 estimateDirect(SurfaceInteraction si, Frame frame, vec3 woLocal, GpuMateria
     return fCos * ls.radiance * (weight / ls.pdf);
 }
 
-// The course's replace_background: the texture spans the camera's image window, so the camera
-// ray's direction gives the film position (v = 0 at the top).
-vec3 backgroundTexel(vec3 direction) {
-    GpuCamera c = scene.camera;
-    float z = dot(direction, c.forward);
-    vec2 film = vec2(dot(direction, c.right), dot(direction, c.up)) / max(z, 1e-20);
-    vec2 uv = vec2((film.x - c.window.x) / (c.window.y - c.window.x), (c.window.w - film.y) / (c.window.w - c.window.z));
-    return evalTexture(scene.backgroundTexture, uv, direction).rgb;
-}
-
 vec3 tracePath(Ray ray, Rng rng) {
+    if (CLASSIC) return traceClassic(ray, rng);
     vec3 L = vec3(0.0);
     vec3 beta = vec3(1.0);
     float etaScale = 1.0;
@@ -83,10 +76,8 @@ vec3 tracePath(Ray ray, Rng rng) {
                 float pdfLight = environmentPdf(ray.direction);
                 if (!USE_NEE || prevDelta || pdfLight == 0.0) L += beta * Le;
                 else if (USE_MIS) L += beta * Le * powerHeuristic(prevPdfBsdf, pdfLight);
-            } else if ((HAS_TEXTURES || HAS_PROCEDURAL) && depth == 1u && scene.backgroundTexture != NO_TEXTURE) {
-                L += beta * backgroundTexel(ray.direction);
             } else {
-                L += beta * scene.background;
+                L += beta * backgroundRadiance(ray.direction, depth == 1u);
             }
             break;
         }

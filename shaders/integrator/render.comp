@@ -29,7 +29,14 @@ void main() {
         Rng rng = rngCreate(pixel, push.sampleStart + s, scene.seed);
         vec2 jitter = rng2(rng, DIM_PIXEL); // box filter: uniform over the pixel
         Ray ray = cameraRay(scene.camera, vec2(pixel) + jitter, scene.imageSize, rng2(rng, DIM_LENS));
-        vec3 L = DEBUG_VIEW == DEBUG_VIEW_NONE ? tracePath(ray, rng) : debugView(ray, rng);
+        // Radiance, or a debug view (the NaN mask marks the radiance samples the kernel drops).
+        vec3 L;
+        if (DEBUG_VIEW == DEBUG_VIEW_NONE || DEBUG_VIEW == DEBUG_VIEW_NAN_MASK) {
+            L = tracePath(ray, rng);
+            if (DEBUG_VIEW == DEBUG_VIEW_NAN_MASK) L = nanMask(L);
+        } else {
+            L = debugView(ray);
+        }
         // Firefly clamp (viewer option, biased): scale the sample down to a largest component
         // of sampleClamp. NaN fails the comparison and is still dropped below.
         if (push.sampleClamp > 0.0 && maxComponent(L) > push.sampleClamp) L *= push.sampleClamp / maxComponent(L);

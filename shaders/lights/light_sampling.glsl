@@ -9,8 +9,9 @@
 #include "lights/punctual_light.glsl"
 #include "lights/environment_light.glsl"
 
-LightSample sampleLight(vec3 x, float uSelect, vec2 uPoint) {
-    GpuLight light = sceneLights.v[selectLight(uSelect)];
+// A point on light `index` as seen from x; the pdf includes the light's selection pmf.
+LightSample sampleLightIndex(uint index, vec3 x, vec2 uPoint) {
+    GpuLight light = sceneLights.v[index];
     if (HAS_SPHERES && light.type == LIGHT_SPHERE) return sampleSphereLight(light, x, uPoint);
     if (HAS_PUNCTUAL_LIGHTS && light.type == LIGHT_POINT) return samplePointLight(light, x);
     if (HAS_PUNCTUAL_LIGHTS && light.type == LIGHT_DIRECTIONAL) return sampleDirectionalLight(light, x);
@@ -19,6 +20,8 @@ LightSample sampleLight(vec3 x, float uSelect, vec2 uPoint) {
     if (HAS_ENVIRONMENT && light.type == LIGHT_ENVIRONMENT) return sampleEnvironment(light, uPoint);
     return sampleTriangleLight(light, x, uPoint);
 }
+
+LightSample sampleLight(vec3 x, float uSelect, vec2 uPoint) { return sampleLightIndex(selectLight(uSelect), x, uPoint); }
 
 // Solid-angle pdf (selection included) with which light sampling from x would have produced
 // the point p on emitter lightIndex, reached at distance t along unit direction dir with

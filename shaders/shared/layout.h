@@ -50,6 +50,8 @@ using uint64_t = std::uint64_t;
 #define MATERIAL_FLAG_ALPHA_MASK 128u // glTF alphaMode MASK: cut out where alpha < alphaCutoff
 #define MATERIAL_FLAG_ALPHA_BLEND 256u // glTF alphaMode BLEND: stochastic cut-out with probability 1 - alpha
 #define MATERIAL_FLAG_THIN_WALLED 512u // PBR transmission without KHR_materials_volume: no refraction bend
+#define MATERIAL_FLAG_NORMAL_Y_DOWN 2048u // normal map +y along +v (down the image): the course's maps
+#define MATERIAL_FLAG_CLASSIC_PHONG 1024u // classic integrator: the course's Blinn-Phong with classicDiffuse/Specular
 
 // ---- Textures (GpuTexture) ----
 #define NO_TEXTURE 0xffffffffu
@@ -103,7 +105,8 @@ using uint64_t = std::uint64_t;
 #define SPEC_HAS_MICROFACET 23    // GGX-rough conductors or dielectrics
 #define SPEC_HAS_PBR 24           // glTF metallic-roughness materials
 #define SPEC_DEBUG_VIEW 25        // DEBUG_VIEW_*: the viewer's diagnostic images instead of radiance
-#define SPEC_COUNT 26
+#define SPEC_CLASSIC 26           // the CENG795 course's classic (Whitted / direct lighting) ray tracer
+#define SPEC_COUNT 27
 
 // ---- Debug views (SPEC_DEBUG_VIEW) ----
 #define DEBUG_VIEW_NONE 0u
@@ -174,8 +177,16 @@ struct GpuMaterial {
     float alphaCutoff;     // MATERIAL_FLAG_ALPHA_MASK threshold
     float opacity;         // baseColor alpha factor
     uint pad0;
+    // The course's classic shading (SPEC_CLASSIC): ka * Ia + sum over lights of
+    // (kd cos(theta) + ks cos^p(alpha_h)) E, added on every surface type, mirrors included.
+    vec3 ambient;          // ka
+    float classicExponent; // Blinn-Phong p
+    vec3 classicDiffuse;   // kd (no 1/pi: the course's convention)
+    float pad1;
+    vec3 classicSpecular;  // ks
+    float pad2;
 };
-PT_CHECK_SIZE(GpuMaterial, 144);
+PT_CHECK_SIZE(GpuMaterial, 192);
 
 // A texture: an image in the texel buffer (with filter, wrap, encoding and a uv transform) or
 // a course procedural pattern.
@@ -284,8 +295,10 @@ struct GpuSceneParams {
     float envRotationSin;
     float envSamplingTotal; // sum of the sampling weights (for the pdf)
     uint backgroundTexture; // course replace_background: camera rays that escape see this, or NO_TEXTURE
+    vec3 ambientLight;      // classic integrator: the course's AmbientLight Ia
+    uint pad3;
 };
-PT_CHECK_SIZE(GpuSceneParams, 112 + 80 + 80);
+PT_CHECK_SIZE(GpuSceneParams, 112 + 80 + 80 + 16);
 
 // Push constants of the render kernel: which pixels and which sample indices this dispatch adds.
 struct GpuRenderPush {

@@ -10,17 +10,21 @@ bool hasAnyTexture(GpuMaterial m) {
     return (m.baseColorTexture & m.specularTexture & m.metallicRoughnessTexture & m.normalTexture & m.emissiveTexture) != NO_TEXTURE;
 }
 
-// Shading normal from a tangent-space normal map (+x along dp/du, +y towards decreasing v,
-// i.e. up the image, as glTF and OpenGL-style maps store it).
-vec3 normalFromMap(SurfaceInteraction si, vec3 texel, float scale) {
+// Shading normal from a tangent-space normal map: +x along dp/du, +y up the image (towards
+// decreasing v), as glTF and OpenGL-style maps store it, or, with `yDown`, along dp/dv as the
+// course's maps are (their official images match only that way). Following dp/dv rather than
+// a fixed handedness keeps mirrored uv layouts right, as generated tangents do.
+vec3 normalFromMap(SurfaceInteraction si, vec3 texel, float scale, bool yDown) {
     vec3 n = si.ns;
     vec3 t = si.dpdu - n * dot(n, si.dpdu);
     float tLen2 = dot(t, t);
     if (!(tLen2 > 0.0) || isinf(tLen2)) return n;
     t *= inversesqrt(tLen2);
     // Bitangent up the image; mirrored uv layouts flip it with dp/dv, as generated tangents do.
-    vec3 b = cross(n, t);
-    if (dot(b, si.dpdv) > 0.0) b = -b;
+    vec3 b = si.dpdv - n * dot(n, si.dpdv) - t * dot(t, si.dpdv);
+    float bLen2 = dot(b, b);
+    b = (bLen2 > 0.0 && !isinf(bLen2)) ? b * inversesqrt(bLen2) : cross(n, t);
+    if (!yDown) b = -b;
     vec3 m = texel * 2.0 - 1.0;
     m.xy *= scale;
     vec3 mapped = m.x * t + m.y * b + m.z * n;
@@ -33,9 +37,11 @@ float bumpHeight(uint index, vec2 uv, vec3 p) {
     return (c.r + c.g + c.b) * (1.0 / 3.0);
 }
 
-// Bump mapping (Blinn 1978): the surface displaced by factor * h along n, its normal from the
-// displaced tangents. Image heights are differenced one texel apart in u and v; procedural ones
-// by a central difference in 3D, keeping the gradient's part in the tangent plane.
+// Bump mapping (Blinn 1978): the surface displaced along n, its normal from the displaced
+// tangents dp/du + factor dh n. Image heights (mean of r, g, b) are differenced one texel apart,
+// per texel rather than per unit of u, which is the course's scale for BumpFactor (checked
+// against its official bump images); procedural ones by a central difference in 3D, keeping
+// the gradient's part in the tangent plane.
 vec3 normalFromBump(SurfaceInteraction si, uint index, float factor) {
     vec3 n = si.ns;
     GpuTexture tex = loadTexture(index);
@@ -43,8 +49,8 @@ vec3 normalFromBump(SurfaceInteraction si, uint index, float factor) {
     if (tex.type == TEXTURE_IMAGE) {
         vec2 duv = 1.0 / vec2(max(tex.width, 1u), max(tex.height, 1u));
         float h0 = bumpHeight(index, si.uv, si.p);
-        float dhdu = (bumpHeight(index, si.uv + vec2(duv.x, 0.0), si.p) - h0) / duv.x;
-        float dhdv = (bumpHeight(index, si.uv + vec2(0.0, duv.y), si.p) - h0) / duv.y;
+        float dhdu = bumpHeight(index, si.uv + vec2(duv.x, 0.0), si.p) - h0;
+        float dhdv = bumpHeight(index, si.uv + vec2(0.0, duv.y), si.p) - h0;
         vec3 qu = si.dpdu + factor * dhdu * n;
         vec3 qv = si.dpdv + factor * dhdv * n;
         bumped = cross(qu, qv);
@@ -66,10 +72,16 @@ void applyTextures(inout GpuMaterial m, inout SurfaceInteraction si) {
     if (!hasAnyTexture(m)) return;
     if (m.baseColorTexture != NO_TEXTURE) {
         vec4 c = evalTexture(m.baseColorTexture, si.uv, si.p);
-        m.baseColor = (m.flags & MATERIAL_FLAG_BLEND_KD) != 0u ? 0.5 * (m.baseColor + c.rgb) : m.baseColor * c.rgb;
+        bool blend = (m.flags & MATERIAL_FLAG_BLEND_KD) != 0u;
+        m.baseColor = blend ? 0.5 * (m.baseColor + c.rgb) : m.baseColor * c.rgb;
+        if (CLASSIC) m.classicDiffuse = blend ? 0.5 * (m.classicDiffuse + c.rgb) : m.classicDiffuse * c.rgb;
         m.opacity *= c.a;
     }
-    if (m.specularTexture != NO_TEXTURE) m.specular *= evalTexture(m.specularTexture, si.uv, si.p).rgb;
+    if (m.specularTexture != NO_TEXTURE) {
+        vec3 ks = evalTexture(m.specularTexture, si.uv, si.p).rgb;
+        m.specular *= ks;
+        if (CLASSIC) m.classicSpecular *= ks;
+    }
     if (m.metallicRoughnessTexture != NO_TEXTURE) {
         vec4 c = evalTexture(m.metallicRoughnessTexture, si.uv, si.p);
         // alpha = roughness^2, so the roughness channel scales sqrt(alpha).
@@ -81,7 +93,8 @@ void applyTextures(inout GpuMaterial m, inout SurfaceInteraction si) {
     if (HAS_NORMAL_MAPS && m.normalTexture != NO_TEXTURE) {
         vec3 ns = (m.flags & MATERIAL_FLAG_BUMP_MAP) != 0u
             ? normalFromBump(si, m.normalTexture, m.normalScale)
-            : normalFromMap(si, evalTexture(m.normalTexture, si.uv, si.p).rgb, m.normalScale);
+            : normalFromMap(si, evalTexture(m.normalTexture, si.uv, si.p).rgb, m.normalScale,
+                  (m.flags & MATERIAL_FLAG_NORMAL_Y_DOWN) != 0u);
         si.ns = dot(ns, si.ng) < 0.0 ? -ns : ns;
     }
 }

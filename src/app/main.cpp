@@ -30,7 +30,7 @@ bool onOff(const std::string& v) { return v == "on"; }
 
 // Switches given as words on the command line, converted after parsing.
 struct SwitchWords {
-    std::string nee, mis, rr, sampling;
+    std::string nee, mis, rr, sampling, integrator;
     std::vector<float> envColour;
 };
 
@@ -46,6 +46,10 @@ void addSceneOptions(CLI::App* cmd, pt::RenderOptions& o, SwitchWords& w) {
     cmd->add_option("--nee", w.nee, "Next event estimation (light sampling): on|off (default on)")->check(CLI::IsMember({"on", "off"}));
     cmd->add_option("--mis", w.mis, "Multiple importance sampling of light and BSDF samples: on|off (default on)")->check(CLI::IsMember({"on", "off"}));
     cmd->add_option("--rr", w.rr, "Russian roulette: on|off (default on)")->check(CLI::IsMember({"on", "off"}));
+    cmd->add_option("--integrator", w.integrator,
+           "path: path tracing; classic: the CENG795 course's classic ray tracer (ambient + direct light with its "
+           "Blinn-Phong, specular chains); default: course cameras without <Renderer> classic, else path")
+        ->check(CLI::IsMember({"path", "classic"}));
     cmd->add_option("--sampling", w.sampling, "BSDF direction sampling: cosine|uniform (default cosine)")->check(CLI::IsMember({"cosine", "uniform"}));
     cmd->add_option("--camera", o.camera, "Camera to render: glTF: its index (default 0); course XML: its id (default: every camera)");
     cmd->add_option("--device", o.device, "Use the first Vulkan device whose name contains this (see 'pt devices')");
@@ -61,6 +65,7 @@ void addSceneOptions(CLI::App* cmd, pt::RenderOptions& o, SwitchWords& w) {
 void applySwitchWords(const SwitchWords& w, pt::RenderOptions& o) {
     if (const char* v = std::getenv("PT_VALIDATION"); v && std::string(v) == "1") o.validation = true;
     if (w.envColour.size() == 3) o.environmentColour = glm::vec3(w.envColour[0], w.envColour[1], w.envColour[2]);
+    if (!w.integrator.empty()) o.classic = w.integrator == "classic";
     if (!w.nee.empty()) o.nee = onOff(w.nee);
     if (!w.mis.empty()) o.mis = onOff(w.mis);
     if (!w.rr.empty()) o.rr = onOff(w.rr);
@@ -95,7 +100,7 @@ int main(int argc, char** argv) {
     view->add_option("--spp", v.render.spp, "Stop refining at this many samples per pixel (default 1024)")->check(CLI::Range(1u, 1u << 30));
     view->add_option("--tile", v.render.tileSize, "Tile side of a full-resolution pass spread over frames (default 64)")
         ->check(CLI::Range(8u, 4096u));
-    view->add_option("--frame-ms", v.frameBudgetMs, "Rendering work per frame in ms, bounds input latency (default 25)")
+    view->add_option("--frame-ms", v.frameBudgetMs, "Rendering work per frame in ms, bounds input latency (default 20)")
         ->check(CLI::Range(1.0, 10000.0));
     view->add_option("-o,--output-dir", v.outputDir, "Folder for saved images and screenshots (default out)");
     view->add_option("--script", v.script, "Run timed inputs from FILE (tests, benchmarks; format in README)");

@@ -19,6 +19,7 @@ struct RenderOptions {
     std::optional<int> camera; // glTF: index; course XML: the Camera's id
     // Switches given on the command line; otherwise the camera's (course XML) or the defaults.
     std::optional<bool> nee, mis, rr;
+    std::optional<bool> classic; // --integrator classic|path (default: the scene's choice, else path)
     std::optional<DirectionSampling> sampling;
     std::string device;
     std::string reference;
@@ -40,7 +41,7 @@ struct RenderOptions {
 struct ViewOptions {
     RenderOptions render;
     std::string script;           // --script FILE: timed inputs (tests, benchmarks)
-    double frameBudgetMs = 25.0;  // rendering work per frame
+    double frameBudgetMs = 20.0;  // rendering work per frame
     std::string outputDir = "out"; // where F5 and F6 save
 };
 

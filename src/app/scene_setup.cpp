@@ -122,6 +122,7 @@ Job makeJob(const Scene& scene, const Camera& camera, const RenderOptions& o, bo
 
     IntegratorSettings& s = job.settings;
     s = o.integrator;
+    s.classic = o.classic.value_or(cs.classic.value_or(false));
     s.nee = o.nee.value_or(cs.nee.value_or(true));
     s.mis = o.mis.value_or(true);
     s.rr = o.rr.value_or(cs.russianRoulette.value_or(true));

@@ -8,6 +8,7 @@ namespace pt {
 
 std::string IntegratorSettings::describe() const {
     std::ostringstream s;
+    if (classic) s << "integrator=classic ";
     s << "nee=" << (nee ? "on" : "off") << " mis=" << (mis ? "on" : "off") << " rr=" << (rr ? "on" : "off")
       << " sampling=" << (sampling == DirectionSampling::Cosine ? "cosine" : "uniform") << " max-depth=" << maxDepth
       << " rr-start=" << rrStartDepth << " seed=" << seed;
@@ -20,6 +21,7 @@ FeatureSet FeatureSet::all(const IntegratorSettings& settings) {
     f.mis = settings.nee && settings.mis;
     f.rr = settings.rr;
     f.cosineSampling = settings.sampling == DirectionSampling::Cosine;
+    f.classic = settings.classic;
     return f;
 }
 
@@ -46,7 +48,7 @@ FeatureSet computeFeatures(const FlatScene& scene, const IntegratorSettings& set
         f.dielectric |= m.type == MATERIAL_DIELECTRIC;
         f.conductor |= m.type == MATERIAL_CONDUCTOR;
         f.glossy |= m.type == MATERIAL_GLOSSY;
-        f.absorption |= m.type == MATERIAL_DIELECTRIC && (m.flags & MATERIAL_FLAG_ABSORBING) != 0u;
+        f.absorption |= (m.flags & MATERIAL_FLAG_ABSORBING) != 0u; // dielectrics and PBR volumes
         f.emitters |= m.emission.x > 0 || m.emission.y > 0 || m.emission.z > 0;
     }
     usesTexture(scene.backgroundTexture);
@@ -66,6 +68,13 @@ FeatureSet computeFeatures(const FlatScene& scene, const IntegratorSettings& set
     f.mis = f.nee && settings.mis;
     f.rr = settings.rr;
     f.cosineSampling = settings.sampling == DirectionSampling::Cosine;
+    // The classic ray tracer always samples lights (on every surface: its Blinn-Phong terms
+    // apply to mirrors and glass too), never continues diffuse paths, so no MIS or roulette.
+    f.classic = settings.classic;
+    if (f.classic) {
+        f.nee = !scene.lights.lights.empty();
+        f.mis = f.rr = false;
+    }
     return f;
 }
 
@@ -97,6 +106,7 @@ std::vector<SpecializationConstant> FeatureSet::constants(uint32_t localSizeX, u
         {SPEC_HAS_MICROFACET, microfacet},
         {SPEC_HAS_PBR, pbr},
         {SPEC_DEBUG_VIEW, debugView},
+        {SPEC_CLASSIC, classic},
     };
 }
 
@@ -107,6 +117,7 @@ std::string FeatureSet::describe() const {
         if (!s.empty()) s += ' ';
         s += name;
     };
+    add(classic, "classic");
     add(triangles, "triangles");
     add(spheres, "spheres");
     add(diffuse, "diffuse");

@@ -35,6 +35,7 @@ struct FeatureSet {
     bool rr = true;
     bool cosineSampling = true;
     uint32_t debugView = 0; // DEBUG_VIEW_*
+    bool classic = false;   // the course's classic ray tracer
 
     // Every feature on: the unspecialised kernel, for comparison and for tests.
     static FeatureSet all(const IntegratorSettings& settings);

@@ -47,10 +47,16 @@ gpu::GpuMaterial toGpu(const Material& m) {
     g.emissiveTexture = slot(m.emissiveTexture);
     g.normalScale = m.normalScale;
     if (m.bumpMap) g.flags |= MATERIAL_FLAG_BUMP_MAP;
+    if (m.normalMapYDown) g.flags |= MATERIAL_FLAG_NORMAL_Y_DOWN;
     if (m.blendBaseColor) g.flags |= MATERIAL_FLAG_BLEND_KD;
     if (m.unlit) g.flags |= MATERIAL_FLAG_UNLIT;
     if (m.alphaMode == Material::AlphaMode::Mask) g.flags |= MATERIAL_FLAG_ALPHA_MASK;
     if (m.alphaMode == Material::AlphaMode::Blend) g.flags |= MATERIAL_FLAG_ALPHA_BLEND;
+    g.ambient = m.ambient;
+    g.classicDiffuse = m.classicDiffuse;
+    g.classicSpecular = m.classicSpecular;
+    g.classicExponent = m.classicExponent;
+    if (m.classicPhong) g.flags |= MATERIAL_FLAG_CLASSIC_PHONG;
     g.alphaCutoff = m.alphaCutoff;
     g.opacity = m.opacity;
     g.specular = m.specular;
@@ -62,7 +68,8 @@ gpu::GpuMaterial toGpu(const Material& m) {
     g.conductorK = m.conductorK;
     // glTF's KHR_materials_volume: transmittance attenuationColor after attenuationDistance,
     // so sigma_a = -ln(color) / distance; an infinite distance means no absorption.
-    if (m.type == MaterialType::Dielectric && std::isfinite(m.attenuationDistance) && m.attenuationColor != glm::vec3(1.0f)) {
+    const bool hasInterior = m.type == MaterialType::Dielectric || (m.type == MaterialType::Pbr && m.transmission > 0.0f && !m.thinWalled);
+    if (hasInterior && std::isfinite(m.attenuationDistance) && m.attenuationColor != glm::vec3(1.0f)) {
         glm::vec3 c = glm::max(m.attenuationColor, glm::vec3(1e-30f));
         g.sigmaA = -glm::log(glm::min(c, glm::vec3(1.0f))) / m.attenuationDistance;
         g.flags |= MATERIAL_FLAG_ABSORBING;
@@ -209,6 +216,7 @@ FlatScene flattenScene(const Scene& scene, const BvhBuildOptions& bvhOptions) {
     FlatScene flat;
     for (const Material& m : scene.materials) flat.materials.push_back(toGpu(m));
     flattenTextures(scene, flat);
+    flat.ambientLight = scene.ambientLight;
 
     // Gather valid triangles in scene order; zero-area ones can never be hit and would only
     // cost traversal time (and break light sampling if emissive).

@@ -30,6 +30,7 @@ struct FlatScene {
     std::vector<gpu::GpuTexture> textures;
     std::vector<uint32_t> texels; // every image texture's texels, packed (see GpuTexture)
     uint32_t backgroundTexture = NO_TEXTURE;
+    glm::vec3 ambientLight{0.0f}; // classic integrator
     FlatEnvironment environment;
     LightTable lights;
     size_t degenerateTriangles = 0; // zero-area or non-finite triangles dropped

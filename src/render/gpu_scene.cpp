@@ -43,6 +43,7 @@ GpuScene::GpuScene(VulkanContext& context, const FlatScene& scene, gpu::GpuScene
     params.textures = textures_.address();
     params.texels = texels_.address();
     params.backgroundTexture = scene.backgroundTexture;
+    params.ambientLight = scene.ambientLight;
     params.envWidth = scene.environment.width;
     params.envHeight = scene.environment.height;
     params.envLightIndex = scene.lights.environmentIndex;

@@ -15,6 +15,9 @@ struct IntegratorSettings {
     uint32_t maxDepth = 16;    // ray segments including the camera ray (Mitsuba 3's max_depth)
     uint32_t rrStartDepth = 5; // Russian roulette only after this many segments (Mitsuba 3 default)
     uint32_t seed = 0;
+    // The CENG795 course's classic ray tracer instead of path tracing: ambient + direct light
+    // with its Blinn-Phong shading at the first non-specular surface, specular chains followed.
+    bool classic = false;
 
     std::string describe() const;
 };

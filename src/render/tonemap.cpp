@@ -97,7 +97,7 @@ void clampOperator(const Image& image, const TonemapSettings& s, float exposureS
                    std::vector<uint8_t>& out) {
     const Encoder encode(s);
     // float, like writePng; a product that overflows to +inf still clamps to 1.
-    const float scale = std::exp2(exposureStops);
+    const float scale = s.scale * std::exp2(exposureStops);
     const std::size_t n = out.size() / 3;
     for (std::size_t i = 0; i < n; ++i) {
         const float* p = image.rgba.data() + 4 * i;

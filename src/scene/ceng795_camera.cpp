@@ -160,9 +160,12 @@ TonemapSettings readTonemap(Context& ctx, pugi::xml_node e) {
 void readRenderer(Context& ctx, pugi::xml_node e, CameraRenderSettings& s) {
     pugi::xml_node r = e.child("Renderer");
     if (!r) {
-        ctx.note("classic ray tracer (rendered by path tracing)");
+        s.classic = true;
+        // Its images are in 0..255 display units, written clamped without gamma.
+        if (!e.child("Tonemap") && s.tonemap) s.tonemap->scale = 1.0f / 255.0f;
         return;
     }
+    s.classic = false;
     const std::string name = textOf(r);
     const std::vector<std::string_view> nameTokens = tokens(name);
     if (nameTokens.size() != 1 || lowercase(nameTokens[0]) != "pathtracing")

@@ -157,8 +157,9 @@ void readLights(Context& ctx, pugi::xml_node root, Scene& s) {
             if (l.type() != pugi::node_element) continue;
             const std::string type = l.name();
             if (type == "AmbientLight") {
-                // The course adds ka * Ia, a constant no physically based renderer has.
-                if (vec3(ctx, l) != glm::vec3(0.0f)) ctx.note("ambient light (ignored)");
+                // The course adds ka * Ia: the classic integrator does, path tracing has no such term.
+                s.ambientLight = vec3(ctx, l);
+                if (glm::any(glm::lessThan(s.ambientLight, glm::vec3(0.0f)))) ctx.fail(l, "must not be negative");
             } else if (type == "PointLight") s.punctualLights.push_back(readPointLight(ctx, l));
             else if (type == "DirectionalLight") s.punctualLights.push_back(readDirectionalLight(ctx, l));
             else if (type == "AreaLight") s.punctualLights.push_back(readAreaLight(ctx, l));

@@ -1,5 +1,6 @@
 #include "scene/ceng795_materials.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -126,6 +127,39 @@ void convertConductor(const Context& ctx, Notes& notes, pugi::xml_node e, const 
     noteExtraLayers(notes, colour, "conductor");
 }
 
+// The course's Roughness r perturbs the ideal reflected or refracted direction by
+// r (xi - 0.5) along each of two axes orthogonal to it (FORMAT.md, material `Roughness`). We
+// render it as GGX with the same spread: that recipe puts the reflected direction's tangent
+// offsets uniformly in a square of side r, the microfacet normal's (half the deflection) in a
+// square of side r / 2, whose median radial slope is 0.2 r (sqrt(2 / pi) r / 4); a GGX normal's
+// median slope is alpha. So alpha = r / 5 (capped at 1), i.e. perceptual roughness sqrt(r / 5).
+// Mirrors have no Fresnel in the course: a rough one is a conductor of reflectance 1 at every
+// angle (eta = k = 0) tinted by MirrorReflectance.
+constexpr float kCourseRoughnessToAlpha = 0.2f;
+
+void makeRough(Material& m, float courseRoughness) {
+    const float alpha = std::min(1.0f, kCourseRoughnessToAlpha * courseRoughness);
+    m.roughness = std::sqrt(alpha);
+    if (m.type == MaterialType::Mirror) {
+        m.type = MaterialType::Conductor;
+        m.conductorEta = glm::vec3(0.0f);
+        m.conductorK = glm::vec3(0.0f);
+    }
+}
+
+// The terms the course's classic ray tracer adds on every surface (SPEC_CLASSIC), kept as the
+// file gives them: ka, and, unless a BRDF replaces it, Blinn-Phong kd cos + ks cos^p(alpha_h)
+// (kd without 1/pi, and on mirrors, conductors and dielectrics too).
+void readClassicShading(const Context& ctx, pugi::xml_node e, const ColourReader& colour, bool hasBrdf, Material& m) {
+    m.ambient = colour("AmbientReflectance", glm::vec3(0.0f));
+    if (hasBrdf) return; // the BRDF (glossy.glsl) shades it, as in path tracing
+    m.classicPhong = true;
+    m.classicDiffuse = colour("DiffuseReflectance", glm::vec3(0.0f));
+    m.classicSpecular = colour("SpecularReflectance", glm::vec3(0.0f));
+    m.classicExponent = optionalScalar(ctx, e, "PhongExponent").value_or(1.0f);
+    if (!(m.classicExponent > 0.0f)) ctx.fail(e.child("PhongExponent"), "must be positive");
+}
+
 std::map<long long, pugi::xml_node> readBrdfs(const Context& ctx, pugi::xml_node scene) {
     std::map<long long, pugi::xml_node> brdfs;
     for (pugi::xml_node list : scene.children("BRDFs"))
@@ -157,7 +191,14 @@ Material convertMaterial(const Context& ctx, pugi::xml_node e, const std::map<lo
         if (!type.empty()) notes.push_back("material type " + quote(type) + " (rendered diffuse)");
         convertDiffuse(ctx, notes, e, colour, brdfElement, m);
     }
-    if (const auto r = optionalScalar(ctx, e, "Roughness"); r && *r > 0.0f) notes.push_back("rough specular (rendered smooth)");
+    readClassicShading(ctx, e, colour, brdfElement.has_value() && m.type == MaterialType::Glossy, m);
+    if (const auto r = optionalScalar(ctx, e, "Roughness"); r && *r != 0.0f) {
+        if (!(*r > 0.0f)) ctx.fail(e.child("Roughness"), "must not be negative");
+        if (m.type == MaterialType::Mirror || m.type == MaterialType::Conductor || m.type == MaterialType::Dielectric)
+            makeRough(m, *r);
+        else
+            notes.push_back("Roughness on diffuse and BRDF materials (ignored)");
+    }
     return m;
 }
 

@@ -141,22 +141,24 @@ uint32_t TextureTable::apply(Context& ctx, pugi::xml_node objectTextures, uint32
         if (mode == "replace_kd" || mode == "blend_kd") {
             m.baseColorTexture = t;
             m.blendBaseColor = mode == "blend_kd";
-            if (!m.blendBaseColor) m.baseColor = glm::vec3(1.0f);
+            if (!m.blendBaseColor) m.baseColor = m.classicDiffuse = glm::vec3(1.0f);
         } else if (mode == "replace_ks") {
-            if (m.type != MaterialType::Glossy) {
+            // Path tracing needs a specular lobe to texture; the classic shading always has one.
+            if (m.type != MaterialType::Glossy && !m.classicPhong) {
                 ctx.note("replace_ks on a material without a specular lobe (ignored)");
                 continue;
             }
             m.specularTexture = t;
-            m.specular = glm::vec3(1.0f);
+            m.specular = m.classicSpecular = glm::vec3(1.0f);
         } else if (mode == "replace_normal" || mode == "bump_normal") {
             m.normalTexture = t;
             m.bumpMap = mode == "bump_normal";
+            m.normalMapYDown = true;
             m.normalScale = m.bumpMap ? optionalScalar(ctx, map.element, "BumpFactor").value_or(1.0f) : 1.0f;
             if (!std::isfinite(m.normalScale)) ctx.fail(map.element.child("BumpFactor"), "must be finite");
         } else if (mode == "replace_all") {
             m.baseColorTexture = t;
-            m.baseColor = glm::vec3(1.0f);
+            m.baseColor = m.classicDiffuse = glm::vec3(1.0f);
             m.unlit = true;
         }
     }

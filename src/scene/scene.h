@@ -57,8 +57,16 @@ struct Material {
     std::optional<uint32_t> emissiveTexture;
     float normalScale = 1.0f; // normal map strength; the course's BumpFactor for bump maps
     bool bumpMap = false;     // normalTexture holds heights (the course's bump_normal)
+    bool normalMapYDown = false; // the map's +y runs down the image (the course's), not up (glTF)
     bool blendBaseColor = false; // the course's blend_kd: kd = (kd + texel) / 2
     bool unlit = false;          // the course's replace_all: the base colour is shown unshaded
+
+    // The course's classic shading (its Whitted / direct-lighting ray tracer; the classic
+    // integrator uses these, the path tracer ignores them): ka, and Blinn-Phong kd, ks, p.
+    glm::vec3 ambient{0.0f};
+    bool classicPhong = false; // false: shade with the BSDF above (course BRDF materials)
+    glm::vec3 classicDiffuse{0.0f}, classicSpecular{0.0f};
+    float classicExponent = 1.0f;
 
     enum class AlphaMode { Opaque, Mask, Blend };
     AlphaMode alphaMode = AlphaMode::Opaque;
@@ -113,6 +121,7 @@ struct TonemapSettings {
     float key = 0.18f;        // Photographic: key value
     float burnPercent = 0.0f; // Photographic: percentage of pixels allowed to burn out
     float saturation = 1.0f;
+    float scale = 1.0f;       // Clamp: multiplies the radiance first (the course's classic images use 0..255)
     float gamma = 1.0f;       // display gamma; ignored when srgb
     bool srgb = true;         // the sRGB transfer curve instead of a power
 };
@@ -124,6 +133,7 @@ struct CameraRenderSettings {
     std::optional<uint32_t> spp;
     std::optional<int> maxDepth;
     std::optional<bool> nee, importanceSampling, russianRoulette;
+    std::optional<bool> classic; // the course's classic ray tracer (cameras without <Renderer>)
     std::optional<TonemapSettings> tonemap;
     std::string imageName; // output file name, relative to the scene file's directory
 };
@@ -196,6 +206,7 @@ struct Scene {
     std::optional<Environment> environment; // replaces `background` for rays that escape
     std::vector<Camera> cameras;
     glm::vec3 background{0.0f};
+    glm::vec3 ambientLight{0.0f}; // the course's AmbientLight (classic integrator only)
     RenderHints hints;
     // Things the file uses that the renderer does not model yet (shown as one warning).
     std::vector<std::string> unsupported;

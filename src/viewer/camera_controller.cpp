@@ -21,6 +21,7 @@ glm::vec3 rotate(glm::vec3 v, glm::vec3 axis, float angle) {
 }
 
 std::string fmt(float v) {
+    if (v == 0.0f) v = 0.0f; // no "-0"
     char b[32];
     std::snprintf(b, sizeof b, "%.6g", v);
     return b;

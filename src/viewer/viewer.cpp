@@ -11,6 +11,15 @@
 namespace pt::viewer {
 namespace {
 
+// Timestamp queries: frame start, after the render dispatches, after the display pass, then
+// one after each tile of a tiled pass (at most this many tiles per frame).
+constexpr uint32_t kQueryStart = 0, kQueryRendered = 1, kQueryDisplayed = 2, kQueryFirstTile = 3;
+constexpr uint32_t kMaxFrameTiles = 256;
+// While a still view refines, frames whose work the eye would not see are not displayed: the
+// picture is refreshed at least this often (and at every change and every completed pass),
+// which saves the display pass and presentation (a few ms a frame on lavapipe) for rendering.
+constexpr double kRefineDisplayIntervalMs = 40.0;
+
 double msSince(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
 
 // Bounds of the scene from the roots of its BVHs.
@@ -75,7 +84,7 @@ Session::Session(Window& window, VulkanContext& context, const FlatScene& flat, 
     if (families[context.queueFamily()].timestampValidBits > 0) {
         VkQueryPoolCreateInfo queryInfo{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
         queryInfo.queryType = VK_QUERY_TYPE_TIMESTAMP;
-        queryInfo.queryCount = 3;
+        queryInfo.queryCount = kQueryFirstTile + kMaxFrameTiles;
         vkCheck(vkCreateQueryPool(device, &queryInfo, nullptr, &queries_), "creating a timestamp query pool");
         timestampMs_ = context.properties().limits.timestampPeriod * 1e-6;
     }
@@ -186,12 +195,25 @@ void Session::planWork(uint32_t& count, uint32_t& firstTile, uint32_t& endTile) 
     }
     uint32_t tiles = 1;
     if (passTileSize_ > 0) {
-        const double tileMs = double(passTileSize_) * passTileSize_ * passCount_ * costMs_;
-        tiles = static_cast<uint32_t>(std::clamp(std::floor(config_.frameBudgetMs / tileMs), 1.0, double(passTiles_)));
+        const glm::uvec3 key(renderer_->width(), renderer_->height(), passTileSize_);
+        if (key != tileMsKey_) tileMs_.assign(passTiles_, 0.0), tileMsKey_ = key;
+        // As many tiles as their predicted cost fits in the budget (at least one).
+        double planned = predictTileMs(passTilesDone_) * passCount_;
+        while (passTilesDone_ + tiles < passTiles_ && tiles < kMaxFrameTiles) {
+            const double next = predictTileMs(passTilesDone_ + tiles) * passCount_;
+            if (planned + next > config_.frameBudgetMs) break;
+            planned += next;
+            ++tiles;
+        }
     }
     count = passCount_;
     firstTile = passTilesDone_;
     endTile = std::min(passTiles_, passTilesDone_ + tiles);
+}
+
+double Session::predictTileMs(uint32_t tile) const {
+    if (tile < tileMs_.size() && tileMs_[tile] > 0.0) return tileMs_[tile];
+    return double(tilePixels(passTileSize_, tile, tile + 1)) * costMs_;
 }
 
 // Renders the rest of the pass in progress at once (before saving, so every pixel has the same
@@ -229,32 +251,8 @@ void Session::updatePhotographicTerms(bool force) {
     termsTime_ = Clock::now();
 }
 
-void Session::frame() {
-    const auto start = Clock::now();
-    const glm::ivec2 fb = window_.framebufferSize();
-    if (fb.x <= 0 || fb.y <= 0) return; // minimised
-    if (fb != windowSize_) resizeWindow(fb);
-    applyChanges();
-    uint32_t count, firstTile, endTile;
-    planWork(count, firstTile, endTile);
-
-    uint32_t image = 0;
-    if (!swapchain_->acquire(acquired_, &image)) {
-        resizeWindow(fb);
-        return;
-    }
-    VkDevice device = context_.device();
-    vkCheck(vkResetCommandBuffer(cmd_, 0), "resetting the viewer's command buffer");
-    VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
-    begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-    vkCheck(vkBeginCommandBuffer(cmd_, &begin), "recording a frame");
-    if (queries_) {
-        vkCmdResetQueryPool(cmd_, queries_, 0, 3);
-        vkCmdWriteTimestamp(cmd_, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, queries_, 0);
-    }
-    if (count > 0) renderer_->recordTiles(cmd_, count, passTileSize_, firstTile, endTile);
-    if (queries_) vkCmdWriteTimestamp(cmd_, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queries_, 1);
-
+// Records the display pass for the tiles of the pass rendered so far (`endTile`).
+void Session::recordDisplay(uint32_t image, uint32_t endTile) {
     gpu::GpuDisplayPush push{};
     push.accumulation = renderer_->accumulationAddress();
     push.filmSize = glm::uvec2(renderer_->width(), renderer_->height());
@@ -276,33 +274,81 @@ void Session::frame() {
     push.saturation = tm.saturation;
     push.invGamma = tm.srgb ? 1.0f : 1.0f / tm.gamma;
     display_->record(cmd_, push, swapchain_->image(image));
-    if (queries_) vkCmdWriteTimestamp(cmd_, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queries_, 2);
+}
+
+void Session::frame() {
+    const auto start = Clock::now();
+    const glm::ivec2 fb = window_.framebufferSize();
+    if (fb.x <= 0 || fb.y <= 0) return; // minimised
+    if (fb != windowSize_) resizeWindow(fb);
+    applyChanges();
+    uint32_t count, firstTile, endTile;
+    planWork(count, firstTile, endTile);
+
+    const bool passEnds = count > 0 && endTile >= passTiles_;
+    const bool show = displayDirty_ || scale_ > 1 || passEnds || count == 0 || msSince(lastShown_) >= kRefineDisplayIntervalMs;
+    uint32_t image = 0;
+    if (show && !swapchain_->acquire(acquired_, &image)) {
+        resizeWindow(fb);
+        return;
+    }
+    VkDevice device = context_.device();
+    vkCheck(vkResetCommandBuffer(cmd_, 0), "resetting the viewer's command buffer");
+    VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+    begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+    vkCheck(vkBeginCommandBuffer(cmd_, &begin), "recording a frame");
+    const bool timeTiles = queries_ && passTileSize_ > 0 && count > 0;
+    if (queries_) {
+        vkCmdResetQueryPool(cmd_, queries_, 0, kQueryFirstTile + (timeTiles ? endTile - firstTile : 0));
+        vkCmdWriteTimestamp(cmd_, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, queries_, kQueryStart);
+    }
+    if (timeTiles) {
+        for (uint32_t t = firstTile; t < endTile; ++t) {
+            renderer_->recordTiles(cmd_, count, passTileSize_, t, t + 1);
+            vkCmdWriteTimestamp(cmd_, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queries_, kQueryFirstTile + (t - firstTile));
+        }
+    } else if (count > 0) {
+        renderer_->recordTiles(cmd_, count, passTileSize_, firstTile, endTile);
+    }
+    if (queries_) vkCmdWriteTimestamp(cmd_, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queries_, kQueryRendered);
+
+    if (show) recordDisplay(image, endTile);
+    if (queries_) vkCmdWriteTimestamp(cmd_, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queries_, kQueryDisplayed);
     vkCheck(vkEndCommandBuffer(cmd_), "recording a frame");
 
     const VkPipelineStageFlags waitStage = VK_PIPELINE_STAGE_TRANSFER_BIT;
-    VkSemaphore rendered = swapchain_->renderedSemaphore(image);
+    VkSemaphore rendered = show ? swapchain_->renderedSemaphore(image) : VK_NULL_HANDLE;
     VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
-    submit.waitSemaphoreCount = 1;
+    submit.waitSemaphoreCount = show ? 1 : 0;
     submit.pWaitSemaphores = &acquired_;
     submit.pWaitDstStageMask = &waitStage;
     submit.commandBufferCount = 1;
     submit.pCommandBuffers = &cmd_;
-    submit.signalSemaphoreCount = 1;
+    submit.signalSemaphoreCount = show ? 1 : 0;
     submit.pSignalSemaphores = &rendered;
     vkCheck(vkResetFences(device, 1, &fence_), "resetting a fence");
     vkCheck(vkQueueSubmit(context_.queue(), 1, &submit, fence_), "submitting a frame");
-    const bool presented = swapchain_->present(image, rendered);
+    const bool presented = !show || swapchain_->present(image, rendered);
     vkCheck(vkWaitForFences(device, 1, &fence_, VK_TRUE, UINT64_MAX), "waiting for a frame");
     if (!presented) resizeWindow(window_.framebufferSize());
+    if (show) lastShown_ = Clock::now();
 
     // Bookkeeping: timings, the learnt cost per path, pass progress.
     lastFrameMs_ = msSince(start);
     lastRenderMs_ = lastGpuMs_ = 0;
     if (queries_) {
-        uint64_t t[3] = {};
-        if (vkGetQueryPoolResults(device, queries_, 0, 3, sizeof t, t, sizeof(uint64_t), VK_QUERY_RESULT_64_BIT) == VK_SUCCESS) {
-            lastRenderMs_ = double(t[1] - t[0]) * timestampMs_;
-            lastGpuMs_ = double(t[2] - t[0]) * timestampMs_;
+        const uint32_t n = kQueryFirstTile + (timeTiles ? endTile - firstTile : 0);
+        std::vector<uint64_t> t(n);
+        if (vkGetQueryPoolResults(device, queries_, 0, n, n * sizeof(uint64_t), t.data(), sizeof(uint64_t),
+                VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT) == VK_SUCCESS) {
+            lastRenderMs_ = double(t[kQueryRendered] - t[kQueryStart]) * timestampMs_;
+            lastGpuMs_ = double(t[kQueryDisplayed] - t[kQueryStart]) * timestampMs_;
+            for (uint32_t i = 0; timeTiles && i < endTile - firstTile; ++i) {
+                const uint64_t begin = i == 0 ? t[kQueryStart] : t[kQueryFirstTile + i - 1];
+                const double ms = double(t[kQueryFirstTile + i] - begin) * timestampMs_ / count;
+                double& known = tileMs_[firstTile + i];
+                known = known > 0.0 ? 0.5 * known + 0.5 * ms : ms;
+            }
         }
     } else {
         lastRenderMs_ = lastGpuMs_ = lastFrameMs_;
@@ -332,8 +378,9 @@ void Session::frame() {
 int Session::run() {
     auto last = Clock::now();
     while (!quit_ && !window_.shouldClose()) {
-        if (needFrame()) window_.pollEvents();
-        else window_.waitEvents(); // idle: done, paused or nothing changed
+        const glm::ivec2 fb = window_.framebufferSize();
+        if (needFrame() && fb.x > 0 && fb.y > 0) window_.pollEvents();
+        else window_.waitEvents(); // idle: done, paused, minimised or nothing changed
         const auto now = Clock::now();
         const float seconds = std::min(std::chrono::duration<float>(now - last).count(), 0.1f);
         last = now;

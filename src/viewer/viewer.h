@@ -20,7 +20,7 @@ struct ViewerConfig {
     glm::vec3 background{0.0f};
     uint32_t sppCap = 1024;      // stop (and wait for events) at this many samples per pixel
     uint32_t tileSize = 64;      // tiles of a full-resolution pass, spread over frames
-    double frameBudgetMs = 25.0; // rendering work per frame (GPU time), which bounds input latency
+    double frameBudgetMs = 20.0; // rendering work per frame (GPU time), which bounds input latency
     float exposure = 0.0f;       // EV
     std::filesystem::path outputDir = "out";
     std::vector<ScriptCommand> script;

@@ -71,7 +71,7 @@ const char* kHelp =
 std::string Session::settingsText() const {
     std::string s = std::string(settings_.nee ? "nee" : "no-nee") + " " + (settings_.mis ? "mis" : "no-mis") + " " +
                     (settings_.rr ? "rr" : "no-rr") + " " + (settings_.sampling == DirectionSampling::Cosine ? "cosine" : "uniform") +
-                    " depth " + std::to_string(settings_.maxDepth);
+                    " depth " + std::to_string(settings_.maxDepth) + (settings_.classic ? " classic" : "");
     if (clamp_ > 0.0f) s += " | clamp " + fixed(clamp_, 0) + " (BIASED)";
     if (debugView_ != 0) s += " | view " + std::string(debugViewName(debugView_));
     return s;

@@ -30,11 +30,13 @@ private:
     void resetPass();
     void planWork(uint32_t& count, uint32_t& firstTile, uint32_t& endTile);
     void frame();
+    void recordDisplay(uint32_t image, uint32_t endTile);
     void resizeWindow(glm::ivec2 size);
     void finishPass();
     void updatePhotographicTerms(bool force);
     void updateTitle(bool force);
     uint64_t tilePixels(uint32_t tileSize, uint32_t firstTile, uint32_t endTile) const;
+    double predictTileMs(uint32_t tile) const; // one sample over a tile of the tiled pass
 
     // ---- viewer_controls.cpp: input, script, output ----
     void handleInput(const Input& input, float seconds);
@@ -79,6 +81,11 @@ private:
     bool passActive_ = false;
     uint32_t passCount_ = 0, passTileSize_ = 0, passTiles_ = 0, passTilesDone_ = 0;
     double costMs_ = 2e-3; // GPU milliseconds per path (pixel sample), learnt from timestamps
+    // GPU milliseconds of one sample over each tile of a tiled pass, from per-tile timestamps
+    // (tiles differ several-fold: sky, walls, glass), for the film size and tile they were
+    // measured at; 0 = not measured yet.
+    std::vector<double> tileMs_;
+    glm::uvec3 tileMsKey_{0};
     Clock::time_point changeTime_ = Clock::now(); // of the last change that restarted accumulation
     double renderSeconds_ = 0; // wall time of frames since then
 
@@ -96,6 +103,7 @@ private:
     uint64_t frames_ = 0;
     double lastFrameMs_ = 0, lastGpuMs_ = 0, lastRenderMs_ = 0;
     Clock::time_point titleTime_{};
+    Clock::time_point lastShown_{};
     struct Window_ {
         Clock::time_point start = Clock::now();
         uint64_t frames = 0;

@@ -409,6 +409,33 @@ TEST_F(MicrofacetBsdf, RoughDielectricReflectsAndTransmitsAtMostWhatArrives) {
     }
 }
 
+TEST_F(MicrofacetBsdf, ExtremeRoughnessAndGrazingAnglesStayFinite) {
+    // alpha at both ends (MIN_ROUGH_ALPHA and 1), wo at normal incidence, almost in the surface
+    // and just below it (inside, for the transmissive ones); total internal reflection included.
+    const float smallest = std::sqrt(1.0001e-3f);
+    std::vector<uint32_t> index;
+    for (float r : {smallest, 1.0f}) {
+        index.push_back(add(roughConductor(r, 0.2f, 3.0f, 1.0f)));
+        index.push_back(add(roughDielectric(r, 1.5f)));
+        index.push_back(add(pbr(0.8f, 0.5f, r)));
+        index.push_back(add(pbr(0.8f, 0.0f, r, 0.8f, false)));
+        index.push_back(add(pbr(0.8f, 0.0f, r, 0.8f, true)));
+    }
+    upload();
+    std::vector<glm::vec4> dirs;
+    for (int i = 0; i < 4096; ++i) dirs.emplace_back(direction(-1.0 + (i / 64 + 0.5) / 32.0, (i % 64 + 0.5) / 64.0 * 2 * M_PI), 0.0f);
+    for (float c : {-1e-4f, -0.5f, 1e-4f, 1.0f}) dirs.emplace_back(woAt(c), 0.0f); // the grazing and axial ones exactly
+    for (uint32_t m : index)
+        for (float cosO : {1.0f, 1e-4f, -1e-4f, -1.0f}) {
+            const glm::vec3 wo = woAt(cosO);
+            size_t bad = 0;
+            for (const glm::vec4& v : evaluate(m, wo, dirs)) bad += !std::isfinite(v.x) || !std::isfinite(v.w) || v.x < 0 || v.w < 0;
+            const auto samples = runTestKernel(TEST_MODE_BSDF_SAMPLE, 20000, gpu_.get(), {}, glm::vec3(0.0f), wo, 5, m);
+            for (const glm::vec4& v : samples) bad += !std::isfinite(v.x + v.y + v.z + v.w) || v.w < 0;
+            EXPECT_EQ(bad, 0u) << "material " << m << ", cos theta_o " << cosO;
+        }
+}
+
 // ---------------------------------------------------------------------------------------------
 // Renders
 
@@ -502,8 +529,15 @@ TEST_F(MicrofacetRender, RoughGlassUnderUniformSkyLosesLittle) {
             minimum = std::min(minimum, v);
             maximum = std::max(maximum, v);
         }
-    std::printf("[          ] rough glass (alpha 0.09) in a white furnace: pixels in [%.4f, %.4f]\n", minimum, maximum);
-    EXPECT_GE(minimum, 0.85) << "single-scattering GGX at alpha 0.09 loses only a little";
+    double centre = 0;
+    for (int y = 6; y < 10; ++y)
+        for (int x = 6; x < 10; ++x) centre += r.mean.at(x, y)[0] / 16;
+    std::printf("[          ] rough glass (alpha 0.09) in a white furnace: pixels in [%.4f, %.4f], centre %.4f\n", minimum,
+        maximum, centre);
+    // Single-scattering GGX at alpha 0.09 loses little head-on (R + T = 0.997 at cos 0.7) and
+    // more at the silhouette, where light meets the surface at grazing angles (0.93 at cos 0.05).
+    EXPECT_GE(centre, 0.95);
+    EXPECT_GE(minimum, 0.75);
 }
 
 } // namespace

@@ -305,5 +305,59 @@ TEST_F(Textures, FlatNormalMapsAndConstantBumpMapsChangeNothing) {
     EXPECT_LT(litQuadMean(tilted, false) / plain, 0.9);
 }
 
+// An unlit white quad at z = 0 in front of an unlit red one at z = -1, seen by quadCamera().
+Scene layeredQuads(Material front) {
+    Scene scene;
+    front.unlit = true;
+    front.baseColor = glm::vec3(1.0f);
+    Material back;
+    back.unlit = true;
+    back.baseColor = glm::vec3(1, 0, 0);
+    back.baseColorTexture = std::nullopt;
+    scene.materials = {front, back};
+    scene.meshes.push_back(texturedQuad(0));
+    scene.meshes.push_back(makeQuad(glm::vec3(-1, -1, -1), glm::vec3(3, 0, 0), glm::vec3(0, 3, 0), 1));
+    return scene;
+}
+
+TEST_F(Textures, AlphaMaskCutsOutWhereTheTextureIsTransparent) {
+    TextureImage halves;
+    halves.width = 2;
+    halves.height = 1;
+    halves.rgba8 = {0x00ffffffu, 0xffffffffu}; // left texel alpha 0, right alpha 1
+    Material front;
+    front.baseColorTexture = 0;
+    front.alphaMode = Material::AlphaMode::Mask;
+    front.alphaCutoff = 0.5f;
+    Scene scene = layeredQuads(front);
+    scene.textureImages.push_back(halves);
+    Texture nearest;
+    nearest.bilinear = false;
+    scene.textures.push_back(nearest);
+    // Unlit surfaces reach the sensor only when the kernel treats them as such.
+    scene.materials[0].unlit = scene.materials[1].unlit = true;
+    const Renderer::Readback r = renderScene(scene, IntegratorSettings{}, quadCamera(), 16, 16, 2);
+    for (int y = 0; y < 16; ++y)
+        for (int x = 0; x < 16; ++x) {
+            const float* p = r.mean.at(x, y);
+            if (x < 8) EXPECT_TRUE(p[0] == 1.0f && p[1] == 0.0f) << x << "," << y << ": the back quad shows through";
+            else EXPECT_TRUE(p[0] == 1.0f && p[1] == 1.0f) << x << "," << y << ": the front quad is opaque";
+        }
+}
+
+TEST_F(Textures, AlphaBlendLetsThroughOneMinusOpacityOnAverage) {
+    Material front;
+    front.alphaMode = Material::AlphaMode::Blend;
+    front.opacity = 0.25f;
+    const Renderer::Readback r = renderScene(layeredQuads(front), IntegratorSettings{}, quadCamera(), 16, 16, 64);
+    // Green is 1 where the white quad was kept (probability 0.25) and 0 where red shows.
+    double green = 0;
+    for (int y = 0; y < 16; ++y)
+        for (int x = 0; x < 16; ++x) green += r.mean.at(x, y)[1];
+    green /= 256;
+    // 16384 Bernoulli(0.25) draws: standard error 0.0034; allow 5 of them.
+    EXPECT_NEAR(green, 0.25, 0.017);
+}
+
 } // namespace
 } // namespace pt::test

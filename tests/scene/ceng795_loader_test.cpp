@@ -548,7 +548,9 @@ TEST_F(Ceng795, ConductorMaterialAndRoughness) {
     EXPECT_TRUE(near3(m.baseColor, glm::vec3(1, 0.86f, 0.57f)));
     EXPECT_TRUE(near3(m.conductorEta, glm::vec3(0.37f)));
     EXPECT_TRUE(near3(m.conductorK, glm::vec3(2.82f)));
-    EXPECT_TRUE(contains(s.unsupported, "rough specular (rendered smooth)"));
+    // The course's Roughness r as GGX alpha r / 5 (perceptual roughness sqrt(alpha)).
+    EXPECT_NEAR(m.roughness * m.roughness, 0.2f * 0.2f, 1e-6f);
+    EXPECT_FALSE(contains(s.unsupported, "rough specular (rendered smooth)"));
 }
 
 TEST_F(Ceng795, DegammaLinearisesColours) {
@@ -598,7 +600,8 @@ TEST_F(Ceng795, PointAndDirectionalLightsArePunctualLights) {
 TEST_F(Ceng795, OtherLightsAreNamedOnce) {
     const pt::Scene s = load(triangleScene("", "", "<Lights><AmbientLight>25 25 25</AmbientLight>"
         "<HeadLight id=\"1\"/><HeadLight id=\"2\"/></Lights>"));
-    EXPECT_EQ(s.unsupported, (std::vector<std::string>{"ambient light (ignored)", "HeadLight lights (ignored)"}));
+    EXPECT_EQ(s.unsupported, (std::vector<std::string>{"HeadLight lights (ignored)"}));
+    EXPECT_TRUE(near3(s.ambientLight, glm::vec3(25.0f))); // for the classic integrator
     EXPECT_TRUE(s.punctualLights.empty());
     const pt::Scene dark = load(triangleScene("", "", "<Lights><AmbientLight>0 0 0</AmbientLight></Lights>"));
     EXPECT_TRUE(dark.unsupported.empty());
@@ -764,14 +767,16 @@ TEST_F(Ceng795, RendererParamsMapToIntegratorSwitches) {
         EXPECT_EQ(c.importanceSampling, std::optional<bool>(false)) << i;
         EXPECT_EQ(c.russianRoulette, std::optional<bool>(false)) << i;
     }
-    EXPECT_FALSE(contains(s.unsupported, "classic ray tracer (rendered by path tracing)"));
+    EXPECT_EQ(a.classic, std::optional<bool>(false));
 
-    // No Renderer: the course's classic ray tracer; the switches are left to the command line.
+    // No Renderer: the course's classic ray tracer, whose images are in 0..255 display units.
     const pt::Scene classic = load(cameraScene(camera(1, "")));
+    EXPECT_EQ(classic.cameras[0].settings.classic, std::optional<bool>(true));
     EXPECT_FALSE(classic.cameras[0].settings.nee.has_value());
     EXPECT_FALSE(classic.cameras[0].settings.importanceSampling.has_value());
     EXPECT_FALSE(classic.cameras[0].settings.russianRoulette.has_value());
-    EXPECT_TRUE(contains(classic.unsupported, "classic ray tracer (rendered by path tracing)"));
+    ASSERT_TRUE(classic.cameras[0].settings.tonemap.has_value());
+    EXPECT_FLOAT_EQ(classic.cameras[0].settings.tonemap->scale, 1.0f / 255.0f);
 }
 
 TEST_F(Ceng795, CameraErrors) {
