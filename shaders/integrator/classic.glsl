@@ -28,6 +28,11 @@ vec3 classicShade(GpuMaterial m, vec3 wo, vec3 wi) {
         vec3 h = normalize(wo + wi);
         return m.classicDiffuse * wi.z + m.classicSpecular * pow(max(h.z, 0.0), m.classicExponent);
     }
+    // The course's BRDFs: its unnormalised Phong and Blinn-Phong variants use kd without 1/pi
+    // (the official images are pi times brighter in their diffuse part than kd / pi gives).
+    bool unnormalised = m.type == MATERIAL_GLOSSY && m.glossyModel != GLOSSY_TORRANCE_SPARROW &&
+                        (m.flags & MATERIAL_FLAG_NORMALIZED) == 0u;
+    if (unnormalised) m.baseColor *= PI;
     return isSurfaceBsdf(m) ? surfaceEval(m, wo, wi) : vec3(0.0);
 }
 
