@@ -41,9 +41,10 @@ LightSample sampleSpotLight(GpuLight light, vec3 x) {
     return s;
 }
 
-// The course's AreaLight: a square of edge `radius` centred at `position`, emitting radiance
-// `intensity` on the side its normal `direction` faces. No ray can hit it, so it is found by
-// light sampling only (a uniform point on the square, pdf dist^2 / (area cos) per solid angle).
+// The course's AreaLight: a square of edge `radius` centred at `position` (normal `direction`),
+// emitting radiance `intensity` from both faces: the course's estimate uses |n_l . w_i|, and its
+// official images show the ceiling above such a light lit. No ray can hit it, so it is found
+// by light sampling only (a uniform point on the square, pdf dist^2 / (area |cos|) per solid angle).
 LightSample sampleSquareLight(GpuLight light, vec3 x, vec2 u) {
     LightSample s = noLightSample();
     vec3 t, b;
@@ -55,7 +56,7 @@ LightSample sampleSquareLight(GpuLight light, vec3 x, vec2 u) {
     if (!(dist2 > 0.0)) return s;
     s.distance = sqrt(dist2);
     s.wi = d / s.distance;
-    float cosLight = dot(light.direction, -s.wi);
+    float cosLight = abs(dot(light.direction, s.wi));
     if (cosLight <= 0.0) return s;
     s.radiance = light.intensity;
     s.pdf = light.pmf * dist2 / (light.area * cosLight);

@@ -3,6 +3,7 @@
 #include "render/image_io.h"
 #include "render/renderer.h"
 #include "scene/scene_loader.h"
+#include "scene/texture_image.h"
 
 #include <cmath>
 #include <cstdio>
@@ -24,7 +25,7 @@ Scene loadSceneWithOptions(const RenderOptions& o) {
     Scene scene = loadScene(o.scene);
     if (!o.environment.empty()) {
         Environment env;
-        env.image = readExr(o.environment);
+        env.image = loadRadianceImage(o.environment);
         env.source = o.environment;
         scene.environment = env;
     } else if (o.environmentColour) {

@@ -104,7 +104,7 @@ LightTable buildLightTable(std::span<gpu::GpuTriangle> triangles, std::span<gpu:
             light.direction = glm::normalize(pl.direction);
             light.radius = pl.size;
             light.area = pl.size * pl.size;
-            p = kPi * selectionWeight(pl.intensity) * double(pl.size) * pl.size;
+            p = 2.0 * kPi * selectionWeight(pl.intensity) * double(pl.size) * pl.size; // both faces
         } else {
             light.type = LIGHT_DIRECTIONAL;
             light.direction = glm::normalize(pl.direction);

@@ -1,6 +1,7 @@
 #include "scene/ceng795_loader.h"
 
 #include "render/image_io.h"
+#include "scene/texture_image.h"
 
 #include "scene/ceng795_camera.h"
 #include "scene/ceng795_document.h"
@@ -123,7 +124,7 @@ PunctualLight readAreaLight(const Context& ctx, pugi::xml_node e) {
     return l;
 }
 
-// SphericalDirectionalLight: a lat-long radiance map from <Textures><Images> (OpenEXR).
+// SphericalDirectionalLight: a lat-long radiance map from <Textures><Images> (OpenEXR or Radiance .hdr).
 void readEnvironmentLight(Context& ctx, pugi::xml_node root, pugi::xml_node e, Scene& s) {
     if (s.environment) ctx.fail(e, "only one environment light is supported");
     pugi::xml_node idNode = required(ctx, e, "ImageId");
@@ -131,14 +132,13 @@ void readEnvironmentLight(Context& ctx, pugi::xml_node root, pugi::xml_node e, S
     for (pugi::xml_node images : root.child("Textures").children("Images"))
         for (pugi::xml_node image : images.children("Image")) {
             if (std::string(image.attribute("id").value()) != id) continue;
-            const std::filesystem::path file = ctx.resolve(image.child_value());
-            if (file.extension() != ".exr") {
-                ctx.note("environment maps other than OpenEXR (ignored)");
-                return;
-            }
+            const std::string text = textOf(image);
+            const std::vector<std::string_view> name = tokens(text);
+            if (name.size() != 1) ctx.fail(image, "is not one file name");
+            const std::filesystem::path file = ctx.resolve(name[0]);
             Environment env;
             try {
-                env.image = readExr(file);
+                env.image = loadRadianceImage(file);
             } catch (const std::exception& err) {
                 ctx.fail(e, err.what());
             }

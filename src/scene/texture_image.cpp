@@ -87,4 +87,15 @@ TextureImage loadTextureImage(const std::filesystem::path& path) {
     return decodeTextureImage(bytes.data(), bytes.size(), source);
 }
 
+Image loadRadianceImage(const std::filesystem::path& path) {
+    TextureImage t = loadTextureImage(path);
+    if (t.rgbaF.empty()) fail(path.string(), "an environment map needs high dynamic range (OpenEXR or Radiance .hdr), not an 8-bit image");
+    Image image;
+    image.width = t.width;
+    image.height = t.height;
+    image.rgba.resize(t.rgbaF.size() * 4);
+    std::memcpy(image.rgba.data(), t.rgbaF.data(), image.rgba.size() * sizeof(float));
+    return image;
+}
+
 } // namespace pt

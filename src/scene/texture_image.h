@@ -15,6 +15,10 @@ constexpr int kMaxTextureSide = 16384;
 // Throws std::runtime_error "<source>: <problem>" when the file is missing or undecodable.
 TextureImage loadTextureImage(const std::filesystem::path& path);
 
+// A radiance map (environment): OpenEXR or Radiance .hdr, as a float image. Throws
+// "<file>: <problem>" for missing files and for 8-bit images, which cannot hold radiance.
+Image loadRadianceImage(const std::filesystem::path& path);
+
 // Decodes an image held in memory (glTF buffer views and data URIs); `source` names it in errors.
 TextureImage decodeTextureImage(const unsigned char* bytes, size_t size, const std::string& source);
 

@@ -155,13 +155,19 @@ TEST_F(PunctualLights, SquareAreaLightGivesTheAnalyticIrradiance) {
     const double expected = rho / M_PI * 4 * L * q * std::atan(q);
     EXPECT_NEAR(sum / 64, expected, 4 * std::sqrt(var) / 64 + 1e-4 * expected);
 
-    // One-sided: a point above the square receives nothing from it.
-    camera.position = glm::vec3(0.0f, 5.0f, 0.0f);
+    // Both faces emit (the course's |n_l . w_i|): a ceiling as far above the square, facing it,
+    // receives the same irradiance from its back.
     Scene above = scene;
-    above.meshes.push_back(makeQuad({-2.0f, 4.0f, 2.0f}, {4.0f, 0.0f, 0.0f}, {0.0f, 0.0f, -4.0f}, 0)); // a floor above it
+    above.meshes.push_back(makeQuad({-2.0f, float(2 * c), 2.0f}, {0.0f, 0.0f, -4.0f}, {4.0f, 0.0f, 0.0f}, 0)); // normal -y
     above.meshes.erase(above.meshes.begin());
-    auto dark = renderScene(above, s, camera, 4, 4, 16);
-    EXPECT_EQ(dark.mean.at(2, 2)[0], 0.0f);
+    camera.position = glm::vec3(0.0f, float(1.5 * c), 0.0f);
+    camera.forward = glm::vec3(0.0f, 1.0f, 0.0f);
+    camera.up = glm::vec3(0.0f, 0.0f, 1.0f);
+    auto back = renderScene(above, s, camera, 8, 8, 256);
+    double backSum = 0, backVar = 0;
+    for (int y = 0; y < 8; ++y)
+        for (int x = 0; x < 8; ++x) backSum += back.mean.at(x, y)[0], backVar += back.varianceOfMean.at(x, y)[0];
+    EXPECT_NEAR(backSum / 64, expected, 4 * std::sqrt(backVar) / 64 + 1e-4 * expected);
 }
 
 } // namespace
