@@ -3,6 +3,7 @@
 #define PT_GEOMETRY_INTERACTION_GLSL
 #include "common/buffers.glsl"
 #include "geometry/traverse.glsl"
+#include "geometry/motion.glsl"
 #include "integrator/features.glsl"
 
 struct SurfaceInteraction {
@@ -35,10 +36,11 @@ SurfaceInteraction makeSphereInteraction(Ray ray, Hit hit) {
     GpuSphere sphere = SphereRef(scene.spheres).v[hit.primitive & ~SPHERE_BIT];
     // Recompute the hit in object space and project it onto the unit sphere: the world point
     // then lies on the surface to within the map's rounding, whatever the distance travelled.
-    vec3 o = transformPoint(sphere.worldToObject, ray.origin);
+    vec3 offset = (HAS_MOTION && sphere.motion != NO_MOTION) ? motionOffset(sphere.motion) : vec3(0.0);
+    vec3 o = transformPoint(sphere.worldToObject, ray.origin - offset);
     vec3 d = transformVector(sphere.worldToObject, ray.direction);
     vec3 po = normalize(o + hit.t * d);
-    si.p = transformPoint(sphere.objectToWorld, po);
+    si.p = transformPoint(sphere.objectToWorld, po) + offset;
     // Normals map with the inverse transpose of objectToWorld, i.e. the transpose of worldToObject.
     si.ng = normalize(sphere.worldToObject[0].xyz * po.x + sphere.worldToObject[1].xyz * po.y + sphere.worldToObject[2].xyz * po.z);
     si.ns = si.ng;
@@ -68,6 +70,12 @@ SurfaceInteraction makeInteraction(Ray ray, Hit hit) {
     si.dpdu = si.dpdv = vec3(0.0);
     GpuTriangle tri = sceneTriangles.v[hit.primitive];
     float b0 = 1.0 - hit.bary.x - hit.bary.y;
+    if (HAS_MOTION && (tri.flags & TRIANGLE_FLAG_MOVING) != 0u) {
+        vec3 offset = motionOffset(tri.flags >> TRIANGLE_MOTION_SHIFT);
+        tri.p0 += offset;
+        tri.p1 += offset;
+        tri.p2 += offset;
+    }
     si.p = b0 * tri.p0 + hit.bary.x * tri.p1 + hit.bary.y * tri.p2;
     si.ng = normalize(cross(tri.p1 - tri.p0, tri.p2 - tri.p0));
     si.ns = si.ng;

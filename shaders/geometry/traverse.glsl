@@ -8,6 +8,7 @@
 #include "geometry/sphere.glsl"
 #include "integrator/features.glsl"
 #include "textures/alpha.glsl"
+#include "geometry/motion.glsl"
 
 // Depth of the traversal stack. The builder caps tree depth below this (src/accel/bvh.cpp).
 const int TRAVERSAL_STACK_SIZE = 64;
@@ -88,9 +89,19 @@ bool traverseTree(bool sphereTree, bool anyHit, Ray ray, WatertightRay wray, Box
                 vec2 bary = vec2(0.0);
                 bool hitPrimitive;
                 if (sphereTree) {
-                    hitPrimitive = intersectSphere(SphereRef(scene.spheres).v[i], ray, hit.t, t);
+                    GpuSphere sphere = SphereRef(scene.spheres).v[i];
+                    Ray r = ray;
+                    // A moving sphere: move the ray the other way (t is unchanged).
+                    if (HAS_MOTION && sphere.motion != NO_MOTION) r.origin -= motionOffset(sphere.motion);
+                    hitPrimitive = intersectSphere(sphere, r, hit.t, t);
                 } else {
                     GpuTriangle tri = sceneTriangles.v[i];
+                    if (HAS_MOTION && (tri.flags & TRIANGLE_FLAG_MOVING) != 0u) {
+                        vec3 offset = motionOffset(tri.flags >> TRIANGLE_MOTION_SHIFT);
+                        tri.p0 += offset;
+                        tri.p1 += offset;
+                        tri.p2 += offset;
+                    }
                     hitPrimitive = intersectTriangle(wray, tri.p0, tri.p1, tri.p2, hit.t, t, bary);
                     if (HAS_ALPHA && hitPrimitive && (tri.flags & TRIANGLE_FLAG_ALPHA_TESTED) != 0u)
                         hitPrimitive = !alphaCutsOut(tri, i, bary, ray);

@@ -29,6 +29,7 @@ void main() {
         Rng rng = rngCreate(pixel, push.sampleStart + s, scene.seed);
         vec2 jitter = rng2(rng, DIM_PIXEL); // box filter: uniform over the pixel
         Ray ray = cameraRay(scene.camera, vec2(pixel) + jitter, scene.imageSize, rng2(rng, DIM_LENS));
+        pathTime = HAS_MOTION ? rng1(rng, DIM_TIME) : 0.0; // the shutter is open over [0, 1)
         // Radiance, or a debug view (the NaN mask marks the radiance samples the kernel drops).
         vec3 L;
         if (DEBUG_VIEW == DEBUG_VIEW_NONE || DEBUG_VIEW == DEBUG_VIEW_NAN_MASK) {

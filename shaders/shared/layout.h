@@ -73,6 +73,9 @@ using uint64_t = std::uint64_t;
 // ---- Triangle flags ----
 #define TRIANGLE_FLAG_SHADING_NORMALS 1u // interpolate n0..n2; otherwise use the geometric normal
 #define TRIANGLE_FLAG_ALPHA_TESTED 2u    // its material cuts out by alpha: any-hit test in traversal
+#define TRIANGLE_FLAG_MOVING 4u          // motion blur: moves by motions[flags >> TRIANGLE_MOTION_SHIFT]
+#define TRIANGLE_MOTION_SHIFT 8u
+#define NO_MOTION 0xffffffffu
 
 #define NO_LIGHT 0xffffffffu
 // Hit::primitive: triangles are plain indices, spheres carry this bit.
@@ -106,7 +109,8 @@ using uint64_t = std::uint64_t;
 #define SPEC_HAS_PBR 24           // glTF metallic-roughness materials
 #define SPEC_DEBUG_VIEW 25        // DEBUG_VIEW_*: the viewer's diagnostic images instead of radiance
 #define SPEC_CLASSIC 26           // the CENG795 course's classic (Whitted / direct lighting) ray tracer
-#define SPEC_COUNT 27
+#define SPEC_HAS_MOTION 27        // moving objects (motion blur)
+#define SPEC_COUNT 28
 
 // ---- Debug views (SPEC_DEBUG_VIEW) ----
 #define DEBUG_VIEW_NONE 0u
@@ -216,7 +220,7 @@ struct GpuSphere {
     vec4 objectToWorld[3];
     uint materialIndex;
     uint lightIndex; // index into the light table, or NO_LIGHT
-    uint pad0;
+    uint motion;     // index into the motion table, or NO_MOTION
     uint pad1;
 };
 PT_CHECK_SIZE(GpuSphere, 112);
@@ -297,8 +301,10 @@ struct GpuSceneParams {
     uint backgroundTexture; // course replace_background: camera rays that escape see this, or NO_TEXTURE
     vec3 ambientLight;      // classic integrator: the course's AmbientLight Ia
     uint pad3;
+    uint64_t motions;       // vec4[]: xyz = an object's translation over the shutter interval
+    uint64_t pad4;
 };
-PT_CHECK_SIZE(GpuSceneParams, 112 + 80 + 80 + 16);
+PT_CHECK_SIZE(GpuSceneParams, 112 + 80 + 80 + 16 + 16);
 
 // Push constants of the render kernel: which pixels and which sample indices this dispatch adds.
 struct GpuRenderPush {

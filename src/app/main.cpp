@@ -60,6 +60,8 @@ void addSceneOptions(CLI::App* cmd, pt::RenderOptions& o, SwitchWords& w) {
     cmd->add_option("--env-scale", o.environmentScale, "Multiply the environment's radiance")->check(CLI::Range(0.0f, 1e30f));
     cmd->add_option("--env-rotate", o.environmentRotation, "Rotate the environment about +y, in degrees");
     cmd->add_flag("--validation", o.validation, "Enable the Vulkan validation layer; fail if it reports anything");
+    cmd->add_flag("--all-features", o.allFeatures, "Use the kernel with every feature compiled in instead of one specialised "
+                                                   "to the scene (to measure what specialisation saves; same image)");
 }
 
 void applySwitchWords(const SwitchWords& w, pt::RenderOptions& o) {

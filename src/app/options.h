@@ -27,6 +27,7 @@ struct RenderOptions {
     uint32_t tileSize = 0; // 0: whole image per dispatch
     uint32_t passSpp = 0;  // 0: choose passes of about half a second
     bool validation = false;
+    bool allFeatures = false; // compile every feature into the kernel (benchmarking specialisation)
     bool quiet = false;
     float exposure = 0.0f;
     std::string environment;                   // --env FILE.exr: equirectangular radiance map

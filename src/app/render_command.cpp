@@ -35,7 +35,8 @@ std::string formatDouble(double v) {
 
 int renderJob(VulkanContext& context, const Scene& scene, const FlatScene& flat, const Job& job, const RenderOptions& o,
     const std::optional<Image>& reference, std::ostream* errorLog) {
-    const FeatureSet features = computeFeatures(flat, job.settings);
+    // --all-features: the unspecialised kernel, for measuring what specialisation saves.
+    const FeatureSet features = o.allFeatures ? FeatureSet::all(job.settings) : computeFeatures(flat, job.settings);
     Renderer renderer(context, flat, features, job.settings, job.camera, FilmSettings{job.width, job.height, scene.background});
     if (!o.quiet) {
         std::fprintf(stderr, "pt: %s: %dx%d, kernel features: %s; pipeline %.3f s\n", job.camera.name.c_str(), job.width,

@@ -70,6 +70,7 @@ FeatureSet computeFeatures(const FlatScene& scene, const IntegratorSettings& set
     f.cosineSampling = settings.sampling == DirectionSampling::Cosine;
     // The classic ray tracer always samples lights (on every surface: its Blinn-Phong terms
     // apply to mirrors and glass too), never continues diffuse paths, so no MIS or roulette.
+    f.motion = !scene.motions.empty();
     f.classic = settings.classic;
     if (f.classic) {
         f.nee = !scene.lights.lights.empty();
@@ -107,6 +108,7 @@ std::vector<SpecializationConstant> FeatureSet::constants(uint32_t localSizeX, u
         {SPEC_HAS_PBR, pbr},
         {SPEC_DEBUG_VIEW, debugView},
         {SPEC_CLASSIC, classic},
+        {SPEC_HAS_MOTION, motion},
     };
 }
 
@@ -137,6 +139,7 @@ std::string FeatureSet::describe() const {
     add(normalMaps, "normal-maps");
     add(alpha, "alpha");
     add(unlit, "unlit");
+    add(motion, "motion-blur");
     add(nee, "nee");
     add(mis, "mis");
     add(rr, "rr");

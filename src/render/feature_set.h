@@ -36,6 +36,7 @@ struct FeatureSet {
     bool cosineSampling = true;
     uint32_t debugView = 0; // DEBUG_VIEW_*
     bool classic = false;   // the course's classic ray tracer
+    bool motion = true;     // moving objects (motion blur)
 
     // Every feature on: the unspecialised kernel, for comparison and for tests.
     static FeatureSet all(const IntegratorSettings& settings);

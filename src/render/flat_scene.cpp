@@ -114,6 +114,23 @@ void setRows(glm::vec4 rows[3], const glm::mat4& m) {
     for (int r = 0; r < 3; ++r) rows[r] = glm::vec4(m[0][r], m[1][r], m[2][r], m[3][r]);
 }
 
+Aabb translated(const Aabb& box, const glm::vec3& by) {
+    Aabb moved;
+    moved.grow(box.lo + by);
+    moved.grow(box.hi + by);
+    return moved;
+}
+
+// The motion-table entry of an object that moves by `motion` over the shutter, or NO_MOTION.
+// Emitters stay where they are: light sampling picks points on them without a time.
+uint32_t motionIndex(const glm::vec3& motion, const Material& material, FlatScene& flat) {
+    if (motion == glm::vec3(0.0f) || material.emissive() || !finite(motion)) return NO_MOTION;
+    if (flat.motions.size() >= (1u << (32 - TRIANGLE_MOTION_SHIFT)))
+        throw std::runtime_error("more moving objects than the motion table holds");
+    flat.motions.emplace_back(motion, 0.0f);
+    return static_cast<uint32_t>(flat.motions.size() - 1);
+}
+
 void flattenSpheres(const Scene& scene, const BvhBuildOptions& bvhOptions, FlatScene& flat) {
     std::vector<gpu::GpuSphere> spheres;
     std::vector<Aabb> bounds;
@@ -133,8 +150,11 @@ void flattenSpheres(const Scene& scene, const BvhBuildOptions& bvhOptions, FlatS
         setRows(g.objectToWorld, s.objectToWorld);
         g.materialIndex = s.material;
         g.lightIndex = NO_LIGHT;
+        g.motion = motionIndex(s.motion, scene.materials[s.material], flat);
         spheres.push_back(g);
-        bounds.push_back(sphereBounds(s.objectToWorld));
+        Aabb box = sphereBounds(s.objectToWorld);
+        if (g.motion != NO_MOTION) box.grow(translated(box, s.motion)); // swept over the shutter interval
+        bounds.push_back(box);
     }
     const Bvh bvh = buildBvh(bounds, bvhOptions);
     flat.sphereNodes = gpuNodes(bvh, scene.source + ": sphere BVH");
@@ -227,6 +247,7 @@ FlatScene flattenScene(const Scene& scene, const BvhBuildOptions& bvhOptions) {
     for (const Mesh& mesh : scene.meshes) {
         if (mesh.material >= scene.materials.size())
             throw std::runtime_error(scene.source + ": mesh '" + mesh.name + "' uses a material that does not exist");
+        const uint32_t motion = motionIndex(mesh.motion, scene.materials[mesh.material], flat);
         for (const glm::uvec3& t : mesh.triangles) {
             gpu::GpuTriangle tri{};
             tri.p0 = mesh.positions.at(t.x);
@@ -259,6 +280,10 @@ FlatScene flattenScene(const Scene& scene, const BvhBuildOptions& bvhOptions) {
             box.grow(tri.p0);
             box.grow(tri.p1);
             box.grow(tri.p2);
+            if (motion != NO_MOTION) {
+                tri.flags |= TRIANGLE_FLAG_MOVING | (motion << TRIANGLE_MOTION_SHIFT);
+                box.grow(translated(box, mesh.motion));
+            }
             triangles.push_back(tri);
             shading.push_back(sh);
             bounds.push_back(box);

@@ -31,6 +31,7 @@ struct FlatScene {
     std::vector<uint32_t> texels; // every image texture's texels, packed (see GpuTexture)
     uint32_t backgroundTexture = NO_TEXTURE;
     glm::vec3 ambientLight{0.0f}; // classic integrator
+    std::vector<glm::vec4> motions; // motion blur: xyz = translation over the shutter interval
     FlatEnvironment environment;
     LightTable lights;
     size_t degenerateTriangles = 0; // zero-area or non-finite triangles dropped

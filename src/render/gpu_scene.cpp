@@ -25,6 +25,7 @@ GpuScene::GpuScene(VulkanContext& context, const FlatScene& scene, gpu::GpuScene
     envConditional_ = makeBuffer(context, scene.environment.conditional, "environment conditional cdf");
     textures_ = makeBuffer(context, scene.textures, "textures");
     texels_ = makeBuffer(context, scene.texels, "texels");
+    motions_ = makeBuffer(context, scene.motions, "motions");
     accumulation_ = GpuBuffer(context, accumulationBytes, "accumulation");
     if (accumulationBytes > 0) accumulation_.fillZero();
 
@@ -44,6 +45,7 @@ GpuScene::GpuScene(VulkanContext& context, const FlatScene& scene, gpu::GpuScene
     params.texels = texels_.address();
     params.backgroundTexture = scene.backgroundTexture;
     params.ambientLight = scene.ambientLight;
+    params.motions = motions_.address();
     params.envWidth = scene.environment.width;
     params.envHeight = scene.environment.height;
     params.envLightIndex = scene.lights.environmentIndex;

@@ -33,6 +33,7 @@ private:
         uint32_t material;
         bool smooth;
         pugi::xml_node textures; // its <Textures>, or null
+        glm::vec3 motion;        // its <MotionBlur>
     };
     // Where an instance chain ends up: the root mesh's geometry, placed and shaded.
     struct Placement {
@@ -41,6 +42,7 @@ private:
         uint32_t material;
         bool smooth;
         pugi::xml_node textures;
+        glm::vec3 motion;
     };
 
     // Meshes and instances first, so instances may refer to objects later in the file.
@@ -51,7 +53,7 @@ private:
             meshes_.emplace(id, MeshDefinition{faces_.faces(required(ctx_, e, "Faces")),
                                     transforms_.compose(ctx_, e.child("Transformations")),
                                     materials_.lookup(ctx_, required(ctx_, e, "Material")), smoothShading(e).value_or(false),
-                                    e.child("Textures")});
+                                    e.child("Textures"), motionBlur(e).value_or(glm::vec3(0.0f))});
         }
         for (pugi::xml_node e : objects.children("MeshInstance")) {
             const long long id = idOf(ctx_, e);
@@ -61,7 +63,6 @@ private:
 
     void readObject(pugi::xml_node e) {
         const std::string type = e.name();
-        noteUnmodelled(e);
         if (type == "Mesh") emitMesh(e, meshes_.at(idOf(ctx_, e)));
         else if (type == "MeshInstance") emitInstance(e);
         else if (type == "Triangle") emitTriangle(e);
@@ -69,10 +70,6 @@ private:
         else if (type == "Sphere") emitSphere(e, std::nullopt);
         else if (type == "LightSphere") emitSphere(e, radiance(e));
         else ctx_.note(printable(type) + " objects (ignored)");
-    }
-
-    void noteUnmodelled(pugi::xml_node e) {
-        if (pugi::xml_node m = e.child("MotionBlur"); m && glm::length(vec3(ctx_, m)) > 0.0f) ctx_.note("motion blur (rendered static)");
     }
 
     std::optional<bool> smoothShading(pugi::xml_node e) const {
@@ -91,7 +88,17 @@ private:
     }
 
     // Appends the world-space copy; returns false when every triangle was degenerate.
-    bool emit(pugi::xml_node e, const ObjectMesh& geometry, const glm::mat4& transform, uint32_t material, bool smooth) {
+    // <MotionBlur>: the object's translation over the shutter interval (HW3), world space.
+    std::optional<glm::vec3> motionBlur(pugi::xml_node e) const {
+        pugi::xml_node m = e.child("MotionBlur");
+        if (!m) return std::nullopt;
+        const glm::vec3 v = vec3(ctx_, m);
+        if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z)) ctx_.fail(m, "must be finite");
+        return v;
+    }
+
+    bool emit(pugi::xml_node e, const ObjectMesh& geometry, const glm::mat4& transform, uint32_t material, bool smooth,
+        glm::vec3 motion = glm::vec3(0.0f)) {
         if (geometry.uvs.empty() && hasUvTextures(material)) ctx_.note("image textures on meshes without TexCoordData (drawn with uv 0)");
         if (geometry.triangles.size() > kMaxSceneTriangles - triangles_)
             ctx_.fail(e, "the scene expands to more than " + std::to_string(kMaxSceneTriangles) + " triangles");
@@ -99,13 +106,14 @@ private:
         if (mesh.triangles.empty()) return false;
         mesh.name = printable(e.name()) + " " + idText(e, "?");
         mesh.material = material;
+        mesh.motion = motion;
         triangles_ += mesh.triangles.size();
         out_.meshes.push_back(std::move(mesh));
         return true;
     }
 
     void emitMesh(pugi::xml_node e, const MeshDefinition& m) {
-        emit(e, *m.geometry, m.transform, textured(m.textures, m.material), m.smooth);
+        emit(e, *m.geometry, m.transform, textured(m.textures, m.material), m.smooth, m.motion);
     }
 
     uint32_t textured(pugi::xml_node texturesNode, uint32_t material) { return textures_.apply(ctx_, texturesNode, material, out_); }
@@ -129,12 +137,13 @@ private:
     void emitTriangle(pugi::xml_node e) {
         const ObjectMesh geometry = faces_.triangle(required(ctx_, e, "Indices"));
         const uint32_t material = textured(e.child("Textures"), materials_.lookup(ctx_, required(ctx_, e, "Material")));
-        emit(e, geometry, transforms_.compose(ctx_, e.child("Transformations")), material, false);
+        emit(e, geometry, transforms_.compose(ctx_, e.child("Transformations")), material, false,
+            motionBlur(e).value_or(glm::vec3(0.0f)));
     }
 
     void emitInstance(pugi::xml_node e) {
         const Placement p = resolve(idOf(ctx_, e));
-        emit(e, *p.root->geometry, p.transform, textured(p.textures, p.material), p.smooth);
+        emit(e, *p.root->geometry, p.transform, textured(p.textures, p.material), p.smooth, p.motion);
     }
 
     // An instance on top of what its base resolved to. resetTransform="true" places the raw base
@@ -148,6 +157,7 @@ private:
         if (pugi::xml_node m = e.child("Material")) p.material = materials_.lookup(ctx_, m);
         p.smooth = smoothShading(e).value_or(base.smooth);
         if (pugi::xml_node t = e.child("Textures")) p.textures = t;
+        if (auto m = motionBlur(e)) p.motion = *m;
         return p;
     }
 
@@ -170,7 +180,8 @@ private:
             chain.push_back(inst);
             const long long baseId = baseMeshId(inst);
             if (auto m = meshes_.find(baseId); m != meshes_.end()) {
-                base = Placement{&m->second, m->second.transform, m->second.material, m->second.smooth, m->second.textures};
+                base = Placement{&m->second, m->second.transform, m->second.material, m->second.smooth, m->second.textures,
+                    m->second.motion};
                 break;
             }
             if (!instances_.count(baseId)) ctx_.fail(inst, "baseMeshId " + std::to_string(baseId) + " is neither a Mesh nor a MeshInstance");
@@ -223,6 +234,8 @@ private:
         if (!(std::fabs(glm::determinant(glm::mat3(s.objectToWorld))) > 0.0f)) ctx_.fail(e, "transformed sphere is degenerate");
         s.material = textured(e.child("Textures"), materials_.lookup(ctx_, required(ctx_, e, "Material")));
         if (emission) s.material = addEmissiveCopy(out_.materials, s.material, *emission, s.name);
+        s.motion = motionBlur(e).value_or(glm::vec3(0.0f));
+        if (emission && s.motion != glm::vec3(0.0f)) ctx_.note("motion blur on lights (rendered static)");
         out_.spheres.push_back(s);
     }
 

@@ -112,6 +112,7 @@ struct Mesh {
     std::vector<glm::vec2> uvs;     // empty, or one per position
     std::vector<glm::uvec3> triangles;
     uint32_t material = 0;
+    glm::vec3 motion{0.0f}; // motion blur: translation over the shutter interval (world space)
 };
 
 // Tone mapping for the PNG (the EXR stays linear): the CENG795 course's operators.
@@ -160,6 +161,7 @@ struct Sphere {
     std::string name;
     glm::mat4 objectToWorld{1.0f};
     uint32_t material = 0;
+    glm::vec3 motion{0.0f}; // motion blur: translation over the shutter interval (world space)
 };
 
 // Settings a scene file may carry for itself; the command line overrides them.

@@ -570,10 +570,22 @@ TEST_F(Ceng795, MaterialErrors) {
         "missing id attribute");
 }
 
-TEST_F(Ceng795, MotionBlurIsNoted) {
+TEST_F(Ceng795, MotionBlurIsEachObjectsTranslation) {
     const pt::Scene s = load(sceneXml(kOneMaterial + kSquare + "<Objects><Mesh id=\"1\"><Material>1</Material>"
-        "<MotionBlur>0 0 1</MotionBlur><Faces>1 2 3</Faces></Mesh></Objects>"));
-    EXPECT_TRUE(contains(s.unsupported, "motion blur (rendered static)"));
+        "<MotionBlur>0 0 1</MotionBlur><Faces>1 2 3</Faces></Mesh>"
+        "<MeshInstance id=\"2\" baseMeshId=\"1\"></MeshInstance>"
+        "<MeshInstance id=\"3\" baseMeshId=\"1\"><MotionBlur>2 0 0</MotionBlur></MeshInstance>"
+        "<Sphere id=\"1\"><Material>1</Material><Center>1</Center><Radius>1</Radius><MotionBlur>0 3 0</MotionBlur></Sphere>"
+        "</Objects>"));
+    ASSERT_EQ(s.meshes.size(), 3u);
+    EXPECT_TRUE(near3(s.meshes[0].motion, glm::vec3(0, 0, 1)));
+    EXPECT_TRUE(near3(s.meshes[1].motion, glm::vec3(0, 0, 1))); // the base's
+    EXPECT_TRUE(near3(s.meshes[2].motion, glm::vec3(2, 0, 0))); // its own
+    ASSERT_EQ(s.spheres.size(), 1u);
+    EXPECT_TRUE(near3(s.spheres[0].motion, glm::vec3(0, 3, 0)));
+    EXPECT_TRUE(s.unsupported.empty());
+    expectError(sceneXml(kOneMaterial + kSquare + "<Objects><Mesh id=\"1\"><Material>1</Material>"
+        "<MotionBlur>0 0</MotionBlur><Faces>1 2 3</Faces></Mesh></Objects>"), "Mesh id=1: MotionBlur", "");
 }
 
 // ---------------------------------------------------------------------------------------------

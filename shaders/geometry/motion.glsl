@@ -1,0 +1,13 @@
+// Motion blur (the course's MotionBlur): an object translates by motions[i].xyz over the shutter
+// interval, and every ray of one camera sample carries that sample's time in [0, 1). Rather than
+// storing a time in every ray, the path's time is one per-invocation global, set before tracing.
+#ifndef PT_GEOMETRY_MOTION_GLSL
+#define PT_GEOMETRY_MOTION_GLSL
+#include "common/buffers.glsl"
+
+float pathTime = 0.0;
+
+// Where an object with motion `index` has moved at the current time.
+vec3 motionOffset(uint index) { return Vec4Ref(scene.motions).v[index].xyz * pathTime; }
+
+#endif
