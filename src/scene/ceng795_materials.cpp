@@ -150,9 +150,18 @@ void makeRough(Material& m, float courseRoughness) {
 // The terms the course's classic ray tracer adds on every surface (SPEC_CLASSIC), kept as the
 // file gives them: ka, and, unless a BRDF replaces it, Blinn-Phong kd cos + ks cos^p(alpha_h)
 // (kd without 1/pi, and on mirrors, conductors and dielectrics too).
-void readClassicShading(const Context& ctx, pugi::xml_node e, const ColourReader& colour, bool hasBrdf, Material& m) {
+void readClassicShading(const Context& ctx, pugi::xml_node e, const ColourReader& colour,
+    const std::optional<pugi::xml_node>& brdf, Material& m) {
     m.ambient = colour("AmbientReflectance", glm::vec3(0.0f));
-    if (hasBrdf) return; // the BRDF (glossy.glsl) shades it, as in path tracing
+    // A normalised BRDF (and Torrance-Sparrow) shades as in path tracing, kd / pi included,
+    // also when its specular part is black and the material became plain Lambertian; the
+    // official direct-lighting images agree with that to 0.02% in flux.
+    if (brdf) {
+        const std::string name = brdf->name();
+        const bool normalised = name == "TorranceSparrow" ||
+            (brdf->attribute("normalized") && booleanValue(ctx, *brdf, brdf->attribute("normalized").value(), "normalized"));
+        if (normalised || m.type == MaterialType::Glossy) return; // glossy.glsl (classic.glsl undoes 1/pi if unnormalised)
+    }
     m.classicPhong = true;
     m.classicDiffuse = colour("DiffuseReflectance", glm::vec3(0.0f));
     m.classicSpecular = colour("SpecularReflectance", glm::vec3(0.0f));
@@ -191,7 +200,7 @@ Material convertMaterial(const Context& ctx, pugi::xml_node e, const std::map<lo
         if (!type.empty()) notes.push_back("material type " + quote(type) + " (rendered diffuse)");
         convertDiffuse(ctx, notes, e, colour, brdfElement, m);
     }
-    readClassicShading(ctx, e, colour, brdfElement.has_value() && m.type == MaterialType::Glossy, m);
+    readClassicShading(ctx, e, colour, brdfElement, m);
     if (const auto r = optionalScalar(ctx, e, "Roughness"); r && *r != 0.0f) {
         if (!(*r > 0.0f)) ctx.fail(e.child("Roughness"), "must not be negative");
         if (m.type == MaterialType::Mirror || m.type == MaterialType::Conductor || m.type == MaterialType::Dielectric)
