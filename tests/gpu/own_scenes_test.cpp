@@ -1,0 +1,179 @@
+// Two scenes of our own for the glTF material model, each against a high-spp reference of our
+// own (tests/references/own/, made by the DISABLED_ test below) and cross-checked between two
+// independent estimators, next event estimation on and off:
+//  - "textured": an sRGB checker floor, a normal-mapped wall, a sphere whose metalness and
+//    roughness come from a texture, lit by a textured emissive panel and a dim sky;
+//  - "rough-glass": a GGX-rough glass sphere (alpha 0.09) with Beer-Lambert absorption on the
+//    checker floor under the panel.
+// A wrong texture decode, tangent frame, emissive lookup in light sampling, or rough-glass pdf
+// makes NEE on and off disagree (or both disagree with the reference).
+#include "support/gpu_test_support.h"
+
+#include "render/image_io.h"
+#include "render/metrics.h"
+
+#include <cmath>
+
+namespace pt::test {
+namespace {
+
+TextureImage checker(int n, uint32_t a, uint32_t b) {
+    TextureImage img;
+    img.width = img.height = n;
+    for (int y = 0; y < n; ++y)
+        for (int x = 0; x < n; ++x) img.rgba8.push_back(((x + y) % 2 ? a : b) | 0xff000000u);
+    return img;
+}
+
+// Tangent-space normals of a corrugated surface: ridges along v, tilting +-0.5 in x.
+TextureImage ridges(int n) {
+    TextureImage img;
+    img.width = img.height = n;
+    for (int y = 0; y < n; ++y)
+        for (int x = 0; x < n; ++x) {
+            const float tilt = 0.5f * std::sin(6.2831853f * 4.0f * (x + 0.5f) / n);
+            const glm::vec3 nrm = glm::normalize(glm::vec3(tilt, 0.0f, 1.0f));
+            const auto byte = [](float c) { return static_cast<uint32_t>(std::lround((c * 0.5f + 0.5f) * 255.0f)); };
+            img.rgba8.push_back(byte(nrm.x) | byte(nrm.y) << 8 | byte(nrm.z) << 16 | 0xff000000u);
+        }
+    return img;
+}
+
+Mesh uvQuad(glm::vec3 corner, glm::vec3 edgeU, glm::vec3 edgeV, uint32_t material, float repeat) {
+    Mesh m = makeQuad(corner, edgeU, edgeV, material);
+    m.uvs = {{0, repeat}, {repeat, repeat}, {repeat, 0}, {0, 0}};
+    return m;
+}
+
+Scene commonStage(Scene& scene) {
+    scene.textureImages.push_back(checker(8, 0x00d0d0d0u, 0x00303060u)); // image 0
+    Texture srgb;
+    srgb.encoding = Texture::Encoding::Srgb;
+    scene.textures.push_back(srgb); // texture 0: the checker, sRGB
+    Material floor;
+    floor.baseColor = glm::vec3(1.0f);
+    floor.baseColorTexture = 0;
+    scene.materials.push_back(floor); // material 0
+    scene.meshes.push_back(uvQuad({-2, 0, 2}, {4, 0, 0}, {0, 0, -4}, 0, 2.0f));
+    // The panel light: emissive, its emission modulated by the checker (sampled lights must
+    // look the texture up too).
+    Material panel;
+    panel.baseColor = glm::vec3(0.0f);
+    panel.emission = glm::vec3(6.0f);
+    panel.emissiveTexture = 0;
+    scene.materials.push_back(panel); // material 1
+    scene.meshes.push_back(uvQuad({-0.6f, 2.5f, -0.6f}, {1.2f, 0, 0}, {0, 0, 1.2f}, 1, 1.0f)); // (1,0,0) x (0,0,1): faces down
+    // A back wall, so that no pixel sees the (noise-free) sky directly.
+    Material wall;
+    wall.baseColor = glm::vec3(0.6f, 0.5f, 0.4f);
+    scene.materials.push_back(wall); // material 2
+    scene.meshes.push_back(uvQuad({-2, 0, -1.5f}, {4, 0, 0}, {0, 2.5f, 0}, 2, 1.0f));
+    Environment sky;
+    sky.colour = glm::vec3(0.05f);
+    scene.environment = sky;
+    return scene;
+}
+
+Scene texturedScene() {
+    Scene scene;
+    commonStage(scene);
+    scene.textureImages.push_back(ridges(16));            // image 1
+    Texture normals;
+    normals.image = 1;
+    scene.textures.push_back(normals);                      // texture 1
+    // Metal-roughness: the checker's channels as G = roughness, B = metallic (linear).
+    Texture mr;
+    scene.textures.push_back(mr);                           // texture 2: image 0, linear
+    scene.materials[2].normalTexture = 1; // the back wall, corrugated
+    Material sphere;
+    sphere.type = MaterialType::Pbr;
+    sphere.baseColor = glm::vec3(0.9f, 0.6f, 0.3f);
+    sphere.metallic = 1.0f;
+    sphere.roughness = 0.8f;
+    sphere.metallicRoughnessTexture = 2;
+    scene.materials.push_back(sphere); // material 3
+    Mesh ball = makeIcosphere(3, glm::vec3(0.3f, 0.6f, 0.0f), 0.6f, 3);
+    for (const glm::vec3& p : ball.positions) {
+        const glm::vec3 d = glm::normalize(p - glm::vec3(0.3f, 0.6f, 0.0f));
+        ball.uvs.emplace_back(0.5f + std::atan2(d.z, d.x) / 6.2831853f, std::acos(std::clamp(d.y, -1.0f, 1.0f)) / 3.1415927f);
+    }
+    scene.meshes.push_back(ball);
+    return scene;
+}
+
+Scene roughGlassScene() {
+    Scene scene;
+    commonStage(scene);
+    Material glass;
+    glass.type = MaterialType::Dielectric;
+    glass.ior = 1.5f;
+    glass.roughness = 0.3f; // alpha 0.09
+    glass.attenuationColor = glm::vec3(0.8f, 0.9f, 1.0f);
+    glass.attenuationDistance = 1.0f;
+    scene.materials.push_back(glass); // material 3
+    scene.meshes.push_back(makeIcosphere(4, glm::vec3(0.0f, 0.7f, 0.0f), 0.7f, 3));
+    return scene;
+}
+
+Camera stageCamera() {
+    Camera c;
+    c.position = glm::vec3(0.0f, 1.6f, 3.6f);
+    c.forward = glm::normalize(glm::vec3(0.0f, 0.6f, 0.0f) - c.position);
+    c.up = glm::normalize(glm::cross(glm::cross(c.forward, glm::vec3(0, 1, 0)), c.forward));
+    c.yfov = 0.75f;
+    return c;
+}
+
+constexpr int kSize = 48;
+
+Renderer::Readback render(const Scene& scene, bool nee, uint32_t spp) {
+    IntegratorSettings s;
+    s.nee = nee;
+    s.maxDepth = 12;
+    return renderScene(scene, s, stageCamera(), kSize, kSize, spp);
+}
+
+std::filesystem::path referencePath(const std::string& name) {
+    return testDataDir() / "references" / "own" / (name + ".exr");
+}
+
+void checkAgainstReference(const std::string& name, const Scene& scene, uint32_t sppNee, uint32_t sppNoNee) {
+    const Renderer::Readback on = render(scene, true, sppNee);
+    const Renderer::Readback off = render(scene, false, sppNoNee);
+    EXPECT_EQ(on.droppedSamples + off.droppedSamples, 0u);
+    const Image reference = readExr(referencePath(name));
+    const auto statsOn = blockStats(on.mean, &on.varianceOfMean, 8);
+    const auto statsOff = blockStats(off.mean, &off.varianceOfMean, 8);
+    const auto statsRef = blockStats(reference, nullptr, 8);
+    const AgreementResult onOff = compareBlocks(statsOn, statsOff);
+    const AgreementResult onRef = compareBlocks(statsOn, statsRef);
+    const AgreementResult offRef = compareBlocks(statsOff, statsRef);
+    std::printf("%s: NEE on vs off chi2/dof %.2f (mean z %.2f), on vs reference %.2f, off vs reference %.2f\n", name.c_str(),
+        onOff.chi2PerDof, onOff.meanZ, onRef.chi2PerDof, offRef.chi2PerDof);
+    for (const AgreementResult& r : {onOff, onRef, offRef}) {
+        EXPECT_LT(r.chi2PerDof, 2.0);
+        EXPECT_LT(std::abs(r.meanZ), 0.35);
+    }
+}
+
+class OwnScenes : public GpuTest {};
+
+TEST_F(OwnScenes, TexturedSceneAgreesAcrossEstimatorsAndWithItsReference) {
+    checkAgainstReference("textured", texturedScene(), 256, 1024);
+}
+
+TEST_F(OwnScenes, RoughGlassAgreesAcrossEstimatorsAndWithItsReference) {
+    checkAgainstReference("rough-glass", roughGlassScene(), 256, 1024);
+}
+
+// Makes the references (run by hand: --gtest_also_run_disabled_tests --gtest_filter='*MakeReferences').
+TEST_F(OwnScenes, DISABLED_MakeReferences) {
+    std::filesystem::create_directories(referencePath("x").parent_path());
+    for (auto [name, scene] : {std::pair{std::string("textured"), texturedScene()}, std::pair{std::string("rough-glass"), roughGlassScene()}}) {
+        const Renderer::Readback r = render(scene, true, 32768);
+        writeExr(referencePath(name), r.mean, {{"spp", "32768"}, {"made-by", "tests/gpu/own_scenes_test.cpp DISABLED_MakeReferences"}});
+    }
+}
+
+} // namespace
+} // namespace pt::test
