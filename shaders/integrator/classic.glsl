@@ -26,7 +26,8 @@ vec3 classicShade(GpuMaterial m, vec3 wo, vec3 wi) {
     if ((m.flags & MATERIAL_FLAG_CLASSIC_PHONG) != 0u) {
         if (wi.z <= 0.0 || wo.z <= 0.0) return vec3(0.0);
         vec3 h = normalize(wo + wi);
-        return m.classicDiffuse * wi.z + m.classicSpecular * pow(max(h.z, 0.0), m.classicExponent);
+        float lobe = m.classicExponent > 0.0 ? pow(max(h.z, 0.0), m.classicExponent) : 1.0; // pow(0, 0) is undefined
+        return m.classicDiffuse * wi.z + m.classicSpecular * lobe;
     }
     // The course's BRDFs: its unnormalised Phong and Blinn-Phong variants use kd without 1/pi
     // (the official images are pi times brighter in their diffuse part than kd / pi gives).

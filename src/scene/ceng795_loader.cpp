@@ -184,6 +184,13 @@ Scene importScene(Context& ctx, pugi::xml_node root) {
     if (s.meshes.empty() && s.spheres.empty()) ctx.fail("no objects to render");
     s.cameras = readCameras(ctx, root, s.hints.maxDepth);
     s.unsupported = ctx.notes();
+    // The classic integrator models the diffuse and specular layers of mirrors, conductors and
+    // glass; the notes about them concern path tracing only.
+    const bool allClassic = std::all_of(s.cameras.begin(), s.cameras.end(), [](const Camera& c) { return c.settings.classic.value_or(false); });
+    if (allClassic && !s.cameras.empty())
+        std::erase_if(s.unsupported, [](const std::string& n) {
+            return n.find("with diffuse layer") != std::string::npos || n.find("with specular highlights") != std::string::npos;
+        });
     return s;
 }
 

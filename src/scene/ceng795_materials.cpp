@@ -166,7 +166,8 @@ void readClassicShading(const Context& ctx, pugi::xml_node e, const ColourReader
     m.classicDiffuse = colour("DiffuseReflectance", glm::vec3(0.0f));
     m.classicSpecular = colour("SpecularReflectance", glm::vec3(0.0f));
     m.classicExponent = optionalScalar(ctx, e, "PhongExponent").value_or(1.0f);
-    if (!(m.classicExponent > 0.0f)) ctx.fail(e.child("PhongExponent"), "must be positive");
+    // 0 is allowed (course files use it with black ks): the lobe is then constant.
+    if (!(m.classicExponent >= 0.0f)) ctx.fail(e.child("PhongExponent"), "must not be negative");
 }
 
 std::map<long long, pugi::xml_node> readBrdfs(const Context& ctx, pugi::xml_node scene) {

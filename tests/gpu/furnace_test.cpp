@@ -99,5 +99,47 @@ TEST_F(Furnace, WrongAlbedoIsDetected) {
     EXPECT_GT(std::abs(st.mean - wrong), 4.0 * st.standardError + 2e-5 * wrong);
 }
 
+// A clear glass sphere (no absorption) under a uniform white sky neither absorbs nor emits:
+// every path leaves it again, so the whole image is the sky's radiance, 1, up to the paths
+// still trapped by total internal reflection at the depth limit. Smooth glass exactly (each
+// refraction's 1/eta^2 is undone on the way out); rough glass loses only GGX's single-scattering
+// energy: 1.1% on average for alpha 0.04, up to 12% at grazing silhouette pixels.
+TEST_F(Furnace, GlassSphereInAWhiteSkyIsInvisible) {
+    for (float roughness : {0.0f, 0.2f}) {
+        Scene scene;
+        Material glass;
+        glass.type = MaterialType::Dielectric;
+        glass.ior = 1.5f;
+        glass.roughness = roughness;
+        glass.baseColor = glm::vec3(1.0f); // untinted
+        scene.materials.push_back(glass);
+        Sphere ball;
+        ball.material = 0;
+        scene.spheres.push_back(ball);
+        Environment sky;
+        sky.colour = glm::vec3(1.0f);
+        scene.environment = sky;
+        Camera camera;
+        camera.position = glm::vec3(0.0f, 0.0f, 3.0f);
+        camera.yfov = 0.75f; // the sphere fills most of the image
+        IntegratorSettings s;
+        s.maxDepth = 64;
+        const Renderer::Readback r = renderScene(scene, s, camera, 24, 24, 64);
+        EXPECT_EQ(r.droppedSamples, 0u);
+        const Stats st = imageMean(r);
+        double lowest = 1e9;
+        for (int y = 0; y < 24; ++y)
+            for (int x = 0; x < 24; ++x) lowest = std::min(lowest, double(r.mean.at(x, y)[0]));
+        std::printf("glass roughness %.1f: image mean %.5f +- %.5f, lowest pixel %.4f\n", roughness, st.mean, st.standardError, lowest);
+        if (roughness == 0.0f) {
+            EXPECT_NEAR(st.mean, 1.0, 4 * st.standardError + 2e-3);
+            EXPECT_GT(lowest, 0.97);
+        } else {
+            EXPECT_LE(st.mean, 1.0 + 4 * st.standardError);
+            EXPECT_GT(st.mean, 0.97);
+        }
+    }
+}
+
 } // namespace
 } // namespace pt::test
