@@ -239,7 +239,8 @@ struct GpuLight {
     uint type;      // LIGHT_*
     uint primitive; // triangle or sphere index (BVH order)
     float pmf;      // probability of choosing this light
-    float area;     // triangle: area; sphere: |det| of its linear map (area scale of the unit sphere)
+    float area;     // triangle: area; sphere: |det| of its linear map (area scale of the unit sphere);
+                    // spot: the exponent of its falloff band (the course's 4, glTF's 2)
     vec3 position;  // point, spot: position; round sphere, square: centre
     float radius;   // round sphere: radius, sampled by solid angle; 0: ellipsoid, sampled by area;
                     // square: edge length

@@ -96,6 +96,7 @@ LightTable buildLightTable(std::span<gpu::GpuTriangle> triangles, std::span<gpu:
             light.direction = glm::normalize(pl.direction);
             light.cosFalloff = pl.cosFalloff;
             light.cosCoverage = pl.cosCoverage;
+            light.area = pl.falloffExponent; // unused by spots otherwise (see GpuLight)
             // Power of the cone out to the mid-point of the falloff band.
             p = 2.0 * kPi * (1.0 - 0.5 * (double(pl.cosFalloff) + pl.cosCoverage)) * selectionWeight(pl.intensity);
         } else if (pl.type == PunctualLight::Type::Square) {

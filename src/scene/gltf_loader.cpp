@@ -559,13 +559,10 @@ private:
             if (!(inner >= 0.0 && inner <= outer && outer > 0.0 && outer <= M_PI / 2 + 1e-6))
                 fail(label + ": spot cone angles need 0 <= innerConeAngle <= outerConeAngle <= pi/2");
             light.type = PunctualLight::Type::Spot;
-            // glTF's smooth edge is t^2 with t = (cos a - cos outer) / (cos inner - cos outer);
-            // the renderer's spot band is t'^4 (the course's). With the band 5/6 as wide the two
-            // carry the same power (both integrate to 1 - cos outer - 2/3 (cos inner - cos outer)
-            // over cos a); the edges differ by at most 0.3 of the peak intensity.
-            const double cosOuter = std::cos(outer), cosInner = std::cos(inner);
-            light.cosCoverage = static_cast<float>(cosOuter);
-            light.cosFalloff = static_cast<float>(cosOuter + 5.0 / 6.0 * (cosInner - cosOuter));
+            // glTF's smooth edge: t^2 with t = (cos a - cos outer) / (cos inner - cos outer).
+            light.cosCoverage = static_cast<float>(std::cos(outer));
+            light.cosFalloff = static_cast<float>(std::cos(inner));
+            light.falloffExponent = 2.0f;
         } else {
             unsupported("KHR_lights_punctual light type '" + src.type + "' (skipped)");
             return;

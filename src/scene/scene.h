@@ -182,6 +182,7 @@ struct PunctualLight {
                                    // (W/m^2); square: radiance
     float cosFalloff = 1.0f;       // spot: full intensity inside this cone (cosine of the half angle)
     float cosCoverage = 1.0f;      // spot: nothing outside this cone
+    float falloffExponent = 4.0f;  // spot: the band is t^exponent (the course's 4; glTF's 2)
     float size = 0.0f;             // square: edge length
 };
 

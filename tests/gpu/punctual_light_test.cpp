@@ -98,7 +98,7 @@ namespace {
 // (cos falloff - cos coverage))^4 in the band, nothing outside the coverage cone.
 TEST_F(PunctualLights, SpotLightConeAndFalloffBand) {
     const double rho = 0.6, intensity = 10.0, height = 2.0;
-    auto radianceBelow = [&](float offsetX) {
+    auto radianceBelow = [&](float offsetX, float exponent = 4.0f) {
         Scene scene = plane();
         scene.materials[0].baseColor = glm::vec3(float(rho));
         PunctualLight spot;
@@ -108,6 +108,7 @@ TEST_F(PunctualLights, SpotLightConeAndFalloffBand) {
         spot.intensity = glm::vec3(float(intensity));
         spot.cosFalloff = std::cos(glm::radians(10.0f));
         spot.cosCoverage = std::cos(glm::radians(20.0f));
+        spot.falloffExponent = exponent;
         scene.punctualLights.push_back(spot);
         return render(scene).mean.at(4, 4)[0];
     };
@@ -123,6 +124,8 @@ TEST_F(PunctualLights, SpotLightConeAndFalloffBand) {
     const double t = (std::cos(glm::radians(15.0)) - std::cos(glm::radians(20.0))) /
                      (std::cos(glm::radians(10.0)) - std::cos(glm::radians(20.0)));
     EXPECT_NEAR(radianceBelow(float(band)), pointValue(band) * std::pow(t, 4), 5e-3 * pointValue(band));
+    // glTF's spots (KHR_lights_punctual): the same band squared.
+    EXPECT_NEAR(radianceBelow(float(band), 2.0f), pointValue(band) * t * t, 5e-3 * pointValue(band));
     // Outside the coverage cone (25 degrees): dark.
     EXPECT_EQ(radianceBelow(float(height * std::tan(glm::radians(25.0)))), 0.0f);
 }

@@ -551,10 +551,9 @@ TEST(GltfLoaderLights, PunctualLightsWithUnitsAndNodeTransforms) {
     EXPECT_TRUE(near3(spot.direction, glm::vec3(0, -1, 0), 1e-5f));
     EXPECT_TRUE(near3(spot.intensity, glm::vec3(100.0f), 1e-4f));
     EXPECT_NEAR(spot.cosCoverage, std::cos(0.6f), 1e-6f);
-    // The t^4 band carries the power of glTF's t^2 edge: 5/6 of the cone difference.
-    EXPECT_NEAR(spot.cosFalloff, std::cos(0.6f) + 5.0f / 6.0f * (std::cos(0.3f) - std::cos(0.6f)), 1e-6f);
-    EXPECT_GT(spot.cosFalloff, spot.cosCoverage);
-    EXPECT_LT(spot.cosFalloff, std::cos(0.3f));
+    // glTF's edge exactly: t^2 between the inner and the outer cone.
+    EXPECT_NEAR(spot.cosFalloff, std::cos(0.3f), 1e-6f);
+    EXPECT_FLOAT_EQ(spot.falloffExponent, 2.0f);
 
     const pt::PunctualLight& sun = s.punctualLights[2];
     EXPECT_EQ(sun.type, pt::PunctualLight::Type::Directional);
