@@ -18,6 +18,7 @@ layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer Te
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer SphereRef { GpuSphere v[]; };
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer TextureRef { GpuTexture v[]; };
 layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer UintRef { uint v[]; };
+layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer TangentRef { GpuTriangleTangents v[]; };
 
 // The scene of the current dispatch; set once at the top of main().
 GpuSceneParams scene;

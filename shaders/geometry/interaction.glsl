@@ -106,6 +106,16 @@ SurfaceInteraction makeInteraction(Ray ray, Hit hit) {
             si.dpdv = (duv1.x * dp2 - duv2.x * dp1) * inv;
         }
         if (!(abs(det) > 1e-20) || !allFinite(si.dpdu) || !allFinite(si.dpdv)) fallbackTangents(si);
+        if (HAS_NORMAL_MAPS && (tri.flags & TRIANGLE_FLAG_TANGENTS) != 0u) {
+            // The file's tangent frame (glTF TANGENT): dp/du along the tangent, and dp/dv down
+            // the image, i.e. against the bitangent cross(n, t) * w, as normal maps read it.
+            GpuTriangleTangents tg = TangentRef(scene.tangents).v[hit.primitive];
+            vec3 t = b0 * tg.t0.xyz + hit.bary.x * tg.t1.xyz + hit.bary.y * tg.t2.xyz;
+            if (dot(t, t) > 0.0) {
+                si.dpdu = t;
+                si.dpdv = -cross(si.ns, t) * tg.t0.w;
+            }
+        }
     }
     return si;
 }

@@ -74,6 +74,7 @@ using uint64_t = std::uint64_t;
 #define TRIANGLE_FLAG_SHADING_NORMALS 1u // interpolate n0..n2; otherwise use the geometric normal
 #define TRIANGLE_FLAG_ALPHA_TESTED 2u    // its material cuts out by alpha: any-hit test in traversal
 #define TRIANGLE_FLAG_MOVING 4u          // motion blur: moves by motions[flags >> TRIANGLE_MOTION_SHIFT]
+#define TRIANGLE_FLAG_TANGENTS 8u        // the file's vertex tangents (glTF TANGENT) orient its normal map
 #define TRIANGLE_MOTION_SHIFT 8u
 #define NO_MOTION 0xffffffffu
 
@@ -143,6 +144,15 @@ struct GpuTriangleShading {
     uint pad;
 };
 PT_CHECK_SIZE(GpuTriangleShading, 64);
+
+// Vertex tangents of a triangle from the file (glTF TANGENT): xyz unit tangent, w bitangent
+// sign. Only scenes with normal-mapped meshes that carry tangents have this array.
+struct GpuTriangleTangents {
+    vec4 t0;
+    vec4 t1;
+    vec4 t2;
+};
+PT_CHECK_SIZE(GpuTriangleTangents, 48);
 
 // Binary BVH node. Interior: count == 0, children at leftOrFirst and leftOrFirst + 1.
 // Leaf: triangles [leftOrFirst, leftOrFirst + count) of the (BVH-ordered) triangle array.
@@ -303,7 +313,7 @@ struct GpuSceneParams {
     vec3 ambientLight;      // classic integrator: the course's AmbientLight Ia
     uint pad3;
     uint64_t motions;       // vec4[]: xyz = an object's translation over the shutter interval
-    uint64_t pad4;
+    uint64_t tangents;      // GpuTriangleTangents[] (one per triangle), or none
 };
 PT_CHECK_SIZE(GpuSceneParams, 112 + 80 + 80 + 16 + 16);
 

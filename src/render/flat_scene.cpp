@@ -2,6 +2,7 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -242,6 +243,10 @@ FlatScene flattenScene(const Scene& scene, const BvhBuildOptions& bvhOptions) {
     // cost traversal time (and break light sampling if emissive).
     std::vector<gpu::GpuTriangle> triangles;
     std::vector<gpu::GpuTriangleShading> shading;
+    std::vector<gpu::GpuTriangleTangents> tangents;
+    const bool anyTangents = std::any_of(scene.meshes.begin(), scene.meshes.end(), [&](const Mesh& m) {
+        return !m.tangents.empty() && m.material < scene.materials.size() && scene.materials[m.material].normalTexture;
+    });
     std::vector<Aabb> bounds;
     triangles.reserve(scene.triangleCount());
     for (const Mesh& mesh : scene.meshes) {
@@ -284,6 +289,16 @@ FlatScene flattenScene(const Scene& scene, const BvhBuildOptions& bvhOptions) {
                 tri.flags |= TRIANGLE_FLAG_MOVING | (motion << TRIANGLE_MOTION_SHIFT);
                 box.grow(translated(box, mesh.motion));
             }
+            if (anyTangents) {
+                gpu::GpuTriangleTangents tg{};
+                if (!mesh.tangents.empty()) {
+                    tg = {mesh.tangents[t.x], mesh.tangents[t.y], mesh.tangents[t.z]};
+                    // Zero tangents mark invalid input: fall back to the triangle's own frame.
+                    if (tg.t0.w != 0.0f && tg.t1.w != 0.0f && tg.t2.w != 0.0f && scene.materials[mesh.material].normalTexture)
+                        tri.flags |= TRIANGLE_FLAG_TANGENTS;
+                }
+                tangents.push_back(tg);
+            }
             triangles.push_back(tri);
             shading.push_back(sh);
             bounds.push_back(box);
@@ -300,6 +315,7 @@ FlatScene flattenScene(const Scene& scene, const BvhBuildOptions& bvhOptions) {
     for (uint32_t original : bvh.primOrder) {
         flat.triangles.push_back(triangles[original]);
         flat.shading.push_back(shading[original]);
+        if (anyTangents) flat.tangents.push_back(tangents[original]);
     }
     flattenSpheres(scene, bvhOptions, flat);
     if (scene.environment) flat.environment = flattenEnvironment(*scene.environment, scene.source);

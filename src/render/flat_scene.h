@@ -23,6 +23,7 @@ struct FlatEnvironment {
 struct FlatScene {
     std::vector<gpu::GpuTriangle> triangles;
     std::vector<gpu::GpuTriangleShading> shading;
+    std::vector<gpu::GpuTriangleTangents> tangents; // per triangle when any mesh has tangents, else empty
     std::vector<gpu::GpuBvhNode> nodes;
     std::vector<gpu::GpuSphere> spheres;         // BVH-ordered
     std::vector<gpu::GpuBvhNode> sphereNodes;    // a second BVH, over the spheres

@@ -26,6 +26,7 @@ GpuScene::GpuScene(VulkanContext& context, const FlatScene& scene, gpu::GpuScene
     textures_ = makeBuffer(context, scene.textures, "textures");
     texels_ = makeBuffer(context, scene.texels, "texels");
     motions_ = makeBuffer(context, scene.motions, "motions");
+    tangents_ = makeBuffer(context, scene.tangents, "tangents");
     accumulation_ = GpuBuffer(context, accumulationBytes, "accumulation");
     if (accumulationBytes > 0) accumulation_.fillZero();
 
@@ -46,6 +47,7 @@ GpuScene::GpuScene(VulkanContext& context, const FlatScene& scene, gpu::GpuScene
     params.backgroundTexture = scene.backgroundTexture;
     params.ambientLight = scene.ambientLight;
     params.motions = motions_.address();
+    params.tangents = tangents_.address();
     params.envWidth = scene.environment.width;
     params.envHeight = scene.environment.height;
     params.envLightIndex = scene.lights.environmentIndex;

@@ -19,7 +19,7 @@ public:
 
 private:
     GpuBuffer triangles_, shading_, nodes_, spheres_, sphereNodes_, materials_, lights_, lightCdf_, envTexels_, envMarginal_,
-        envConditional_, textures_, texels_, motions_, accumulation_, params_;
+        envConditional_, textures_, texels_, motions_, tangents_, accumulation_, params_;
 };
 
 } // namespace pt

@@ -390,7 +390,7 @@ private:
         size_t count, stride;
         int componentType, type;
         const unsigned char* data = accessorData(accessorIndex, what, count, stride, componentType, type);
-        const int expectedType = N == 2 ? TINYGLTF_TYPE_VEC2 : TINYGLTF_TYPE_VEC3;
+        const int expectedType = N == 2 ? TINYGLTF_TYPE_VEC2 : (N == 3 ? TINYGLTF_TYPE_VEC3 : TINYGLTF_TYPE_VEC4);
         if (type != expectedType) fail(what + " (accessor " + std::to_string(accessorIndex) + "): expected VEC" + std::to_string(N));
         std::vector<glm::vec<N, float>> out(count);
         for (size_t i = 0; i < count; ++i) {
@@ -467,6 +467,19 @@ private:
                     glm::vec3 w = normalMatrix * v;
                     float len = glm::length(w);
                     v = (std::isfinite(len) && len > 0.0f) ? w / len : glm::vec3(0.0f);
+                }
+            }
+            if (auto t = prim.attributes.find("TANGENT"); t != prim.attributes.end() && !out.normals.empty()) {
+                // Tangents map with the model matrix (they lie in the surface); a mirroring
+                // transform flips the bitangent's handedness.
+                out.tangents = readVectors<4>(t->second, label + " TANGENT", false);
+                if (out.tangents.size() != out.positions.size()) fail(label + ": TANGENT count differs from POSITION count");
+                const float handedness = mirrored ? -1.0f : 1.0f;
+                for (auto& v : out.tangents) {
+                    const glm::vec3 w = glm::mat3(world) * glm::vec3(v);
+                    const float len = glm::length(w);
+                    const bool ok = std::isfinite(len) && len > 0.0f && std::isfinite(v.w);
+                    v = ok ? glm::vec4(w / len, (v.w < 0.0f ? -1.0f : 1.0f) * handedness) : glm::vec4(0.0f);
                 }
             }
             if (auto t = prim.attributes.find("TEXCOORD_0"); t != prim.attributes.end()) {

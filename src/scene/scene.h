@@ -110,6 +110,9 @@ struct Mesh {
     std::vector<glm::vec3> positions;
     std::vector<glm::vec3> normals; // empty, or one per position (unit length where valid)
     std::vector<glm::vec2> uvs;     // empty, or one per position
+    // Empty, or one per position: xyz the unit tangent (along +u), w = +-1 the bitangent's sign
+    // (bitangent = cross(normal, tangent) * w), as glTF's TANGENT; zero where invalid.
+    std::vector<glm::vec4> tangents;
     std::vector<glm::uvec3> triangles;
     uint32_t material = 0;
     glm::vec3 motion{0.0f}; // motion blur: translation over the shutter interval (world space)

@@ -359,5 +359,39 @@ TEST_F(Textures, AlphaBlendLetsThroughOneMinusOpacityOnAverage) {
     EXPECT_NEAR(green, 0.25, 0.017);
 }
 
+// The file's tangents (glTF TANGENT) orient the normal map instead of the uv derivatives: a
+// map leaning towards tangent-space +x tilts the normal along whichever world direction the
+// tangent names, so a light on that side brightens the quad and one on the other side does not.
+TEST_F(Textures, FileTangentsOrientTheNormalMap) {
+    TextureImage lean;
+    lean.width = lean.height = 1;
+    lean.rgba8 = {230u | 128u << 8 | 180u << 16 | 255u << 24}; // towards +x
+    auto meanWithTangent = [&](glm::vec3 tangent) {
+        Scene scene;
+        scene.textureImages.push_back(lean);
+        scene.textures.push_back(Texture{});
+        Material m;
+        m.baseColor = glm::vec3(0.7f);
+        m.normalTexture = 0;
+        scene.materials.push_back(m);
+        Mesh quad = texturedQuad(0);
+        quad.normals.assign(4, glm::vec3(0, 0, 1));
+        quad.tangents.assign(4, glm::vec4(tangent, 1.0f));
+        scene.meshes.push_back(quad);
+        PunctualLight light; // far up +y, grazing: only a normal tilted towards +y catches much
+        light.position = glm::vec3(0.5f, 6.0f, 0.6f);
+        light.intensity = glm::vec3(40.0f);
+        scene.punctualLights.push_back(light);
+        const Renderer::Readback r = renderScene(scene, IntegratorSettings{}, quadCamera(), 8, 8, 4);
+        double sum = 0;
+        for (size_t i = 0; i < r.mean.rgba.size(); i += 4) sum += r.mean.rgba[i];
+        return sum / 64;
+    };
+    const double towardsLight = meanWithTangent({0, 1, 0}), awayFromLight = meanWithTangent({0, -1, 0});
+    const double sideways = meanWithTangent({1, 0, 0});
+    EXPECT_GT(towardsLight, 1.5 * sideways);
+    EXPECT_GT(sideways, 1.2 * awayFromLight);
+}
+
 } // namespace
 } // namespace pt::test

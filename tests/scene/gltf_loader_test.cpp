@@ -752,3 +752,43 @@ TEST(GltfLoaderTextures, BadTexturesAreErrors) {
 }
 
 } // namespace
+
+namespace {
+
+// TANGENT: read as VEC4, mapped with the node's matrix, the bitangent sign flipped by a
+// mirroring transform, invalid ones zeroed.
+TEST(GltfLoaderTextures, TangentsAreTransformedWithTheirHandedness) {
+    const glm::vec3 p[3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+    const glm::vec3 n(0, 0, 1);
+    const glm::vec4 t[3] = {{1, 0, 0, 1}, {1, 0, 0, 1}, {0, 0, 0, 1}}; // the last one is invalid
+    std::vector<unsigned char> bytes(3 * 12 + 3 * 12 + 3 * 16);
+    for (int i = 0; i < 3; ++i) {
+        std::memcpy(bytes.data() + 12 * i, &p[i], 12);
+        std::memcpy(bytes.data() + 36 + 12 * i, &n, 12);
+        std::memcpy(bytes.data() + 72 + 16 * i, &t[i], 16);
+    }
+    auto document = [&](const std::string& scale) {
+        return std::string(R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}],
+          "nodes": [{"mesh": 0, "scale": )") + scale + R"(}],
+          "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "NORMAL": 1, "TANGENT": 2}, "material": 0}]}],
+          "materials": [{"normalTexture": {"index": 0}}],
+          "textures": [{"source": 0}], "images": [{"uri": ")" + kOnePixelPng + R"("}],
+          "accessors": [
+            {"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]},
+            {"bufferView": 1, "componentType": 5126, "count": 3, "type": "VEC3"},
+            {"bufferView": 2, "componentType": 5126, "count": 3, "type": "VEC4"}],
+          "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 36}, {"buffer": 0, "byteOffset": 36, "byteLength": 36},
+                          {"buffer": 0, "byteOffset": 72, "byteLength": 48}],
+          "buffers": [{"byteLength": 120, "uri": "data:application/octet-stream;base64,)" + base64(bytes) + R"("}]})";
+    };
+    const pt::Scene plain = loadText(document("[2, 1, 1]"));
+    ASSERT_EQ(plain.meshes.at(0).tangents.size(), 3u);
+    EXPECT_TRUE(near3(glm::vec3(plain.meshes[0].tangents[0]), glm::vec3(1, 0, 0), 1e-6f)); // renormalised after scaling
+    EXPECT_EQ(plain.meshes[0].tangents[0].w, 1.0f);
+    EXPECT_EQ(plain.meshes[0].tangents[2], glm::vec4(0.0f)); // invalid
+    const pt::Scene mirrored = loadText(document("[-1, 1, 1]"));
+    EXPECT_TRUE(near3(glm::vec3(mirrored.meshes.at(0).tangents[0]), glm::vec3(-1, 0, 0), 1e-6f));
+    EXPECT_EQ(mirrored.meshes[0].tangents[0].w, -1.0f);
+}
+
+} // namespace
