@@ -50,7 +50,10 @@ void addSceneOptions(CLI::App* cmd, pt::RenderOptions& o, SwitchWords& w) {
            "path: path tracing; classic: the CENG795 course's classic ray tracer (ambient + direct light with its "
            "Blinn-Phong, specular chains); default: course cameras without <Renderer> classic, else path")
         ->check(CLI::IsMember({"path", "classic"}));
-    cmd->add_option("--sampling", w.sampling, "BSDF direction sampling: cosine|uniform (default cosine)")->check(CLI::IsMember({"cosine", "uniform"}));
+    cmd->add_option("--sampling", w.sampling,
+           "BSDF direction sampling: bsdf (importance sampling of every lobe, cosine-weighted for Lambert; "
+           "'cosine' is the same) or uniform (uniform hemisphere / sphere); default bsdf")
+        ->check(CLI::IsMember({"bsdf", "cosine", "uniform"}));
     cmd->add_option("--camera", o.camera, "Camera to render: glTF: its index (default 0); course XML: its id (default: every camera)");
     cmd->add_option("--device", o.device, "Use the first Vulkan device whose name contains this (see 'pt devices')");
     cmd->add_option("--exposure", o.exposure, "Exposure in stops for the PNG");
@@ -71,7 +74,7 @@ void applySwitchWords(const SwitchWords& w, pt::RenderOptions& o) {
     if (!w.nee.empty()) o.nee = onOff(w.nee);
     if (!w.mis.empty()) o.mis = onOff(w.mis);
     if (!w.rr.empty()) o.rr = onOff(w.rr);
-    if (!w.sampling.empty()) o.sampling = w.sampling == "cosine" ? pt::DirectionSampling::Cosine : pt::DirectionSampling::Uniform;
+    if (!w.sampling.empty()) o.sampling = w.sampling == "uniform" ? pt::DirectionSampling::Uniform : pt::DirectionSampling::Cosine;
 }
 
 } // namespace
