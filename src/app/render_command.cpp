@@ -61,6 +61,8 @@ int renderJob(VulkanContext& context, const Scene& scene, const FlatScene& flat,
     meta["camera"] = job.camera.name;
     meta["dropped_samples"] = std::to_string(result.droppedSamples);
     meta["mpaths_per_second"] = formatDouble(mpaths);
+    const double estimate = estimatedRelMse(result.mean, result.varianceOfMean);
+    meta["estimated_relmse"] = formatDouble(estimate);
     prepareOutputDirectory(job.output);
     writeExr(job.output, result.mean, meta);
     fs::path png = job.output;
@@ -70,7 +72,8 @@ int renderJob(VulkanContext& context, const Scene& scene, const FlatScene& flat,
     std::string summary = "pt: wrote " + job.output.string() + " and " + png.string() + ": " + std::to_string(spp) +
                           " spp in " + formatDouble(std::round(progress.seconds * 1000) / 1000) + " s, " +
                           formatDouble(std::round(mpaths * 1000) / 1000) + " M paths/s, " +
-                          std::to_string(result.droppedSamples) + " non-finite samples dropped";
+                          std::to_string(result.droppedSamples) + " non-finite samples dropped, estimated relMSE " +
+                          formatDouble(estimate);
     if (reference) summary += ", relMSE " + formatDouble(relMse(result.mean, *reference));
     std::fprintf(stderr, "%s\n", summary.c_str());
     return 0;

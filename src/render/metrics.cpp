@@ -47,6 +47,11 @@ double relMse(const Image& x, const Image& ref) {
     });
 }
 
+double estimatedRelMse(const Image& mean, const Image& varianceOfMean) {
+    checkSameSize(mean, varianceOfMean, "estimatedRelMse");
+    return meanOverRgb(mean, varianceOfMean, [](double m, double var) { return var / (m * m + 0.01); });
+}
+
 double mse(const Image& x, const Image& ref) {
     checkSameSize(x, ref, "mse");
     return meanOverRgb(x, ref, [](double v, double r) { return (v - r) * (v - r); });

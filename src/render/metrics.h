@@ -17,6 +17,12 @@ double relMse(const Image& x, const Image& ref);
 // Plain mean over pixels and R,G,B of (x - ref)^2.
 double mse(const Image& x, const Image& ref);
 
+// The relMSE a render is expected to have against its converged image, estimated from the
+// render alone: mean over pixels and channels of Var[mean] / (mean^2 + 0.01), the same
+// normalisation as relMse. It sees variance only (no bias), and the noisy mean in the
+// denominator makes it a little optimistic at very low spp.
+double estimatedRelMse(const Image& mean, const Image& varianceOfMean);
+
 // Per-block means of an image, used to compare two noisy renders without
 // per-pixel noise swamping the test. mean and varOfMean hold 3 entries
 // (R,G,B) per block, blocks in row-major order; varOfMean is empty when no

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <random>
 #include <stdexcept>
@@ -162,3 +163,38 @@ TEST(Metrics, CompareBlocksRejectsBadInput) {
 }
 
 }  // namespace
+
+namespace {
+
+// The reference-free estimate against the true relMSE on synthetic renders: every pixel is the
+// mean of n exponential samples (heavy-ish tails, like path tracing) around its own true value,
+// with the variance of the mean estimated from the same samples, as the renderer does.
+TEST(Metrics, EstimatedRelMseTracksTheTrueOneWithoutAReference) {
+    std::mt19937 rng(11);
+    const int w = 64, h = 64;
+    for (int n : {4, 16, 256}) {
+        pt::Image truth{w, h, std::vector<float>(w * h * 4)}, mean = truth, var = truth;
+        std::uniform_real_distribution<float> level(0.05f, 3.0f);
+        for (std::size_t i = 0; i < truth.rgba.size(); ++i) {
+            const float mu = level(rng);
+            std::exponential_distribution<double> sample(1.0 / mu);
+            double sum = 0, sum2 = 0;
+            for (int k = 0; k < n; ++k) {
+                const double x = sample(rng);
+                sum += x;
+                sum2 += x * x;
+            }
+            const double m = sum / n;
+            truth.rgba[i] = mu;
+            mean.rgba[i] = static_cast<float>(m);
+            var.rgba[i] = static_cast<float>(std::max(0.0, (sum2 / n - m * m) / (n - 1)));
+        }
+        const double actual = pt::relMse(mean, truth), estimate = pt::estimatedRelMse(mean, var);
+        std::printf("%d spp: true relMSE %.5f, estimated %.5f\n", n, actual, estimate);
+        EXPECT_LT(estimate / actual, 1.5) << n << " spp";
+        EXPECT_GT(estimate / actual, 1.0 / 1.5) << n << " spp";
+        if (n == 256) EXPECT_NEAR(estimate / actual, 1.0, 0.1);
+    }
+}
+
+} // namespace
