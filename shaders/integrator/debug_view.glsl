@@ -7,6 +7,7 @@
 #include "geometry/interaction.glsl"
 #include "geometry/traverse.glsl"
 #include "integrator/features.glsl"
+#include "textures/material_textures.glsl"
 
 // BVH cost: node visits of the camera ray's closest-hit query (both trees), shown on a
 // blue-green-red ramp from 0 to this many visits (red saturates above it).
@@ -49,11 +50,13 @@ vec3 debugView(Ray ray) {
     if (DEBUG_VIEW == DEBUG_VIEW_BVH_COST) return heatRamp(float(traversalNodeVisits) / BVH_COST_FULL_SCALE);
     if (!found) return vec3(0.0);
     SurfaceInteraction si = makeInteraction(ray, hit);
-    if (DEBUG_VIEW == DEBUG_VIEW_NORMAL) return 0.5 * si.ns + 0.5; // world-space shading normal
     if (DEBUG_VIEW == DEBUG_VIEW_DEPTH) return vec3(clamp(1.0 - hit.t / farthestSceneDistance(ray.origin), 0.0, 1.0));
-    // DEBUG_VIEW_ALBEDO: the material's base colour (texture-free); emitters show their
-    // emission normalised to a largest component of 1.
+    // Textures as the integrator sees them: textured colours, normal- or bump-mapped normals.
     GpuMaterial mat = sceneMaterials.v[si.materialIndex];
+    applyTextures(mat, si);
+    if (DEBUG_VIEW == DEBUG_VIEW_NORMAL) return 0.5 * si.ns + 0.5; // world-space shading normal
+    // DEBUG_VIEW_ALBEDO: the material's (textured) base colour; emitters show their emission
+    // normalised to a largest component of 1.
     float e = maxComponent(mat.emission);
     return e > 0.0 ? mat.emission / e : mat.baseColor;
 }
