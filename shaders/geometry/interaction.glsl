@@ -68,19 +68,16 @@ SurfaceInteraction makeInteraction(Ray ray, Hit hit) {
     SurfaceInteraction si;
     si.uv = vec2(0.0);
     si.dpdu = si.dpdv = vec3(0.0);
-    GpuTriangle tri = sceneTriangles.v[hit.primitive];
+    GpuTriangle tri = placedTriangle(sceneTriangles.v[hit.primitive]);
     float b0 = 1.0 - hit.bary.x - hit.bary.y;
-    if (HAS_MOTION && (tri.flags & TRIANGLE_FLAG_MOVING) != 0u) {
-        vec3 offset = motionOffset(tri.flags >> TRIANGLE_MOTION_SHIFT);
-        tri.p0 += offset;
-        tri.p1 += offset;
-        tri.p2 += offset;
-    }
+    // The per-vertex record, read once: for shading normals and for texture coordinates.
+    bool smoothNormals = HAS_SHADING_NORMALS && (tri.flags & TRIANGLE_FLAG_SHADING_NORMALS) != 0u;
+    GpuTriangleShading sh;
+    if (smoothNormals || needsSurfaceCoordinates()) sh = sceneShading.v[hit.primitive];
     si.p = b0 * tri.p0 + hit.bary.x * tri.p1 + hit.bary.y * tri.p2;
     si.ng = normalize(cross(tri.p1 - tri.p0, tri.p2 - tri.p0));
     si.ns = si.ng;
-    if (HAS_SHADING_NORMALS && (tri.flags & TRIANGLE_FLAG_SHADING_NORMALS) != 0u) {
-        GpuTriangleShading sh = sceneShading.v[hit.primitive];
+    if (smoothNormals) {
         vec3 n = b0 * sh.n0 + hit.bary.x * sh.n1 + hit.bary.y * sh.n2;
         float len2 = dot(n, n);
         // Degenerate interpolated normals fall back to the geometric one.
@@ -93,7 +90,6 @@ SurfaceInteraction makeInteraction(Ray ray, Hit hit) {
     si.materialIndex = tri.materialIndex;
     si.lightIndex = tri.lightIndex;
     if (needsSurfaceCoordinates()) {
-        GpuTriangleShading sh = sceneShading.v[hit.primitive];
         vec2 uv0 = vec2(sh.u0, sh.v.x), uv1 = vec2(sh.u1, sh.v.y), uv2 = vec2(sh.u2, sh.v.z);
         si.uv = b0 * uv0 + hit.bary.x * uv1 + hit.bary.y * uv2;
         // Solve p - p0 = (u - u0) dpdu + (v - v0) dpdv over the triangle's two edges.

@@ -95,13 +95,7 @@ bool traverseTree(bool sphereTree, bool anyHit, Ray ray, WatertightRay wray, Box
                     if (HAS_MOTION && sphere.motion != NO_MOTION) r.origin -= motionOffset(sphere.motion);
                     hitPrimitive = intersectSphere(sphere, r, hit.t, t);
                 } else {
-                    GpuTriangle tri = sceneTriangles.v[i];
-                    if (HAS_MOTION && (tri.flags & TRIANGLE_FLAG_MOVING) != 0u) {
-                        vec3 offset = motionOffset(tri.flags >> TRIANGLE_MOTION_SHIFT);
-                        tri.p0 += offset;
-                        tri.p1 += offset;
-                        tri.p2 += offset;
-                    }
+                    GpuTriangle tri = placedTriangle(sceneTriangles.v[i]);
                     hitPrimitive = intersectTriangle(wray, tri.p0, tri.p1, tri.p2, hit.t, t, bary);
                     if (HAS_ALPHA && hitPrimitive && (tri.flags & TRIANGLE_FLAG_ALPHA_TESTED) != 0u)
                         hitPrimitive = !alphaCutsOut(tri, i, bary, ray);

@@ -19,6 +19,7 @@
 #include "bsdf/dielectric.glsl"
 #include "integrator/features.glsl"
 #include "integrator/background.glsl"
+#include "integrator/shadow_ray.glsl"
 #include "textures/material_textures.glsl"
 
 // Shading of one light's contribution, f cos(theta_i) in the path tracer's terms.
@@ -46,17 +47,7 @@ vec3 classicLight(SurfaceInteraction si, Frame frame, vec3 woLocal, GpuMaterial 
     if (pdf <= 0.0 || maxComponent(ls.radiance) <= 0.0) return vec3(0.0);
     vec3 fCos = classicShade(mat, woLocal, toLocal(frame, ls.wi));
     if (maxComponent(fCos) <= 0.0) return vec3(0.0);
-    Ray shadow;
-    shadow.origin = spawnOrigin(si.p, si.ng, ls.wi);
-    float tMax = 0.9999;
-    if (ls.distance == FLOAT_MAX) {
-        shadow.direction = ls.wi;
-        tMax = FLOAT_MAX;
-    } else {
-        vec3 target = ls.isDelta ? ls.point : offsetRayOrigin(ls.point, dot(ls.normal, ls.wi) < 0.0 ? ls.normal : -ls.normal);
-        shadow.direction = target - shadow.origin;
-    }
-    if (traceAny(shadow, tMax)) return vec3(0.0);
+    if (lightOccluded(si, ls)) return vec3(0.0);
     return fCos * ls.radiance / pdf;
 }
 

@@ -16,11 +16,8 @@
 #include "integrator/features.glsl"
 #include "textures/material_textures.glsl"
 #include "integrator/background.glsl"
+#include "integrator/shadow_ray.glsl"
 #include "integrator/classic.glsl"
-
-// Shadow rays stop this fraction short of the (offset) light point, the receiver's own offset
-// having already moved the origin off its surface.
-const float SHADOW_RAY_FAR = 0.9999;
 
 // Dielectrics (smooth or rough, and PBR transmission with a volume) absorb inside, behind
 // their geometric front face.
@@ -38,19 +35,7 @@ vec3 estimateDirect(SurfaceInteraction si, Frame frame, vec3 woLocal, GpuMateria
     vec3 wiLocal = toLocal(frame, ls.wi);
     vec3 fCos = surfaceEval(mat, woLocal, wiLocal);
     if (maxComponent(fCos) <= 0.0) return vec3(0.0);
-    Ray shadow;
-    shadow.origin = spawnOrigin(si.p, si.ng, ls.wi);
-    float tMax = SHADOW_RAY_FAR;
-    if (ls.distance == FLOAT_MAX) {
-        shadow.direction = ls.wi; // directional light: unoccluded to infinity
-        tMax = FLOAT_MAX;
-    } else {
-        // Offset the light end too (surfaces only), then stop just short of it.
-        // (Lights no ray can hit have nothing to offset from.)
-        vec3 target = ls.isDelta ? ls.point : offsetRayOrigin(ls.point, dot(ls.normal, ls.wi) < 0.0 ? ls.normal : -ls.normal);
-        shadow.direction = target - shadow.origin;
-    }
-    if (traceAny(shadow, tMax)) return vec3(0.0);
+    if (lightOccluded(si, ls)) return vec3(0.0);
     // A shadow ray into an absorbing interior (a light inside the glass) is attenuated like
     // the path segments that reach it.
     if (HAS_ABSORPTION && ls.distance != FLOAT_MAX && dot(ls.wi, si.ng) < 0.0 && isTransmissiveSurface(mat) &&

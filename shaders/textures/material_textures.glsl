@@ -32,8 +32,8 @@ vec3 normalFromMap(SurfaceInteraction si, vec3 texel, float scale, bool yDown) {
     return (len2 > 0.0 && !isinf(len2)) ? mapped * inversesqrt(len2) : n;
 }
 
-float bumpHeight(uint index, vec2 uv, vec3 p) {
-    vec3 c = evalTexture(index, uv, p).rgb;
+float bumpHeight(GpuTexture tex, vec2 uv, vec3 p) {
+    vec3 c = evalTexture(tex, uv, p).rgb;
     return (c.r + c.g + c.b) * (1.0 / 3.0);
 }
 
@@ -48,9 +48,9 @@ vec3 normalFromBump(SurfaceInteraction si, uint index, float factor) {
     vec3 bumped;
     if (tex.type == TEXTURE_IMAGE) {
         vec2 duv = 1.0 / vec2(max(tex.width, 1u), max(tex.height, 1u));
-        float h0 = bumpHeight(index, si.uv, si.p);
-        float dhdu = bumpHeight(index, si.uv + vec2(duv.x, 0.0), si.p) - h0;
-        float dhdv = bumpHeight(index, si.uv + vec2(0.0, duv.y), si.p) - h0;
+        float h0 = bumpHeight(tex, si.uv, si.p);
+        float dhdu = bumpHeight(tex, si.uv + vec2(duv.x, 0.0), si.p) - h0;
+        float dhdv = bumpHeight(tex, si.uv + vec2(0.0, duv.y), si.p) - h0;
         vec3 qu = si.dpdu + factor * dhdu * n;
         vec3 qv = si.dpdv + factor * dhdv * n;
         bumped = cross(qu, qv);
@@ -58,9 +58,9 @@ vec3 normalFromBump(SurfaceInteraction si, uint index, float factor) {
     } else {
         // Step relative to the noise's feature size.
         float h = 1e-3 / max(abs(tex.patternScale), 1e-6);
-        vec3 g = vec3(bumpHeight(index, si.uv, si.p + vec3(h, 0, 0)) - bumpHeight(index, si.uv, si.p - vec3(h, 0, 0)),
-                     bumpHeight(index, si.uv, si.p + vec3(0, h, 0)) - bumpHeight(index, si.uv, si.p - vec3(0, h, 0)),
-                     bumpHeight(index, si.uv, si.p + vec3(0, 0, h)) - bumpHeight(index, si.uv, si.p - vec3(0, 0, h))) / (2.0 * h);
+        vec3 g = vec3(bumpHeight(tex, si.uv, si.p + vec3(h, 0, 0)) - bumpHeight(tex, si.uv, si.p - vec3(h, 0, 0)),
+                     bumpHeight(tex, si.uv, si.p + vec3(0, h, 0)) - bumpHeight(tex, si.uv, si.p - vec3(0, h, 0)),
+                     bumpHeight(tex, si.uv, si.p + vec3(0, 0, h)) - bumpHeight(tex, si.uv, si.p - vec3(0, 0, h))) / (2.0 * h);
         bumped = n - factor * (g - n * dot(g, n));
     }
     float len2 = dot(bumped, bumped);

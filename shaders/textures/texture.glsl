@@ -21,9 +21,8 @@ float perlinValue(GpuTexture tex, vec3 p) {
     return (tex.flags & TEXTURE_FLAG_PERLIN_ABS) != 0u ? abs(n) : 0.5 * (n + 1.0);
 }
 
-// RGBA of texture `index` at texture coordinates uv and world point p.
-vec4 evalTexture(uint index, vec2 uv, vec3 p) {
-    GpuTexture tex = loadTexture(index);
+// RGBA of texture `tex` at texture coordinates uv and world point p.
+vec4 evalTexture(GpuTexture tex, vec2 uv, vec3 p) {
     vec4 value = vec4(1.0);
     if (HAS_PROCEDURAL && tex.type == TEXTURE_CHECKERBOARD) {
         value.rgb = checkerboard(tex, p);
@@ -36,5 +35,7 @@ vec4 evalTexture(uint index, vec2 uv, vec3 p) {
     value.rgb *= tex.valueScale;
     return value;
 }
+
+vec4 evalTexture(uint index, vec2 uv, vec3 p) { return evalTexture(loadTexture(index), uv, p); }
 
 #endif

@@ -1,0 +1,32 @@
+// The shadow ray of a light sample, shared by the path tracer's and the classic integrator's
+// light sampling: from the offset surface point to the (offset) light point, or to infinity
+// for directional lights.
+#ifndef PT_INTEGRATOR_SHADOW_RAY_GLSL
+#define PT_INTEGRATOR_SHADOW_RAY_GLSL
+#include "common/ray_offset.glsl"
+#include "geometry/interaction.glsl"
+#include "geometry/traverse.glsl"
+#include "lights/light_common.glsl"
+
+// Shadow rays stop this fraction short of the (offset) light point, the receiver's own offset
+// having already moved the origin off its surface.
+const float SHADOW_RAY_FAR = 0.9999;
+
+// True when something lies between the surface point and the light sample.
+bool lightOccluded(SurfaceInteraction si, LightSample ls) {
+    Ray shadow;
+    shadow.origin = spawnOrigin(si.p, si.ng, ls.wi);
+    float tMax = SHADOW_RAY_FAR;
+    if (ls.distance == FLOAT_MAX) {
+        shadow.direction = ls.wi; // directional light: unoccluded to infinity
+        tMax = FLOAT_MAX;
+    } else {
+        // Offset the light end too (surfaces only), then stop just short of it.
+        // (Lights no ray can hit have nothing to offset from.)
+        vec3 target = ls.isDelta ? ls.point : offsetRayOrigin(ls.point, dot(ls.normal, ls.wi) < 0.0 ? ls.normal : -ls.normal);
+        shadow.direction = target - shadow.origin;
+    }
+    return traceAny(shadow, tMax);
+}
+
+#endif
