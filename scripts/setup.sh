@@ -14,6 +14,7 @@ packages=(
   libglm-dev libtinygltf-dev nlohmann-json3-dev libstb-dev libopenexr-dev libcli11-dev libpugixml-dev
   libgtest-dev mesa-vulkan-drivers
   libglfw3-dev xvfb xauth
+  clang libclang-rt-14-dev # scripts/sanitizers.sh: ASan + UBSan build and libFuzzer targets
 )
 
 backports=/etc/apt/sources.list.d/bookworm-backports.sources

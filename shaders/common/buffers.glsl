@@ -14,6 +14,7 @@ layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer Ma
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer LightRef { GpuLight v[]; };
 layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer FloatRef { float v[]; };
 layout(buffer_reference, std430, buffer_reference_align = 16) buffer Vec4Ref { vec4 v[]; };
+layout(buffer_reference, std430, buffer_reference_align = 16) buffer UVec4Ref { uvec4 v[]; };
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer TestRayRef { GpuTestRay v[]; };
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer SphereRef { GpuSphere v[]; };
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer TextureRef { GpuTexture v[]; };

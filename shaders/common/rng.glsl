@@ -3,6 +3,12 @@
 // Hash: PCG4D (Jarzynski and Olano, "Hash Functions for GPU Rendering", JCGT 2020).
 #ifndef PT_COMMON_RNG_GLSL
 #define PT_COMMON_RNG_GLSL
+#include "shared/layout.h"
+#include "common/sobol.glsl"
+
+// Which points fill the dimensions (SPEC_SAMPLER, `--sampler`): independent hashes, or
+// Owen-scrambled Sobol' (common/sobol.glsl) addressed by the same (pixel, sample, dimension).
+layout(constant_id = SPEC_SAMPLER) const uint SAMPLER = SAMPLER_INDEPENDENT;
 
 uvec4 pcg4d(uvec4 v) {
     v = v * 1664525u + 1013904223u;
@@ -28,8 +34,15 @@ Rng rngCreate(uvec2 pixel, uint sampleIndex, uint seed) {
     return r;
 }
 
+// Tests only: pin every random number to an end of its range (0 or 1 - 2^-24), so that the
+// hard-case tests can show no sampling routine divides by zero or takes a NaN there.
+layout(constant_id = SPEC_FORCED_RANDOM) const uint FORCED_RANDOM = FORCED_RANDOM_OFF;
+
 // A float in [0, 1 - 2^-24]: the top 24 bits, so 1.0 is never returned.
-float uintToUnitFloat(uint x) { return float(x >> 8u) * (1.0 / 16777216.0); }
+float uintToUnitFloat(uint x) {
+    if (FORCED_RANDOM != FORCED_RANDOM_OFF) return FORCED_RANDOM == FORCED_RANDOM_ZERO ? 0.0 : 1.0 - 1.0 / 16777216.0;
+    return float(x >> 8u) * (1.0 / 16777216.0);
+}
 
 uvec4 rngHash(Rng r, uint dimension) {
     return pcg4d(uvec4(r.key.xy, r.key.z ^ (dimension * 0x9E3779B9u), r.key.w + dimension));
@@ -52,11 +65,17 @@ const uint DIMS_PER_BOUNCE = 7u;
 
 uint bounceDimension(uint bounce, uint offset) { return DIM_FIRST_BOUNCE + bounce * DIMS_PER_BOUNCE + offset; }
 
-float rng1(Rng r, uint dimension) { return uintToUnitFloat(rngHash(r, dimension).x); }
+// Per-stream seeds of the Sobol' sampler: index shuffle, and the scrambles of its two values.
+uvec3 sobolSeeds(Rng r, uint dimension) { return pcg4d(uvec4(r.key.xy, dimension, r.key.w)).xyz; }
+
+float rng1(Rng r, uint dimension) {
+    if (SAMPLER == SAMPLER_SOBOL) return uintToUnitFloat(sobolOwen2(r.key.z, sobolSeeds(r, dimension)).x);
+    return uintToUnitFloat(rngHash(r, dimension).x);
+}
 
 // A 2D sample occupies dimensions d and d + 1; both values come from the hash of d.
 vec2 rng2(Rng r, uint dimension) {
-    uvec4 h = rngHash(r, dimension);
+    uvec2 h = SAMPLER == SAMPLER_SOBOL ? sobolOwen2(r.key.z, sobolSeeds(r, dimension)) : rngHash(r, dimension).xy;
     return vec2(uintToUnitFloat(h.x), uintToUnitFloat(h.y));
 }
 

@@ -37,7 +37,7 @@ SurfaceInteraction makeSphereInteraction(Ray ray, Hit hit) {
     // Recompute the hit in object space and project it onto the unit sphere: the world point
     // then lies on the surface to within the map's rounding, whatever the distance travelled.
     vec3 offset = (HAS_MOTION && sphere.motion != NO_MOTION) ? motionOffset(sphere.motion) : vec3(0.0);
-    vec3 o = transformPoint(sphere.worldToObject, ray.origin - offset);
+    vec3 o = toSphereObject(sphere, ray.origin - offset);
     vec3 d = transformVector(sphere.worldToObject, ray.direction);
     vec3 po = normalize(o + hit.t * d);
     si.p = transformPoint(sphere.objectToWorld, po) + offset;

@@ -12,10 +12,20 @@ vec3 transformPoint(vec4 rows[3], vec3 p) {
 }
 vec3 transformVector(vec4 rows[3], vec3 v) { return vec3(dot(rows[0].xyz, v), dot(rows[1].xyz, v), dot(rows[2].xyz, v)); }
 
+// A world point in the sphere's object space, taken relative to the centre first and mapped by
+// the linear part only: origin and direction then share one rounded matrix. The inverse's own
+// translation column is rounded separately (1e7 * (1 - 1e-7) against a scale of 1000 * (1 - 6e-8)
+// for a sphere of radius 1e-3 at distance 1e4), and that mismatch alone moved the closest
+// approach by half a radius, so small spheres far away vanished (tests/gpu/hard_cases_test.cpp).
+vec3 toSphereObject(GpuSphere sphere, vec3 p) {
+    vec3 centre = vec3(sphere.objectToWorld[0].w, sphere.objectToWorld[1].w, sphere.objectToWorld[2].w);
+    return transformVector(sphere.worldToObject, p - centre);
+}
+
 // The ray parameter t is shared by world and object space (the map is affine), so the result
 // compares directly with triangle hits.
 bool intersectSphere(GpuSphere sphere, Ray ray, float tMax, out float t) {
-    vec3 o = transformPoint(sphere.worldToObject, ray.origin);
+    vec3 o = toSphereObject(sphere, ray.origin);
     vec3 d = transformVector(sphere.worldToObject, ray.direction);
     t = 0.0;
     float a = dot(d, d);

@@ -19,6 +19,7 @@
 #include "bsdf/dielectric.glsl"
 #include "integrator/features.glsl"
 #include "integrator/background.glsl"
+#include "integrator/ray_counts.glsl"
 #include "integrator/shadow_ray.glsl"
 #include "textures/material_textures.glsl"
 
@@ -96,6 +97,7 @@ vec3 traceClassic(Ray ray, Rng rng) {
     vec3 beta = vec3(1.0);
     for (uint depth = 1u;; ++depth) {
         Hit hit;
+        countClosestRay();
         if (!traceClosest(ray, FLOAT_MAX, hit)) {
             L += beta * (HAS_ENVIRONMENT && scene.envWidth > 0u ? envRadiance(ray.direction) : backgroundRadiance(ray.direction, depth == 1u));
             break;

@@ -31,5 +31,6 @@ layout(constant_id = SPEC_HAS_PBR) const bool HAS_PBR = true;
 layout(constant_id = SPEC_DEBUG_VIEW) const uint DEBUG_VIEW = DEBUG_VIEW_NONE;
 layout(constant_id = SPEC_CLASSIC) const bool CLASSIC = false;
 layout(constant_id = SPEC_HAS_MOTION) const bool HAS_MOTION = true;
+layout(constant_id = SPEC_COUNT_RAYS) const bool COUNT_RAYS = false;
 
 #endif

@@ -17,6 +17,7 @@
 #include "textures/material_textures.glsl"
 #include "integrator/background.glsl"
 #include "integrator/shadow_ray.glsl"
+#include "integrator/ray_counts.glsl"
 #include "integrator/classic.glsl"
 
 // Dielectrics (smooth or rough, and PBR transmission with a volume) absorb inside, behind
@@ -54,6 +55,7 @@ vec3 tracePath(Ray ray, Rng rng) {
     float prevPdfBsdf = 0.0;
     for (uint depth = 1u;; ++depth) {
         Hit hit;
+        countClosestRay();
         if (!traceClosest(ray, FLOAT_MAX, hit)) {
             // Escaped: the environment, weighted against its light sampling like any emitter.
             if (HAS_ENVIRONMENT && scene.envWidth > 0u) {

@@ -7,6 +7,7 @@
 #include "geometry/interaction.glsl"
 #include "geometry/traverse.glsl"
 #include "lights/light_common.glsl"
+#include "integrator/ray_counts.glsl"
 
 // Shadow rays stop this fraction short of the (offset) light point, the receiver's own offset
 // having already moved the origin off its surface.
@@ -14,6 +15,7 @@ const float SHADOW_RAY_FAR = 0.9999;
 
 // True when something lies between the surface point and the light sample.
 bool lightOccluded(SurfaceInteraction si, LightSample ls) {
+    countShadowRay();
     Ray shadow;
     shadow.origin = spawnOrigin(si.p, si.ng, ls.wi);
     float tMax = SHADOW_RAY_FAR;

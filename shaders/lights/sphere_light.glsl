@@ -29,7 +29,7 @@ float sphereLightPdf(GpuLight light, vec3 x, vec3 p) {
     float d2 = dot(toCentre, toCentre);
     if (light.radius > 0.0 && d2 > light.radius * light.radius)
         return light.pmf / (TWO_PI * coneOneMinusCos(light.radius, d2));
-    vec3 po = normalize(transformPoint(sphere.worldToObject, p));
+    vec3 po = normalize(toSphereObject(sphere, p));
     vec3 n;
     float J = sphereAreaScale(sphere, light, po, n);
     vec3 d = p - x;

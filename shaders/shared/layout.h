@@ -111,7 +111,30 @@ using uint64_t = std::uint64_t;
 #define SPEC_DEBUG_VIEW 25        // DEBUG_VIEW_*: the viewer's diagnostic images instead of radiance
 #define SPEC_CLASSIC 26           // the CENG795 course's classic (Whitted / direct lighting) ray tracer
 #define SPEC_HAS_MOTION 27        // moving objects (motion blur)
-#define SPEC_COUNT 28
+#define SPEC_COUNT_RAYS 28        // count traced rays per pixel (pt bench); GpuRenderPush::rayCounts
+#define SPEC_SAMPLER 29           // SAMPLER_*: how sample dimensions are filled
+#define SPEC_FORCED_RANDOM 30     // FORCED_RANDOM_*: tests only, every random number pinned to an end of [0, 1)
+#define SPEC_COUNT 31
+
+// ---- Forced random numbers (SPEC_FORCED_RANDOM; tests/gpu/hard_cases_test.cpp) ----
+#define FORCED_RANDOM_OFF 0u
+#define FORCED_RANDOM_ZERO 1u     // every sample dimension is 0
+#define FORCED_RANDOM_ONE 2u      // every sample dimension is 1 - 2^-24, the largest value returned
+
+// ---- Per-pixel accumulation (GpuSceneParams::accumulation) ----
+// Each sum is a double-float (hi + lo, |lo| <= ulp(hi) / 2) kept by error-free transformations
+// (Knuth's TwoSum; shaders/integrator/accumulate.glsl), so 1e5+ samples of a constant sum
+// to the constant within ~1e-9 instead of float32's ~1e-3 drift, and the state is exact
+// to store, reload (checkpoints) and merge (pt merge). Vec4 k of a pixel's ACCUM_* block:
+#define ACCUMULATION_VEC4S_PER_PIXEL 4u
+#define ACCUM_SUM 0u           // (sum rgb hi, count of dropped non-finite samples)
+#define ACCUM_SUM_LO 1u        // (sum rgb lo, 0)
+#define ACCUM_SUM_SQUARES 2u   // (sum of squares rgb hi, 0)
+#define ACCUM_SUM_SQUARES_LO 3u // (sum of squares rgb lo, 0)
+
+// ---- Samplers (SPEC_SAMPLER) ----
+#define SAMPLER_INDEPENDENT 0u // a hash of (pixel, sample index, dimension, seed)
+#define SAMPLER_SOBOL 1u       // Owen-scrambled Sobol' points, shuffled per pixel
 
 // ---- Debug views (SPEC_DEBUG_VIEW) ----
 #define DEBUG_VIEW_NONE 0u
@@ -284,7 +307,7 @@ struct GpuSceneParams {
     uint64_t materials;   // GpuMaterial[]
     uint64_t lights;      // GpuLight[]
     uint64_t lightCdf;    // float[numLights + 1]
-    uint64_t accumulation; // vec4[2 * pixels]: (sum rgb, dropped count), (sum of squares rgb, 0)
+    uint64_t accumulation; // vec4[ACCUMULATION_VEC4S_PER_PIXEL * pixels], see ACCUM_* below
     uint64_t spheres;      // GpuSphere[]
     uint64_t sphereNodes;  // GpuBvhNode[]: a second BVH, over the spheres
     uint64_t envTexels;    // vec4[envWidth * envHeight]: radiance (scale applied), row 0 at the top
@@ -325,8 +348,12 @@ struct GpuRenderPush {
     uint sampleStart; // global index of the first sample added to each pixel
     uint sampleCount;
     float sampleClamp; // > 0: clamp each sample's largest component to this (biased; off by default)
+    // With SPEC_COUNT_RAYS: device address of uvec4[pixels] per-pixel ray counts (continuation
+    // rays, shadow rays, 0, 0), added to by the pixel's own invocation (no atomics). Camera
+    // rays are one per sample and not counted.
+    uint64_t rayCounts;
 };
-PT_CHECK_SIZE(GpuRenderPush, 40);
+PT_CHECK_SIZE(GpuRenderPush, 48);
 
 // ---- Test kernels (shaders/tests) ----
 #define TEST_MODE_COSINE_HEMISPHERE 0u

@@ -48,7 +48,10 @@ void main() {
     uvec2 tile = film / push.tileSize;
     uint n = push.spp + (tile.y * push.tilesX + tile.x < push.passTiles ? push.passSamples : 0u);
     if (n == 0u) return; // nothing rendered here yet: keep the previous picture
-    vec3 mean = SumsRef(push.accumulation).v[2u * (film.y * push.filmSize.x + film.x)].rgb / float(n);
+    // The sum is a double-float (hi + lo, shared/layout.h); lo matters only past ~1e4 samples.
+    uint base = ACCUMULATION_VEC4S_PER_PIXEL * (film.y * push.filmSize.x + film.x);
+    SumsRef sums = SumsRef(push.accumulation);
+    vec3 mean = (sums.v[base + ACCUM_SUM].rgb + sums.v[base + ACCUM_SUM_LO].rgb) / float(n);
     vec3 c;
     if (any(isnan(mean)) || any(isinf(mean))) {
         c = vec3(1.0, 0.0, 1.0); // magenta, as in the PNG

@@ -23,7 +23,7 @@ namespace pt::gpu {
 // film pixel under it (nearest), so a reduced-resolution film fills the window. Film pixels
 // without any sample yet keep what the display buffer showed before.
 struct GpuDisplayPush {
-    uint64_t accumulation; // vec4[2 * film pixels]: GpuSceneParams::accumulation
+    uint64_t accumulation; // the sums, laid out as GpuSceneParams::accumulation (ACCUM_*)
     uint64_t display;      // uint[window pixels]
     uvec2 filmSize;
     uvec2 windowSize;

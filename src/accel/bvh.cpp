@@ -2,36 +2,29 @@
 // hierarchies"), with an exact SAH sweep for small nodes.
 //
 // Structure of a build:
-//  1. Top phase (one thread, but binning of big nodes is split over threads): nodes are split
-//     depth-first until a node has at most kTaskPrims primitives; such a node becomes a task.
-//  2. Task phase: every task builds its subtree into its own node vector, in parallel.
+//  1. Top phase, level by level: every node of a level is cut into fixed-size units that all
+//     threads bin; a node's unit bins are merged (exactly) to choose its split; the units then
+//     scatter their primitives into a second buffer (a stable partition whose per-unit counts come
+//     from the bins) and collect the children's centroid bounds on the way. Nodes of at most
+//     kTaskPrims primitives become tasks.
+//  2. Task phase: every task builds its subtree depth-first into its own node vector, in parallel.
 //  3. Assembly: nodes are placed exactly where a sequential depth-first build would have put
 //     them (children pairs in preorder of their parents), indices remapped.
-// Split decisions depend only on the primitives, and the decomposition into tasks only on fixed
-// constants, so nodes and primOrder are bit-identical for every thread count.
+// Split decisions depend only on the primitives and their order, which a stable partition fixes,
+// and every decomposition into units and tasks only on fixed constants, so nodes and primOrder
+// are bit-identical for every thread count.
 #include "bvh.h"
+
+#include "bvh_parallel.h"
+#include "bvh_simd.h"
 
 #include <algorithm>
 #include <array>
-#include <atomic>
 #include <chrono>
 #include <cstring>
-#include <exception>
-#include <mutex>
+#include <memory>
 #include <stdexcept>
 #include <thread>
-
-// PT_BVH_SSE=0 forces the portable scalar path (it gives bit-identical trees).
-#ifndef PT_BVH_SSE
-#if defined(__SSE2__) || defined(_M_X64)
-#define PT_BVH_SSE 1
-#else
-#define PT_BVH_SSE 0
-#endif
-#endif
-#if PT_BVH_SSE
-#include <emmintrin.h>
-#endif
 
 namespace pt {
 
@@ -61,158 +54,22 @@ bool Aabb::empty() const { return lo.x > hi.x || lo.y > hi.y || lo.z > hi.z; }
 
 namespace {
 
+using namespace bvh_detail;
+
 // Bin indices are cached per primitive in 8 bits per axis (PrimRef::binKeys).
 constexpr int kMaxBins = 128;
 // Nodes with at most this many primitives are built as independent tasks. A fixed constant (not
 // derived from the thread count) so that the node layout never depends on the thread count.
 constexpr uint32_t kTaskPrims = 4096;
-// Nodes at least this big bin their primitives on several threads. Merging bins uses min/max and
-// integer sums, which are exact, so the result does not depend on how the range was chunked.
-constexpr uint32_t kParallelBinPrims = 32768;
+// Top-phase nodes are binned and scattered in units of this many primitives, one thread each.
+// Merging bins uses min/max and integer sums, which are exact, so the size changes nothing in
+// the tree; it only trades load balance against per-unit overhead.
+constexpr uint32_t kUnitPrims = 16384;
 // Nodes with at most this many primitives use an exact SAH sweep instead of binning (see
 // sweepSplit). At most 255 (sort indices are bytes).
 constexpr int kSweepPrims = 16;
 // Node indices are uint32_t and a tree over N prims has up to 2N-1 nodes.
 constexpr size_t kMaxPrims = (size_t(1) << 31) - 1;
-constexpr float kInf = std::numeric_limits<float>::infinity();
-
-// Working copy of a primitive, permuted in place (contiguous memory is much faster to bin and
-// partition than gathering through an index array). Laid out as two 16-byte rows so a box loads
-// as two SIMD registers (lane 3, prim / binKeys, is zeroed on load). binKeys caches each axis' bin from the last binning pass, so the partition uses
-// exactly the classification the SAH was evaluated on, with no recomputation that could round
-// differently.
-struct alignas(16) PrimRef {
-    float lo[3];
-    uint32_t prim;
-    float hi[3];
-    uint32_t binKeys;
-};
-static_assert(sizeof(PrimRef) == 32);
-
-// Minimal 4-lane float vector: SSE2 where available, else a scalar twin with the same semantics
-// (min/max return the second operand when unordered, like minps/maxps), so results match.
-struct V4 {
-#if PT_BVH_SSE
-    __m128 v;
-#else
-    float v[4];
-#endif
-};
-
-#if PT_BVH_SSE
-inline V4 splat(float f) { return { _mm_set1_ps(f) }; }
-inline V4 set3(float x, float y, float z) { return { _mm_set_ps(0.0f, z, y, x) }; }
-inline V4 loadRow(const void* p) { return { _mm_load_ps(static_cast<const float*>(p)) }; }
-inline void store(float* p, V4 a) { _mm_storeu_ps(p, a.v); }
-inline V4 vmin(V4 a, V4 b) { return { _mm_min_ps(a.v, b.v) }; }
-inline V4 vmax(V4 a, V4 b) { return { _mm_max_ps(a.v, b.v) }; }
-inline V4 vadd(V4 a, V4 b) { return { _mm_add_ps(a.v, b.v) }; }
-inline V4 vsub(V4 a, V4 b) { return { _mm_sub_ps(a.v, b.v) }; }
-inline V4 vmul(V4 a, V4 b) { return { _mm_mul_ps(a.v, b.v) }; }
-inline V4 xyz(V4 a) { return { _mm_and_ps(a.v, _mm_castsi128_ps(_mm_set_epi32(0, -1, -1, -1))) }; } // lane 3 = 0
-inline void truncToInt(V4 a, int32_t out[4]) { _mm_storeu_si128(reinterpret_cast<__m128i*>(out), _mm_cvttps_epi32(a.v)); }
-#else
-template <class F>
-inline V4 lanes(V4 a, V4 b, F f)
-{
-    V4 r;
-    for (int i = 0; i < 4; ++i) r.v[i] = f(a.v[i], b.v[i]);
-    return r;
-}
-inline V4 splat(float f) { return { { f, f, f, f } }; }
-inline V4 set3(float x, float y, float z) { return { { x, y, z, 0.0f } }; }
-inline V4 loadRow(const void* p)
-{
-    V4 r;
-    std::memcpy(r.v, p, sizeof r.v);
-    return r;
-}
-inline void store(float* p, V4 a) { std::memcpy(p, a.v, sizeof a.v); }
-inline V4 vmin(V4 a, V4 b) { return lanes(a, b, [](float x, float y) { return x < y ? x : y; }); }
-inline V4 vmax(V4 a, V4 b) { return lanes(a, b, [](float x, float y) { return x > y ? x : y; }); }
-inline V4 vadd(V4 a, V4 b) { return lanes(a, b, [](float x, float y) { return x + y; }); }
-inline V4 vsub(V4 a, V4 b) { return lanes(a, b, [](float x, float y) { return x - y; }); }
-inline V4 vmul(V4 a, V4 b) { return lanes(a, b, [](float x, float y) { return x * y; }); }
-inline V4 xyz(V4 a)
-{
-    a.v[3] = 0.0f;
-    return a;
-}
-inline void truncToInt(V4 a, int32_t out[4])
-{
-    for (int i = 0; i < 4; ++i) out[i] = int32_t(a.v[i]);
-}
-#endif
-
-// Position of keys[i] in the ascending order of keys[0, nPadded), ties broken by index. nPadded
-// is a multiple of 4 and the padding keys are +inf (real keys are finite, so it never counts).
-// Branch-free: used by the small-node sort, where comparison sorts mispredict a lot.
-#if PT_BVH_SSE
-inline int rankOf(const float* keys, int nPadded, int i)
-{
-    const __m128 ki = _mm_set1_ps(keys[i]);
-    const __m128i ii = _mm_set1_epi32(i);
-    __m128i idx = _mm_set_epi32(3, 2, 1, 0);
-    __m128i count = _mm_setzero_si128();
-    for (int b = 0; b < nPadded; b += 4) {
-        const __m128 kj = _mm_loadu_ps(keys + b);
-        const __m128 tieBefore = _mm_and_ps(_mm_cmpeq_ps(kj, ki), _mm_castsi128_ps(_mm_cmplt_epi32(idx, ii)));
-        const __m128 before = _mm_or_ps(_mm_cmplt_ps(kj, ki), tieBefore);
-        count = _mm_sub_epi32(count, _mm_castps_si128(before)); // true lanes are -1
-        idx = _mm_add_epi32(idx, _mm_set1_epi32(4));
-    }
-    count = _mm_add_epi32(count, _mm_shuffle_epi32(count, _MM_SHUFFLE(1, 0, 3, 2)));
-    count = _mm_add_epi32(count, _mm_shuffle_epi32(count, _MM_SHUFFLE(2, 3, 0, 1)));
-    return _mm_cvtsi128_si32(count);
-}
-#else
-inline int rankOf(const float* keys, int nPadded, int i)
-{
-    int rank = 0;
-    for (int j = 0; j < nPadded; ++j) rank += int(keys[j] < keys[i]) | (int(keys[j] == keys[i]) & int(j < i));
-    return rank;
-}
-#endif
-
-// Lane 3 (integer payload) is zeroed so that it never feeds arithmetic as a denormal or NaN.
-inline V4 loadLo(const PrimRef& r) { return xyz(loadRow(&r.lo[0])); }
-inline V4 loadHi(const PrimRef& r) { return xyz(loadRow(&r.hi[0])); }
-// (lo + hi) * 0.5 rather than lo * 0.5 + hi * 0.5: no FMA contraction can make two call sites
-// round differently. Overflows only beyond 1.7e38.
-inline V4 centroidOf(V4 lo, V4 hi) { return vmul(vadd(lo, hi), splat(0.5f)); }
-
-struct Box4 {
-    V4 lo = splat(kInf);
-    V4 hi = splat(-kInf);
-
-    void grow(V4 plo, V4 phi)
-    {
-        lo = vmin(lo, plo);
-        hi = vmax(hi, phi);
-    }
-    void grow(V4 p) { grow(p, p); }
-    void grow(const Box4& b) { grow(b.lo, b.hi); }
-    void grow(const PrimRef& r) { grow(loadLo(r), loadHi(r)); }
-    // Only meaningful for non-empty boxes.
-    float area() const
-    {
-        float d[4];
-        store(d, vsub(hi, lo));
-        return 2.0f * (d[0] * d[1] + d[1] * d[2] + d[2] * d[0]);
-    }
-    glm::vec3 lo3() const
-    {
-        float f[4];
-        store(f, lo);
-        return { f[0], f[1], f[2] };
-    }
-    glm::vec3 hi3() const
-    {
-        float f[4];
-        store(f, hi);
-        return { f[0], f[1], f[2] };
-    }
-};
 
 inline float boxArea(const glm::vec3& lo, const glm::vec3& hi)
 {
@@ -220,11 +77,13 @@ inline float boxArea(const glm::vec3& lo, const glm::vec3& hi)
     return 2.0f * (d.x * d.y + d.y * d.z + d.z * d.x);
 }
 
+
 struct WorkItem {
     uint32_t slot;  // index of this node in the node vector being filled (bounds already set)
     uint32_t begin; // primitive range [begin, end) in the PrimRef array
     uint32_t end;
     int depth;
+    Box4 centroids; // bounds of the primitives' centroids (set for nodes that may be binned)
 };
 
 struct Bins {
@@ -267,49 +126,49 @@ struct Split {
     uint32_t imbalance = 0;
 };
 
-// Runs fn(i) for every i in [0, count) on up to `threads` threads (the caller included), handing
-// indices out dynamically. Callers must make results independent of which thread ran what.
-template <class Fn>
-void parallelFor(int threads, size_t count, Fn&& fn)
+// Bins [begin, end) of refs on all three axes and caches every primitive's bins in binKeys.
+// An axis with zero centroid extent has scale 0: everything lands in bin 0 and the axis never
+// offers a split. The clamp is written so that a NaN (0 * inf for a denormal extent) gives 0.
+void binRange(PrimRef* refs, uint32_t begin, uint32_t end, V4 origin, V4 scale, int binCount, Bins& bins)
 {
-    const size_t workers = std::min<size_t>(size_t(std::max(threads, 1)), count);
-    if (workers <= 1) {
-        for (size_t i = 0; i < count; ++i) fn(i);
-        return;
+    bins.reset(binCount);
+    const V4 zero = splat(0.0f), last = splat(float(binCount - 1));
+    for (uint32_t i = begin; i < end; ++i) {
+        PrimRef& r = refs[i];
+        const V4 lo = loadLo(r), hi = loadHi(r);
+        const V4 t = vmin(vmax(vmul(vsub(centroidOf(lo, hi), origin), scale), zero), last);
+        int32_t k[4];
+        truncToInt(t, k);
+        bins.add(0, k[0], lo, hi);
+        bins.add(1, k[1], lo, hi);
+        bins.add(2, k[2], lo, hi);
+        r.binKeys = uint32_t(k[0]) | uint32_t(k[1]) << 8 | uint32_t(k[2]) << 16;
     }
-    std::atomic<size_t> next{ 0 };
-    std::mutex errorMutex;
-    std::exception_ptr error;
-    auto loop = [&] {
-        try {
-            for (size_t i; (i = next.fetch_add(1, std::memory_order_relaxed)) < count;) fn(i);
-        } catch (...) {
-            std::lock_guard lock(errorMutex);
-            if (!error) error = std::current_exception();
-            next.store(count);
-        }
-    };
-    std::vector<std::thread> pool;
-    pool.reserve(workers - 1);
-    for (size_t w = 1; w < workers; ++w) {
-        try {
-            pool.emplace_back(loop);
-        } catch (...) {
-            break; // could not start a thread: the caller's loop below does the remaining work
-        }
-    }
-    loop();
-    for (auto& t : pool) t.join();
-    if (error) std::rethrow_exception(error);
 }
 
-// Fixed chunking for flat parallel loops (independent of the thread count on purpose).
-size_t chunkCount(size_t n) { return std::max<size_t>(1, std::min<size_t>(64, n / 16384)); }
-
-std::pair<uint32_t, uint32_t> chunkRange(uint32_t begin, uint32_t end, size_t chunks, size_t c)
+// Bin origin and scale (bins per unit length, 0 on an axis with no centroid extent) for the
+// centroid bounds cb. Returns false when no axis has any extent (nothing to bin).
+bool binTransform(const Box4& cb, int binCount, V4& origin, V4& scale)
 {
-    const uint64_t n = end - begin;
-    return { uint32_t(begin + n * c / chunks), uint32_t(begin + n * (c + 1) / chunks) };
+    float lo[4], hi[4];
+    store(lo, cb.lo);
+    store(hi, cb.hi);
+    float sc[3];
+    for (int a = 0; a < 3; ++a) {
+        const float extent = hi[a] - lo[a];
+        sc[a] = extent > 0.0f ? float(binCount) / extent : 0.0f;
+    }
+    origin = set3(lo[0], lo[1], lo[2]);
+    scale = set3(sc[0], sc[1], sc[2]);
+    return sc[0] > 0.0f || sc[1] > 0.0f || sc[2] > 0.0f;
+}
+
+// Centroid bounds of a range: exact min/max.
+Box4 centroidBounds(const PrimRef* refs, uint32_t begin, uint32_t end)
+{
+    Box4 cb;
+    for (uint32_t i = begin; i < end; ++i) cb.grow(centroidOf(loadLo(refs[i]), loadHi(refs[i])));
+    return cb;
 }
 
 class Builder {
@@ -327,52 +186,67 @@ public:
     void run(Bvh& out)
     {
         const uint32_t n = uint32_t(input_.size());
-        refs_.resize(n);
+        auto t0 = std::chrono::steady_clock::now();
+        auto T = [&](const char* what) { auto t1 = std::chrono::steady_clock::now(); if (getenv("PT_BVH_PROFILE")) fprintf(stderr, "%s %.1f ms\n", what, std::chrono::duration<double>(t1 - t0).count() * 1e3); t0 = t1; };
+        // Uninitialised on purpose: every element is written before it is read, and zero-filling
+        // 32 bytes per primitive on one thread would cost more than the top levels' binning.
+        refs_.reset(new PrimRef[n]);
+        alt_.reset(new PrimRef[n]);
 
-        // Root bounds over fixed chunks (exact min/max, so the merge order does not matter).
-        const WorkItem root{ 0, 0, n, 0 };
-        Box4 rootBounds;
+        // Root bounds and centroid bounds over fixed chunks (exact min/max, so the merge order does
+        // not matter).
+        Box4 rootBounds, rootCentroids;
         {
             const size_t chunks = chunkCount(n);
-            std::vector<Box4> bb(chunks);
+            std::vector<Box4> bb(chunks), cb(chunks);
             parallelFor(threads_, chunks, [&](size_t c) {
                 const auto [b, e] = chunkRange(0, n, chunks, c);
                 for (uint32_t i = b; i < e; ++i) {
                     const Aabb& s = input_[i];
                     refs_[i] = PrimRef{ { s.lo.x, s.lo.y, s.lo.z }, i, { s.hi.x, s.hi.y, s.hi.z }, 0 };
                     bb[c].grow(refs_[i]);
+                    cb[c].grow(centroidOf(loadLo(refs_[i]), loadHi(refs_[i])));
                 }
             });
-            for (size_t c = 0; c < chunks; ++c) rootBounds.grow(bb[c]);
+            for (size_t c = 0; c < chunks; ++c) {
+                rootBounds.grow(bb[c]);
+                rootCentroids.grow(cb[c]);
+            }
         }
+        T("init");
         std::vector<BvhNode> nodes{ BvhNode{ rootBounds.lo3(), 0, rootBounds.hi3(), 0 } };
 
-        // Phase 1: top of the tree, depth-first, deferring small nodes as tasks. `events` records,
-        // in preorder, where a sequential build would have allocated nodes: a children pair of a
-        // top node, or a task's whole subtree.
+        int maxDepth = 0;
+        std::vector<Task> tasks;
+        T("top");
+        buildTop(nodes, WorkItem{ 0, 0, n, 0, rootCentroids }, tasks, maxDepth);
+
+        // Preorder of the top tree: where a sequential depth-first build would have allocated
+        // nodes, a children pair of a top node or a task's whole subtree.
         struct Event {
             bool task;
             uint32_t index; // task index, or the (phase-1) index of the first node of a pair
         };
-        std::vector<WorkItem> tasks;
         std::vector<Event> events;
-        int maxDepth = 0;
         {
-            std::vector<WorkItem> stack{ root };
+            std::vector<int32_t> taskOf(nodes.size(), -1);
+            for (size_t t = 0; t < tasks.size(); ++t) taskOf[tasks[t].work.slot] = int32_t(t);
+            std::vector<uint32_t> stack{ 0 };
             while (!stack.empty()) {
-                const WorkItem item = stack.back();
+                const uint32_t s = stack.back();
                 stack.pop_back();
-                if (item.end - item.begin <= kTaskPrims) {
-                    events.push_back({ true, uint32_t(tasks.size()) });
-                    tasks.push_back(item);
-                } else {
-                    const size_t before = nodes.size();
-                    processNode(nodes, item, stack, maxDepth);
-                    if (nodes.size() != before) events.push_back({ false, uint32_t(before) });
+                if (taskOf[s] >= 0) {
+                    events.push_back({ true, uint32_t(taskOf[s]) });
+                } else if (nodes[s].count == 0) {
+                    const uint32_t left = nodes[s].leftOrFirst;
+                    events.push_back({ false, left });
+                    stack.push_back(left + 1);
+                    stack.push_back(left);
                 }
             }
         }
 
+        T("events");
         // Phase 2: every task's subtree goes into its own vector; local node 0 is the task root.
         std::vector<std::vector<BvhNode>> local(tasks.size());
         std::vector<int> localDepth(tasks.size(), 0);
@@ -381,11 +255,13 @@ public:
             std::vector<uint32_t> order(tasks.size());
             for (uint32_t i = 0; i < order.size(); ++i) order[i] = i;
             std::stable_sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
-                return tasks[a].end - tasks[a].begin > tasks[b].end - tasks[b].begin;
+                return tasks[a].work.end - tasks[a].work.begin > tasks[b].work.end - tasks[b].work.begin;
             });
             parallelFor(threads_, tasks.size(), [&](size_t k) {
                 const uint32_t t = order[k];
-                WorkItem item = tasks[t];
+                WorkItem item = tasks[t].work;
+                if (tasks[t].inAlt)
+                    std::memcpy(&refs_[item.begin], &alt_[item.begin], sizeof(PrimRef) * (item.end - item.begin));
                 std::vector<BvhNode>& ln = local[t];
                 ln.reserve(2 * size_t(item.end - item.begin));
                 ln.push_back(nodes[item.slot]);
@@ -398,7 +274,9 @@ public:
                 }
             });
         }
+        alt_.reset();
 
+        T("tasks");
         // Phase 3: final positions from the preorder events, then copy with remapped indices.
         std::vector<uint32_t> topIndex(nodes.size(), 0); // phase-1 index -> final index
         std::vector<size_t> base(tasks.size());          // final index of a task's local node 1
@@ -414,7 +292,7 @@ public:
                 total += 2;
             }
         }
-        std::vector<BvhNode> placed(total);
+        BvhNodeArray placed(total); // uninitialised: every node is written below
         for (size_t i = 0; i < nodes.size(); ++i) { // task roots among these are overwritten below
             BvhNode nd = nodes[i];
             if (nd.count == 0) nd.leftOrFirst = topIndex[nd.leftOrFirst];
@@ -426,12 +304,13 @@ public:
                 if (nd.count == 0) nd.leftOrFirst = uint32_t(base[t] + nd.leftOrFirst - 1);
                 return nd;
             };
-            placed[topIndex[tasks[t].slot]] = remap(local[t][0]);
+            placed[topIndex[tasks[t].work.slot]] = remap(local[t][0]);
             for (size_t k = 1; k < local[t].size(); ++k) placed[base[t] + k - 1] = remap(local[t][k]);
             std::vector<BvhNode>().swap(local[t]);
         });
-        nodes = std::move(placed);
+        std::vector<BvhNode>().swap(nodes);
 
+        T("assembly");
         out.primOrder.resize(n);
         {
             const size_t chunks = chunkCount(n);
@@ -440,29 +319,212 @@ public:
                 for (uint32_t i = b; i < e; ++i) out.primOrder[i] = refs_[i].prim;
             });
         }
-        std::vector<PrimRef>().swap(refs_);
+        refs_.reset();
 
-        out.sahCost = sahCost(nodes, n);
+        T("primOrder");
+        out.sahCost = sahCost(placed, n);
+        T("sah");
         out.maxDepth = maxDepth;
-        out.nodes = std::move(nodes);
+        out.nodes = std::move(placed);
     }
 
 private:
-    double sahCost(const std::vector<BvhNode>& nodes, uint32_t primCount) const
+    struct Task {
+        WorkItem work;
+        bool inAlt; // its primitives lie in alt_ (moved to refs_ when the task starts)
+    };
+
+    // Phase 1 (see the file comment). Splits `root` level by level; nodes of at most kTaskPrims
+    // primitives (and the root itself if it is that small) are handed back as tasks.
+    void buildTop(std::vector<BvhNode>& nodes, const WorkItem& root, std::vector<Task>& tasks,
+                  int& maxDepth)
+    {
+        struct Unit {
+            uint32_t item, begin, end;
+            uint32_t leftCount = 0;        // primitives of this unit that go to the left child
+            uint32_t leftDst = 0, rightDst = 0;
+            Box4 centroids[2];             // of the primitives that went left [0] and right [1]
+        };
+        enum class Mode { Leaf, Binned, Halve };
+        struct Decision {
+            Mode mode = Mode::Leaf;
+            int axis = 0, bin = 0;
+            uint32_t leftCount = 0;
+            Box4 lb, rb;
+        };
+
+        if (root.end - root.begin <= kTaskPrims) {
+            tasks.push_back({ root, false });
+            return;
+        }
+        std::vector<WorkItem> frontier{ root };
+        for (int parity = 0; !frontier.empty(); parity ^= 1) {
+            PrimRef* src = parity ? alt_.get() : refs_.get();
+            PrimRef* dst = parity ? refs_.get() : alt_.get();
+            const size_t items = frontier.size();
+
+            std::vector<Unit> units;
+            std::vector<size_t> firstUnit(items + 1);
+            std::vector<V4> origin(items), scale(items);
+            std::vector<char> binnable(items);
+            for (size_t k = 0; k < items; ++k) {
+                const WorkItem& w = frontier[k];
+                binnable[k] = binTransform(frontier[k].centroids, bins_, origin[k], scale[k]);
+                firstUnit[k] = units.size();
+                const size_t chunks = (w.end - w.begin + kUnitPrims - 1) / kUnitPrims;
+                for (size_t c = 0; c < chunks; ++c) {
+                    const auto [b, e] = chunkRange(w.begin, w.end, chunks, c);
+                    units.push_back(Unit{ uint32_t(k), b, e });
+                }
+            }
+            firstUnit[items] = units.size();
+
+            // Bin every unit (uninitialised storage: binRange resets the bins it uses).
+            std::unique_ptr<Bins[]> unitBins(new Bins[units.size()]);
+            parallelFor(threads_, units.size(), [&](size_t u) {
+                const Unit& un = units[u];
+                if (binnable[un.item]) binRange(src, un.begin, un.end, origin[un.item], scale[un.item], bins_, unitBins[u]);
+            });
+
+            // Choose every item's split from its merged bins.
+            std::vector<Decision> decisions(items);
+            for (size_t k = 0; k < items; ++k) {
+                const WorkItem& w = frontier[k];
+                const uint32_t n = w.end - w.begin;
+                Decision& d = decisions[k];
+                Split split;
+                Bins bins;
+                if (binnable[k]) {
+                    bins = unitBins[firstUnit[k]];
+                    for (size_t u = firstUnit[k] + 1; u < firstUnit[k + 1]; ++u) bins.merge(unitBins[u], bins_);
+                    split = findSplit(bins);
+                }
+                const float nodeArea = boxArea(nodes[w.slot].lo, nodes[w.slot].hi);
+                if (split.axis >= 0)
+                    d.mode = n <= maxLeaf_ && intersectCost_ * float(n) <= splitCost(split.cost, nodeArea) ? Mode::Leaf : Mode::Binned;
+                else
+                    d.mode = n <= maxLeaf_ ? Mode::Leaf : Mode::Halve;
+                if (d.mode == Mode::Binned) {
+                    d.axis = split.axis;
+                    d.bin = split.bin;
+                    for (int i = 0; i < bins_; ++i)
+                        if (bins.count[d.axis][i] != 0)
+                            (i < d.bin ? d.lb : d.rb).grow(bins.lo[d.axis][i], bins.hi[d.axis][i]);
+                    for (size_t u = firstUnit[k]; u < firstUnit[k + 1]; ++u) {
+                        uint32_t left = 0;
+                        for (int i = 0; i < d.bin; ++i) left += unitBins[u].count[d.axis][i];
+                        units[u].leftCount = left;
+                        d.leftCount += left;
+                    }
+                } else if (d.mode == Mode::Halve) {
+                    // All centroids equal: halve the range so that leaves stay within maxLeafSize
+                    // and the depth stays logarithmic.
+                    d.leftCount = n / 2;
+                    const uint32_t mid = w.begin + d.leftCount;
+                    for (uint32_t i = w.begin; i < mid; ++i) d.lb.grow(src[i]);
+                    for (uint32_t i = mid; i < w.end; ++i) d.rb.grow(src[i]);
+                    for (size_t u = firstUnit[k]; u < firstUnit[k + 1]; ++u)
+                        units[u].leftCount = std::clamp(mid, units[u].begin, units[u].end) - units[u].begin;
+                } else {
+                    // A leaf this high up (maxLeafSize above kTaskPrims): its primitives must end
+                    // up in refs_, which leaves index.
+                    if (parity) std::memcpy(&refs_[w.begin], &src[w.begin], sizeof(PrimRef) * n);
+                    nodes[w.slot].leftOrFirst = w.begin;
+                    nodes[w.slot].count = n;
+                    maxDepth = std::max(maxDepth, w.depth);
+                }
+                // Destinations: a unit's left primitives follow the left ones of the units before
+                // it, its right ones the right ones before it (a stable partition).
+                uint32_t leftDst = w.begin, rightDst = w.begin + d.leftCount;
+                for (size_t u = firstUnit[k]; u < firstUnit[k + 1]; ++u) {
+                    units[u].leftDst = leftDst;
+                    units[u].rightDst = rightDst;
+                    leftDst += units[u].leftCount;
+                    rightDst += units[u].end - units[u].begin - units[u].leftCount;
+                }
+            }
+
+            // Scatter, collecting each side's centroid bounds.
+            parallelFor(threads_, units.size(), [&](size_t u) {
+                Unit& un = units[u];
+                const Decision& d = decisions[un.item];
+                if (d.mode == Mode::Leaf) return;
+                const int shift = 8 * d.axis;
+                const uint32_t mid = frontier[un.item].begin + d.leftCount;
+                uint32_t l = un.leftDst, r = un.rightDst;
+                const V4 inf = splat(kInf), negInf = splat(-kInf);
+                Box4 cl, cr;
+                for (uint32_t i = un.begin; i < un.end; ++i) {
+                    const PrimRef& p = src[i];
+                    const bool left = d.mode == Mode::Binned ? int((p.binKeys >> shift) & 0xffu) < d.bin : i < mid;
+                    dst[left ? l : r] = p;
+                    // Branch-free: the side is unpredictable.
+                    const V4 c = centroidOf(loadLo(p), loadHi(p));
+                    cl.lo = vmin(cl.lo, select(left, c, inf));
+                    cl.hi = vmax(cl.hi, select(left, c, negInf));
+                    cr.lo = vmin(cr.lo, select(left, inf, c));
+                    cr.hi = vmax(cr.hi, select(left, negInf, c));
+                    l += uint32_t(left);
+                    r += uint32_t(!left);
+                }
+                un.centroids[0] = cl;
+                un.centroids[1] = cr;
+            });
+
+            // Children: nodes, and the next level's items or tasks.
+            std::vector<WorkItem> next;
+            for (size_t k = 0; k < items; ++k) {
+                const Decision& d = decisions[k];
+                if (d.mode == Mode::Leaf) continue;
+                const WorkItem& w = frontier[k];
+                Box4 cl, cr;
+                for (size_t u = firstUnit[k]; u < firstUnit[k + 1]; ++u) {
+                    cl.grow(units[u].centroids[0]);
+                    cr.grow(units[u].centroids[1]);
+                }
+                const uint32_t left = uint32_t(nodes.size());
+                nodes.push_back(BvhNode{ d.lb.lo3(), 0, d.lb.hi3(), 0 });
+                nodes.push_back(BvhNode{ d.rb.lo3(), 0, d.rb.hi3(), 0 });
+                nodes[w.slot].leftOrFirst = left;
+                nodes[w.slot].count = 0;
+                const uint32_t mid = w.begin + d.leftCount;
+                for (const WorkItem& c : { WorkItem{ left, w.begin, mid, w.depth + 1, cl }, WorkItem{ left + 1, mid, w.end, w.depth + 1, cr } }) {
+                    if (c.end - c.begin <= kTaskPrims) tasks.push_back({ c, parity == 0 });
+                    else next.push_back(c);
+                }
+            }
+            frontier = std::move(next);
+        }
+    }
+
+private:
+    // Summed per fixed chunk, then the chunks in order: the same value for every thread count.
+    double sahCost(const BvhNodeArray& nodes, uint32_t primCount) const
     {
         const auto area = [](const BvhNode& nd) {
             const glm::dvec3 d = glm::dvec3(nd.hi) - glm::dvec3(nd.lo);
             return 2.0 * (d.x * d.y + d.y * d.z + d.z * d.x);
         };
+        const size_t chunks = chunkCount(nodes.size());
+        std::vector<double> partial(chunks, 0.0);
+        std::vector<size_t> interiors(chunks, 0);
+        parallelFor(threads_, chunks, [&](size_t c) {
+            const auto [b, e] = chunkRange(0, uint32_t(nodes.size()), chunks, c);
+            for (uint32_t i = b; i < e; ++i) {
+                const BvhNode& nd = nodes[i];
+                if (nd.count == 0) {
+                    partial[c] += double(traversalCost_) * area(nd);
+                    ++interiors[c];
+                } else {
+                    partial[c] += double(intersectCost_) * nd.count * area(nd);
+                }
+            }
+        });
         double sum = 0.0;
         size_t interior = 0;
-        for (const BvhNode& nd : nodes) {
-            if (nd.count == 0) {
-                sum += double(traversalCost_) * area(nd);
-                ++interior;
-            } else {
-                sum += double(intersectCost_) * nd.count * area(nd);
-            }
+        for (size_t c = 0; c < chunks; ++c) {
+            sum += partial[c];
+            interior += interiors[c];
         }
         const double rootArea = area(nodes[0]);
         if (rootArea > 0.0) return sum / rootArea;
@@ -474,26 +536,6 @@ private:
     float splitCost(float cost, float nodeArea) const
     {
         return traversalCost_ + intersectCost_ * (nodeArea > 0.0f ? cost / nodeArea : 0.0f);
-    }
-
-    // Bins [begin, end) on all three axes and caches every primitive's bins in binKeys.
-    // An axis with zero centroid extent has scale 0: everything lands in bin 0 and the axis never
-    // offers a split. The clamp is written so that a NaN (0 * inf for a denormal extent) gives 0.
-    void binRange(uint32_t begin, uint32_t end, V4 origin, V4 scale, Bins& bins)
-    {
-        bins.reset(bins_);
-        const V4 zero = splat(0.0f), last = splat(float(bins_ - 1));
-        for (uint32_t i = begin; i < end; ++i) {
-            PrimRef& r = refs_[i];
-            const V4 lo = loadLo(r), hi = loadHi(r);
-            const V4 t = vmin(vmax(vmul(vsub(centroidOf(lo, hi), origin), scale), zero), last);
-            int32_t k[4];
-            truncToInt(t, k);
-            bins.add(0, k[0], lo, hi);
-            bins.add(1, k[1], lo, hi);
-            bins.add(2, k[2], lo, hi);
-            r.binKeys = uint32_t(k[0]) | uint32_t(k[1]) << 8 | uint32_t(k[2]) << 16;
-        }
     }
 
     Split findSplit(const Bins& bins) const
@@ -540,36 +582,28 @@ private:
 
     // Branch-free Lomuto partition on the cached bin key (which side an element goes to is
     // unpredictable, so a branchy partition pays a mispredict for about every other element).
-    uint32_t partition(uint32_t begin, uint32_t end, int axis, int splitBin)
+    // The children's centroid bounds are collected on the way (saving them a pass of their own).
+    uint32_t partition(uint32_t begin, uint32_t end, int axis, int splitBin, Box4& leftCentroids, Box4& rightCentroids)
     {
         const int shift = 8 * axis;
+        const V4 inf = splat(kInf), negInf = splat(-kInf);
+        Box4 cl, cr;
         uint32_t l = begin;
         for (uint32_t i = begin; i < end; ++i) {
             const PrimRef t = refs_[i];
             refs_[i] = refs_[l];
             refs_[l] = t;
-            l += uint32_t(int((t.binKeys >> shift) & 0xffu) < splitBin);
+            const bool left = int((t.binKeys >> shift) & 0xffu) < splitBin;
+            const V4 c = centroidOf(loadLo(t), loadHi(t));
+            cl.lo = vmin(cl.lo, select(left, c, inf));
+            cl.hi = vmax(cl.hi, select(left, c, negInf));
+            cr.lo = vmin(cr.lo, select(left, inf, c));
+            cr.hi = vmax(cr.hi, select(left, negInf, c));
+            l += uint32_t(left);
         }
+        leftCentroids = cl;
+        rightCentroids = cr;
         return l;
-    }
-
-    // Centroid bounds of a range: exact min/max, so chunking for big ranges does not matter.
-    Box4 centroidBounds(uint32_t begin, uint32_t end)
-    {
-        const auto pass = [&](uint32_t b, uint32_t e) {
-            Box4 cb;
-            for (uint32_t i = b; i < e; ++i) cb.grow(centroidOf(loadLo(refs_[i]), loadHi(refs_[i])));
-            return cb;
-        };
-        const size_t chunks = std::min<size_t>(size_t(threads_), 8);
-        if (end - begin < kParallelBinPrims || chunks < 2) return pass(begin, end);
-        std::vector<Box4> partial(chunks);
-        parallelFor(threads_, chunks, [&](size_t c) {
-            const auto [b, e] = chunkRange(begin, end, chunks, c);
-            partial[c] = pass(b, e);
-        });
-        for (size_t c = 1; c < chunks; ++c) partial[0].grow(partial[c]);
-        return partial[0];
     }
 
     // Exact SAH for small nodes: every object partition along each axis, in centroid order (ties
@@ -650,38 +684,18 @@ private:
         return true;
     }
 
-    // Binned SAH for bigger nodes (binning in parallel for the biggest). Returns false for a leaf.
-    bool binnedSplit(const WorkItem& item, float nodeArea, Box4& lb, Box4& rb, uint32_t& mid)
+    // Binned SAH for the task phase's bigger nodes. Returns false for a leaf.
+    bool binnedSplit(const WorkItem& item, float nodeArea, Box4& lb, Box4& rb, Box4& lc, Box4& rc, uint32_t& mid)
     {
         const uint32_t n = item.end - item.begin;
-        const Box4 cb = centroidBounds(item.begin, item.end);
-        float lo[4], hi[4];
-        store(lo, cb.lo);
-        store(hi, cb.hi);
-        float sc[3];
-        for (int a = 0; a < 3; ++a) {
-            const float extent = hi[a] - lo[a];
-            sc[a] = extent > 0.0f ? float(bins_) / extent : 0.0f;
-        }
-        if (sc[0] > 0.0f || sc[1] > 0.0f || sc[2] > 0.0f) {
-            const V4 origin = set3(lo[0], lo[1], lo[2]), scale = set3(sc[0], sc[1], sc[2]);
+        V4 origin, scale;
+        if (binTransform(item.centroids, bins_, origin, scale)) {
             Bins bins;
-            const size_t chunks = std::min<size_t>(size_t(threads_), 8);
-            if (n >= kParallelBinPrims && chunks > 1) {
-                std::vector<Bins> partial(chunks);
-                parallelFor(threads_, chunks, [&](size_t c) {
-                    const auto [b, e] = chunkRange(item.begin, item.end, chunks, c);
-                    binRange(b, e, origin, scale, partial[c]);
-                });
-                bins = partial[0];
-                for (size_t c = 1; c < chunks; ++c) bins.merge(partial[c], bins_);
-            } else {
-                binRange(item.begin, item.end, origin, scale, bins);
-            }
+            binRange(refs_.get(), item.begin, item.end, origin, scale, bins_, bins);
             const Split split = findSplit(bins);
             if (split.axis >= 0) {
                 if (n <= maxLeaf_ && intersectCost_ * float(n) <= splitCost(split.cost, nodeArea)) return false;
-                mid = partition(item.begin, item.end, split.axis, split.bin);
+                mid = partition(item.begin, item.end, split.axis, split.bin, lc, rc);
                 // The children's boxes are the unions of their bins: every primitive's whole box
                 // went into the bin its cached key names, so these are exact and tight.
                 for (int i = 0; i < bins_; ++i)
@@ -696,6 +710,7 @@ private:
         mid = item.begin + n / 2;
         for (uint32_t i = item.begin; i < mid; ++i) lb.grow(refs_[i]);
         for (uint32_t i = mid; i < item.end; ++i) rb.grow(refs_[i]);
+        lc = rc = item.centroids;
         return true;
     }
 
@@ -704,13 +719,13 @@ private:
     void processNode(std::vector<BvhNode>& nodes, const WorkItem& item, std::vector<WorkItem>& stack, int& maxDepth)
     {
         const uint32_t n = item.end - item.begin;
-        Box4 lb, rb;
+        Box4 lb, rb, lc, rc; // children's boxes and centroid bounds (the sweep's children need none)
         uint32_t mid = item.begin;
         bool split = false;
         if (n > 1) {
             const float nodeArea = boxArea(nodes[item.slot].lo, nodes[item.slot].hi);
             split = n <= uint32_t(kSweepPrims) ? sweepSplit(item, nodeArea, lb, rb, mid)
-                                               : binnedSplit(item, nodeArea, lb, rb, mid);
+                                               : binnedSplit(item, nodeArea, lb, rb, lc, rc, mid);
         }
         if (!split) {
             nodes[item.slot].leftOrFirst = item.begin;
@@ -723,12 +738,13 @@ private:
         nodes.push_back(BvhNode{ rb.lo3(), 0, rb.hi3(), 0 });
         nodes[item.slot].leftOrFirst = left;
         nodes[item.slot].count = 0;
-        stack.push_back(WorkItem{ left + 1, mid, item.end, item.depth + 1 });
-        stack.push_back(WorkItem{ left, item.begin, mid, item.depth + 1 });
+        stack.push_back(WorkItem{ left + 1, mid, item.end, item.depth + 1, rc });
+        stack.push_back(WorkItem{ left, item.begin, mid, item.depth + 1, lc });
     }
 
     std::span<const Aabb> input_;
-    std::vector<PrimRef> refs_;
+    std::unique_ptr<PrimRef[]> refs_; // the primitives, permuted; leaves index ranges of it
+    std::unique_ptr<PrimRef[]> alt_;  // the top phase's second buffer (it scatters between the two)
     int bins_ = 16;
     uint32_t maxLeaf_ = 4;
     float traversalCost_ = 1.0f;

@@ -1,5 +1,7 @@
 // pt: a path tracer on Vulkan compute. Subcommands: render, view, devices.
+#include "app/bench_command.h"
 #include "app/options.h"
+#include "app/merge_command.h"
 #include "app/render_command.h"
 #include "app/view_command.h"
 #include "gpu/vulkan_context.h"
@@ -9,6 +11,8 @@
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
+#include <sstream>
+#include <stdexcept>
 #include <string>
 
 namespace {
@@ -30,7 +34,7 @@ bool onOff(const std::string& v) { return v == "on"; }
 
 // Switches given as words on the command line, converted after parsing.
 struct SwitchWords {
-    std::string nee, mis, rr, sampling, integrator;
+    std::string nee, mis, rr, sampling, integrator, sampler;
     std::vector<float> envColour;
 };
 
@@ -54,6 +58,10 @@ void addSceneOptions(CLI::App* cmd, pt::RenderOptions& o, SwitchWords& w) {
            "BSDF direction sampling: bsdf (importance sampling of every lobe, cosine-weighted for Lambert; "
            "'cosine' is the same) or uniform (uniform hemisphere / sphere); default bsdf")
         ->check(CLI::IsMember({"bsdf", "cosine", "uniform"}));
+    cmd->add_option("--sampler", w.sampler,
+           "What fills each sample's random dimensions: independent (hashed random numbers) or sobol "
+           "(Owen-scrambled Sobol' points shuffled per pixel; lower error for the same samples); default independent")
+        ->check(CLI::IsMember({"independent", "sobol"}));
     cmd->add_option("--camera", o.camera, "Camera to render: glTF: its index (default 0); course XML: its id (default: every camera)");
     cmd->add_option("--device", o.device, "Use the first Vulkan device whose name contains this (see 'pt devices')");
     cmd->add_option("--exposure", o.exposure, "Exposure in stops for the PNG");
@@ -74,6 +82,7 @@ void applySwitchWords(const SwitchWords& w, pt::RenderOptions& o) {
     if (!w.nee.empty()) o.nee = onOff(w.nee);
     if (!w.mis.empty()) o.mis = onOff(w.mis);
     if (!w.rr.empty()) o.rr = onOff(w.rr);
+    if (!w.sampler.empty()) o.integrator.sampler = w.sampler == "sobol" ? pt::SamplerKind::Sobol : pt::SamplerKind::Independent;
     if (!w.sampling.empty()) o.sampling = w.sampling == "uniform" ? pt::DirectionSampling::Uniform : pt::DirectionSampling::Cosine;
 }
 
@@ -96,6 +105,13 @@ int main(int argc, char** argv) {
     render->add_option("--tile", o.tileSize, "Split each pass into tiles of this many pixels square (same image)");
     render->add_option("--pass-spp", o.passSpp, "Samples per pass (default: passes of about half a second; same image)");
     render->add_flag("-q,--quiet", o.quiet, "Only print the summary line and errors");
+    auto* samplesOpt = render->add_option("--samples", o.samples,
+        "Render sample indices A (inclusive) to B (exclusive) of the global sequence, for pt merge");
+    samplesOpt->excludes(sppOpt)->excludes(timeOpt);
+    render->add_option("--checkpoint", o.checkpoint, "Save the accumulation state to this EXR periodically and on SIGINT/SIGTERM");
+    render->add_option("--checkpoint-every", o.checkpointEvery, "Seconds of rendering between checkpoints (default 60)")
+        ->check(CLI::Range(0.0, 1e9));
+    render->add_option("--resume", o.resume, "Continue from a checkpoint (or a --samples part) of the same render");
 
     pt::ViewOptions v;
     v.render.tileSize = 64;
@@ -110,7 +126,28 @@ int main(int argc, char** argv) {
     view->add_option("-o,--output-dir", v.outputDir, "Folder for saved images and screenshots (default out)");
     view->add_option("--script", v.script, "Run timed inputs from FILE (tests, benchmarks; format in README)");
 
+    pt::BenchOptions bench;
+    SwitchWords benchWords;
+    std::string budgetList;
+    CLI::App* benchCmd = app.add_subcommand("bench",
+        "Speed against error: render a scene under several integrator configurations to equal time budgets; "
+        "writes a CSV, the images, a log-log plot and contact sheets");
+    addSceneOptions(benchCmd, bench.render, benchWords);
+    benchCmd->add_option("--reference", bench.reference, "Reference EXR (default: render one, see --reference-spp)");
+    benchCmd->add_option("--reference-spp", bench.referenceSpp, "Samples of the reference made without --reference (default 4096)")
+        ->check(CLI::Range(1u, 1u << 24));
+    benchCmd->add_option("--budgets", budgetList, "Comma-separated time budgets in seconds (default 2,5,10,30,60)");
+    benchCmd->add_option("--configs", bench.configs,
+        "Comma-separated configurations, each words joined by '+': nee, is, rr, nomis, sobol, or none "
+        "(default: the eight nee/is/rr combinations, nee+is+rr+nomis, nee+is+rr+sobol)");
+    benchCmd->add_option("-o,--output-dir", bench.outputDir, "Output folder (default out/bench)");
+    benchCmd->add_flag("!--no-plot", bench.plot, "Skip the plot and contact sheets (no python3 needed)");
+
     CLI::App* devices = app.add_subcommand("devices", "List Vulkan devices");
+
+    pt::MergeOptions mergeOptions;
+    CLI::App* merge = app.add_subcommand("merge", "Merge partial renders (pt render --samples A:B) into one image");
+    pt::addMergeOptions(merge, mergeOptions);
 
     try {
         app.parse(argc, argv);
@@ -126,7 +163,28 @@ int main(int argc, char** argv) {
     }
     try {
         if (*devices) return listDevices();
+        if (*merge) return pt::runMerge(mergeOptions);
         if (*view) return pt::runView(v);
+        if (*benchCmd) {
+            applySwitchWords(benchWords, bench.render);
+            if (!budgetList.empty()) {
+                bench.budgets.clear();
+                std::istringstream items(budgetList);
+                for (std::string item; std::getline(items, item, ',');) {
+                    size_t used = 0;
+                    double value = 0;
+                    try {
+                        value = std::stod(item, &used);
+                    } catch (const std::exception&) {
+                        used = 0;
+                    }
+                    if (used == 0 || used != item.size())
+                        throw std::runtime_error("--budgets: '" + item + "' is not a number of seconds");
+                    bench.budgets.push_back(value);
+                }
+            }
+            return pt::runBench(bench);
+        }
         return pt::runRender(o);
     } catch (const std::exception& e) {
         std::fprintf(stderr, "pt: error: %s\n", e.what());

@@ -6,6 +6,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace pt {
 
@@ -35,6 +36,11 @@ struct RenderOptions {
     float environmentScale = 1.0f;
     float environmentRotation = 0.0f;          // degrees about +y
     IntegratorSettings integrator; // seed and rrStartDepth; the rest comes from the fields above
+    // Long and distributed renders (app/render_session.h).
+    std::string samples;          // --samples A:B: sample indices [A, B) of the global sequence
+    std::string checkpoint;       // --checkpoint FILE: save the state there periodically and on SIGINT/SIGTERM
+    double checkpointEvery = 60;  // seconds of rendering between checkpoints
+    std::string resume;           // --resume FILE: continue from a checkpoint or part
 };
 
 // `pt view`: the scene, size, switches, camera, device and environment options of `pt render`
@@ -44,6 +50,17 @@ struct ViewOptions {
     std::string script;           // --script FILE: timed inputs (tests, benchmarks)
     double frameBudgetMs = 20.0;  // rendering work per frame
     std::string outputDir = "out"; // where F5 and F6 save
+};
+
+// `pt bench`: the scene options of `pt render` (its switches are replaced by the configurations).
+struct BenchOptions {
+    RenderOptions render;
+    std::string reference;                         // REF.exr; empty: render one (referenceSpp)
+    uint32_t referenceSpp = 4096;                  // samples of a reference made here
+    std::vector<double> budgets{2, 5, 10, 30, 60}; // seconds
+    std::string configs;                           // comma-separated; empty: the default list
+    std::string outputDir = "out/bench";
+    bool plot = true; // run tools/bench_plot.py (python3 + matplotlib) on the CSV
 };
 
 } // namespace pt

@@ -1,5 +1,6 @@
 #include "app/render_command.h"
 
+#include "app/render_session.h"
 #include "app/scene_setup.h"
 
 #include "gpu/vulkan_context.h"
@@ -9,6 +10,7 @@
 #include "render/metrics.h"
 #include "render/progressive_render.h"
 #include "render/renderer.h"
+#include "render/state_file.h"
 #include "render/tonemap.h"
 #include "scene/scene_loader.h"
 
@@ -43,15 +45,7 @@ int renderJob(VulkanContext& context, const Scene& scene, const FlatScene& flat,
             job.height, features.describe().c_str(), renderer.pipelineSeconds());
         std::fprintf(stderr, "pt: %s\n", job.settings.describe().c_str());
     }
-    const ProgressiveResult progress =
-        renderProgressively(renderer, job.target, reference ? &*reference : nullptr, errorLog, !o.quiet);
-
-    const Renderer::Readback result = renderer.read();
-    const uint32_t spp = renderer.samplesPerPixel();
-    const double mpaths = double(job.width) * job.height * spp / std::max(progress.seconds, 1e-9) * 1e-6;
     ImageMetadata meta;
-    meta["spp"] = std::to_string(spp);
-    meta["seconds"] = formatDouble(progress.seconds);
     meta["seed"] = std::to_string(job.settings.seed);
     meta["device"] = context.info().name;
     meta["driver"] = context.info().driver;
@@ -59,12 +53,26 @@ int renderJob(VulkanContext& context, const Scene& scene, const FlatScene& flat,
     meta["features"] = features.describe();
     meta["scene"] = scene.source;
     meta["camera"] = job.camera.name;
+    // --samples, --resume, --checkpoint, signals, device faults: app/render_session.h.
+    RenderSession session(o, scene, job, renderer, meta);
+    const ProgressiveResult progress = session.run([&](const ProgressiveTarget& target) {
+        return renderProgressively(renderer, target, reference ? &*reference : nullptr, errorLog, !o.quiet);
+    });
+    session.finish(progress.seconds);
+
+    const Renderer::Readback result = renderer.read();
+    const uint32_t spp = renderer.samplesPerPixel();
+    const uint32_t sppThisRun = spp - std::min(spp, session.resumedSpp());
+    const double mpaths = double(job.width) * job.height * sppThisRun / std::max(progress.seconds, 1e-9) * 1e-6;
+    meta["spp"] = std::to_string(spp);
+    session.addMetadata(meta, progress.seconds);
     meta["dropped_samples"] = std::to_string(result.droppedSamples);
     meta["mpaths_per_second"] = formatDouble(mpaths);
     const double estimate = estimatedRelMse(result.mean, result.varianceOfMean);
     meta["estimated_relmse"] = formatDouble(estimate);
     prepareOutputDirectory(job.output);
-    writeExr(job.output, result.mean, meta);
+    if (session.outputIsState()) writeStateExr(job.output, renderer.readState(), result.mean, meta);
+    else writeExr(job.output, result.mean, meta);
     fs::path png = job.output;
     png.replace_extension(".png");
     writeTonemappedPng(png, result.mean, job.tonemap, o.exposure);
@@ -76,7 +84,10 @@ int renderJob(VulkanContext& context, const Scene& scene, const FlatScene& flat,
                           formatDouble(estimate);
     if (reference) summary += ", relMSE " + formatDouble(relMse(result.mean, *reference));
     std::fprintf(stderr, "%s\n", summary.c_str());
-    return 0;
+    if (session.interrupted())
+        std::fprintf(stderr, "pt: interrupted by signal %d after %u spp; continue with --resume %s\n", session.interrupted(),
+            spp, (o.checkpoint.empty() ? (o.resume.empty() ? job.output.string() : o.resume) : o.checkpoint).c_str());
+    return session.exitStatus();
 }
 
 } // namespace
@@ -99,6 +110,9 @@ int runRender(const RenderOptions& o) {
                                      std::to_string(reference->height) + " but the render is " +
                                      std::to_string(jobs[0].width) + "x" + std::to_string(jobs[0].height));
     }
+    if (jobs.size() != 1 && (!o.samples.empty() || !o.checkpoint.empty() || !o.resume.empty()))
+        throw std::runtime_error((o.scene.empty() ? std::string("built-in scene") : o.scene) +
+                                 ": --samples, --checkpoint and --resume need a single image (use --camera)");
     for (const Job& job : jobs) prepareOutputDirectory(job.output);
     std::ofstream errorLog;
     if (!o.errorLog.empty()) {
@@ -123,7 +137,9 @@ int runRender(const RenderOptions& o) {
             flat.sahCost, flat.bvhDepth, loadSeconds);
         std::fprintf(stderr, "pt: device %s (%s)\n", context.info().name.c_str(), context.info().driver.c_str());
     }
-    for (const Job& job : jobs) renderJob(context, scene, flat, job, o, reference, errorLog.is_open() ? &errorLog : nullptr);
+    for (const Job& job : jobs)
+        if (const int status = renderJob(context, scene, flat, job, o, reference, errorLog.is_open() ? &errorLog : nullptr))
+            return status; // interrupted: the checkpoint and partial image are saved
 
     if (o.validation && context.validationMessageCount() > 0) {
         std::fprintf(stderr, "pt: error: Vulkan validation reported %u message(s); first: %s\n",

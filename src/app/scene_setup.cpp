@@ -119,7 +119,13 @@ Job makeJob(const Scene& scene, const Camera& camera, const RenderOptions& o, bo
     else if (!o.width && scene.hints.height) job.height = *scene.hints.height;
     else if (camera.aspectRatio > 0) job.height = std::max(1, static_cast<int>(std::lround(job.width / camera.aspectRatio)));
     else job.height = job.width;
-    validateImageSize(job.width, job.height);
+    // A size that came from the scene file (its camera, extras or aspect ratio) is the file's problem.
+    try {
+        validateImageSize(job.width, job.height);
+    } catch (const std::exception& e) {
+        if (o.width && o.height) throw;
+        throw std::runtime_error(scene.source + ": " + e.what());
+    }
 
     IntegratorSettings& s = job.settings;
     s = o.integrator;

@@ -1,5 +1,6 @@
 #include "gpu/gpu_buffer.h"
 
+#include "gpu/fault_injection.h"
 #include "gpu/vulkan_error.h"
 
 #include <algorithm>
@@ -55,7 +56,8 @@ RawBuffer createRawBuffer(VulkanContext& ctx, VkDeviceSize size, VkBufferUsageFl
     alloc.pNext = &flags;
     alloc.allocationSize = req.size;
     alloc.memoryTypeIndex = static_cast<uint32_t>(type);
-    VkResult result = vkAllocateMemory(ctx.device(), &alloc, nullptr, &raw.memory);
+    VkResult result = injectedAllocationFault(); // PT_FAULT test hook
+    if (result == VK_SUCCESS) result = vkAllocateMemory(ctx.device(), &alloc, nullptr, &raw.memory);
     if (result != VK_SUCCESS) {
         vkDestroyBuffer(ctx.device(), raw.buffer, nullptr);
         throw VulkanError(result, what);

@@ -1,5 +1,6 @@
 #include "gpu/vulkan_context.h"
 
+#include "gpu/fault_injection.h"
 #include "gpu/vulkan_error.h"
 
 #include <algorithm>
@@ -303,6 +304,7 @@ void VulkanContext::submitAndWait(const std::function<void(VkCommandBuffer)>& re
     submit.commandBufferCount = 1;
     submit.pCommandBuffers = &cmd;
     vkCheck(vkResetFences(device_, 1, &fence_), "resetting a fence");
+    vkCheck(injectedSubmitFault(), "submitting work to the GPU"); // PT_FAULT test hook
     vkCheck(vkQueueSubmit(queue_, 1, &submit, fence_), "submitting work to the GPU");
     vkCheck(vkWaitForFences(device_, 1, &fence_, VK_TRUE, UINT64_MAX), "waiting for the GPU");
 }

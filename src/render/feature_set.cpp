@@ -10,7 +10,8 @@ std::string IntegratorSettings::describe() const {
     std::ostringstream s;
     if (classic) s << "integrator=classic ";
     s << "nee=" << (nee ? "on" : "off") << " mis=" << (mis ? "on" : "off") << " rr=" << (rr ? "on" : "off")
-      << " sampling=" << (sampling == DirectionSampling::Cosine ? "cosine" : "uniform") << " max-depth=" << maxDepth
+      << " sampling=" << (sampling == DirectionSampling::Cosine ? "cosine" : "uniform")
+      << " sampler=" << (sampler == SamplerKind::Sobol ? "sobol" : "independent") << " max-depth=" << maxDepth
       << " rr-start=" << rrStartDepth << " seed=" << seed;
     return s.str();
 }
@@ -22,6 +23,7 @@ FeatureSet FeatureSet::all(const IntegratorSettings& settings) {
     f.rr = settings.rr;
     f.cosineSampling = settings.sampling == DirectionSampling::Cosine;
     f.classic = settings.classic;
+    f.sampler = settings.sampler == SamplerKind::Sobol ? SAMPLER_SOBOL : SAMPLER_INDEPENDENT;
     return f;
 }
 
@@ -72,6 +74,7 @@ FeatureSet computeFeatures(const FlatScene& scene, const IntegratorSettings& set
     // apply to mirrors and glass too), never continues diffuse paths, so no MIS or roulette.
     f.motion = !scene.motions.empty();
     f.classic = settings.classic;
+    f.sampler = settings.sampler == SamplerKind::Sobol ? SAMPLER_SOBOL : SAMPLER_INDEPENDENT;
     if (f.classic) {
         f.nee = !scene.lights.lights.empty();
         f.mis = f.rr = false;
@@ -109,6 +112,9 @@ std::vector<SpecializationConstant> FeatureSet::constants(uint32_t localSizeX, u
         {SPEC_DEBUG_VIEW, debugView},
         {SPEC_CLASSIC, classic},
         {SPEC_HAS_MOTION, motion},
+        {SPEC_COUNT_RAYS, countRays},
+        {SPEC_SAMPLER, sampler},
+        {SPEC_FORCED_RANDOM, forcedRandom},
     };
 }
 
@@ -144,6 +150,9 @@ std::string FeatureSet::describe() const {
     add(mis, "mis");
     add(rr, "rr");
     s += cosineSampling ? " cosine-sampling" : " uniform-sampling";
+    if (sampler == SAMPLER_SOBOL) s += " sobol";
+    if (countRays) s += " ray-counts";
+    if (forcedRandom != FORCED_RANDOM_OFF) s += forcedRandom == FORCED_RANDOM_ZERO ? " forced-random-0" : " forced-random-1";
     return s;
 }
 

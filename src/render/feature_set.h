@@ -37,6 +37,9 @@ struct FeatureSet {
     uint32_t debugView = 0; // DEBUG_VIEW_*
     bool classic = false;   // the course's classic ray tracer
     bool motion = true;     // moving objects (motion blur)
+    bool countRays = false; // per-pixel ray counts for pt bench (Renderer::enableRayCounts)
+    uint32_t sampler = 0;   // SAMPLER_*
+    uint32_t forcedRandom = 0; // FORCED_RANDOM_*: tests only (random numbers pinned to 0 or 1 - 2^-24)
 
     // Every feature on: the unspecialised kernel, for comparison and for tests.
     static FeatureSet all(const IntegratorSettings& settings);

@@ -155,6 +155,18 @@ std::vector<char> readWholeFile(const std::filesystem::path& path) {
 // this project produces but still allocatable (2 GiB of float RGBA).
 constexpr int64_t kMaxPixels = int64_t(1) << 27;
 
+// Every string attribute, with the "pt:" prefix writeExr adds stripped.
+void readMetadata(const Imf::Header& header, ImageMetadata& metadata) {
+    metadata.clear();
+    for (auto it = header.begin(); it != header.end(); ++it) {
+        const auto* s = dynamic_cast<const Imf::StringAttribute*>(&it.attribute());
+        if (!s) continue;
+        std::string key = it.name();
+        if (key.rfind("pt:", 0) == 0) key.erase(0, 3);
+        metadata[key] = s->value();
+    }
+}
+
 Image readExrImpl(const std::filesystem::path& path, ImageMetadata* metadata) {
     const std::vector<char> bytes = readWholeFile(path);
     if (bytes.size() < 4 || !Imf::isImfMagic(bytes.data()))
@@ -216,27 +228,57 @@ Image readExrImpl(const std::filesystem::path& path, ImageMetadata* metadata) {
             image.rgba[i + 1] = image.rgba[i + 2] = image.rgba[i];
     }
 
-    if (metadata) {
-        metadata->clear();
-        for (auto it = header.begin(); it != header.end(); ++it) {
-            const auto* s = dynamic_cast<const Imf::StringAttribute*>(&it.attribute());
-            if (!s) continue;
-            std::string key = it.name();
-            if (key.rfind("pt:", 0) == 0) key.erase(0, 3);
-            (*metadata)[key] = s->value();
-        }
-    }
+    if (metadata) readMetadata(header, *metadata);
     return image;
 }
 
+ExrChannels readExrChannelsImpl(const std::filesystem::path& path, const std::vector<std::string>& names,
+                                ImageMetadata* metadata) {
+    const std::vector<char> bytes = readWholeFile(path);
+    if (bytes.size() < 4 || !Imf::isImfMagic(bytes.data())) fail(path, "not an OpenEXR file");
+    ExrMemStream stream(path.string(), bytes);
+    Imf::InputFile in(stream);
+    const Imf::Header& header = in.header();
+    const Imath::Box2i dw = header.dataWindow();
+    const int64_t w = int64_t(dw.max.x) - dw.min.x + 1;
+    const int64_t h = int64_t(dw.max.y) - dw.min.y + 1;
+    if (w <= 0 || h <= 0 || w * h > kMaxPixels)
+        fail(path, "implausible data window " + std::to_string(w) + "x" + std::to_string(h) + " (corrupt header?)");
+    if (!in.isComplete()) fail(path, "truncated or incomplete OpenEXR file");
+    ExrChannels result;
+    result.width = static_cast<int>(w);
+    result.height = static_cast<int>(h);
+    Imf::FrameBuffer fb;
+    for (const std::string& name : names) {
+        const Imf::Channel* c = header.channels().findChannel(name);
+        if (!c) fail(path, "no channel '" + name + "' (not written by pt render --samples or --checkpoint?)");
+        if (c->type != Imf::FLOAT || c->xSampling != 1 || c->ySampling != 1)
+            fail(path, "channel '" + name + "' is not full-resolution float32");
+        result.channels.push_back({name, std::vector<float>(static_cast<std::size_t>(w * h))});
+    }
+    for (ExrChannel& c : result.channels)
+        fb.insert(c.name, Imf::Slice::Make(Imf::FLOAT, c.values.data(), dw, sizeof(float),
+                                           sizeof(float) * static_cast<std::size_t>(w)));
+    in.setFrameBuffer(fb);
+    in.readPixels(dw.min.y, dw.max.y);
+    if (metadata) readMetadata(header, *metadata);
+    return result;
+}
+
 void writeExrImpl(const std::filesystem::path& path, const Image& image,
-                  const ImageMetadata& metadata) {
+                  const ImageMetadata& metadata, const std::vector<ExrChannel>& extra) {
     checkImage(path, image);
+    const std::size_t pixels = static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height);
+    for (const ExrChannel& c : extra)
+        if (c.values.size() != pixels || c.name.empty())
+            fail(path, "extra channel '" + c.name + "' holds " + std::to_string(c.values.size()) +
+                           " values, expected " + std::to_string(pixels));
 
     Imf::Header header(image.width, image.height);
     header.compression() = Imf::ZIP_COMPRESSION;
     for (const char* name : {"R", "G", "B", "A"})
         header.channels().insert(name, Imf::Channel(Imf::FLOAT));
+    for (const ExrChannel& c : extra) header.channels().insert(c.name, Imf::Channel(Imf::FLOAT));
     for (const auto& [key, value] : metadata) {
         if (key.empty()) fail(path, "empty metadata key");
         // Namespacing our keys keeps them from colliding with standard
@@ -262,6 +304,9 @@ void writeExrImpl(const std::filesystem::path& path, const Image& image,
         const char* names[] = {"R", "G", "B", "A"};
         for (int c = 0; c < 4; ++c)
             fb.insert(names[c], Imf::Slice(Imf::FLOAT, base + c * sizeof(float), xStride, yStride));
+        for (const ExrChannel& c : extra)
+            fb.insert(c.name, Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(const_cast<float*>(c.values.data())),
+                                         sizeof(float), sizeof(float) * static_cast<std::size_t>(image.width)));
         out.setFrameBuffer(fb);
         out.writePixels(image.height);
     }  // ~OutputFile writes the offset table here.
@@ -271,6 +316,21 @@ void writeExrImpl(const std::filesystem::path& path, const Image& image,
 
 
 }  // namespace
+
+ExrChannels readExrChannels(const std::filesystem::path& path, const std::vector<std::string>& names,
+                            ImageMetadata* metadata) {
+    try {
+        return readExrChannelsImpl(path, names, metadata);
+    } catch (const IoError&) {
+        throw;
+    } catch (const std::bad_alloc&) {
+        fail(path, "out of memory while reading (corrupt header?)");
+    } catch (const std::exception& e) {
+        fail(path, std::string("corrupt or truncated OpenEXR file (") + e.what() + ")");
+    } catch (...) {
+        fail(path, "corrupt or truncated OpenEXR file (unknown error)");
+    }
+}
 
 Image readExr(const std::filesystem::path& path, ImageMetadata* metadata) {
     try {
@@ -292,8 +352,13 @@ Image readExr(const std::filesystem::path& path, ImageMetadata* metadata) {
 
 void writeExr(const std::filesystem::path& path, const Image& image,
               const ImageMetadata& metadata) {
+    writeExr(path, image, metadata, {});
+}
+
+void writeExr(const std::filesystem::path& path, const Image& image,
+              const ImageMetadata& metadata, const std::vector<ExrChannel>& extra) {
     try {
-        writeExrImpl(path, image, metadata);
+        writeExrImpl(path, image, metadata, extra);
     } catch (const IoError&) {
         throw;
     } catch (const FileWriteError&) {

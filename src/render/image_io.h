@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <map>
 #include <string>
+#include <vector>
 
 #include "render/image.h"
 
@@ -20,6 +21,24 @@ using ImageMetadata = std::map<std::string, std::string>;
 // Throws std::runtime_error("<path>: <problem>") on any failure.
 void writeExr(const std::filesystem::path& path, const Image& image,
               const ImageMetadata& metadata);
+
+// Extra float32 channels (one value per pixel, row-major), written after R, G, B, A: the raw
+// accumulation state of a partial render or checkpoint (render/state_file.h).
+struct ExrChannel {
+    std::string name;
+    std::vector<float> values;
+};
+void writeExr(const std::filesystem::path& path, const Image& image,
+              const ImageMetadata& metadata, const std::vector<ExrChannel>& extra);
+
+// Reads the named float channels of an EXR written by writeExr (exactly, as float32), the
+// metadata, and the image size. Throws "<path>: <problem>" naming the first missing channel.
+struct ExrChannels {
+    int width = 0, height = 0;
+    std::vector<ExrChannel> channels; // in the order of `names`
+};
+ExrChannels readExrChannels(const std::filesystem::path& path, const std::vector<std::string>& names,
+                            ImageMetadata* metadata = nullptr);
 
 // Reads the data window of a scanline or tiled EXR of any pixel type.
 // Channels R,G,B,A are used; a missing A reads as 1, missing R/G/B as 0, and

@@ -6,12 +6,17 @@ namespace pt {
 
 enum class DirectionSampling { Uniform, Cosine };
 
+// What fills the random dimensions of a sample (`--sampler`): independent hashes, or
+// Owen-scrambled Sobol' points shuffled per pixel (shaders/common/sobol.glsl).
+enum class SamplerKind { Independent, Sobol };
+
 // The integrator switches (the course's RendererParams) and limits.
 struct IntegratorSettings {
     bool nee = true; // next event estimation (light sampling)
     bool mis = true; // multiple importance sampling between light and BSDF samples (needs NEE)
     bool rr = true;  // Russian roulette
     DirectionSampling sampling = DirectionSampling::Cosine;
+    SamplerKind sampler = SamplerKind::Independent;
     uint32_t maxDepth = 16;    // ray segments including the camera ray (Mitsuba 3's max_depth)
     uint32_t rrStartDepth = 5; // Russian roulette only after this many segments (Mitsuba 3 default)
     uint32_t seed = 0;

@@ -46,6 +46,7 @@ ProgressiveResult renderProgressively(Renderer& renderer, const ProgressiveTarge
             }
         }
         progress.update(spp, result.seconds, pixels * spp / std::max(result.seconds, 1e-9) * 1e-6, lastRelMse);
+        if (target.afterPass && !target.afterPass(result.seconds)) break;
         if (target.seconds > 0 && result.seconds >= target.seconds) break;
     }
     progress.finish();

@@ -5,6 +5,7 @@
 #include "render/renderer.h"
 
 #include <cstdint>
+#include <functional>
 #include <ostream>
 
 namespace pt {
@@ -14,6 +15,9 @@ struct ProgressiveTarget {
     double seconds = 0;    // or after this much render time
     uint32_t passSpp = 0;  // samples per pass; 0 chooses passes of about half a second
     uint32_t tileSize = 0; // split passes into tiles (same image)
+    // Called after every pass with the render seconds so far; returning false stops early
+    // (checkpoints, SIGINT/SIGTERM: render/checkpoint.h).
+    std::function<bool(double seconds)> afterPass;
 };
 
 struct ProgressiveResult {

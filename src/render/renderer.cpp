@@ -10,6 +10,8 @@
 
 namespace pt {
 
+constexpr VkDeviceSize kAccumulationBytesPerPixel = ACCUMULATION_VEC4S_PER_PIXEL * sizeof(glm::vec4);
+
 void validateImageSize(int width, int height) {
     if (width < 1 || height < 1 || width > kMaxImageSide || height > kMaxImageSide ||
         int64_t(width) * height > kMaxImagePixels)
@@ -49,16 +51,20 @@ Renderer::Renderer(VulkanContext& context, const FlatScene& scene, const Feature
     params.rrStartDepth = settings.rrStartDepth;
     params.seed = settings.seed;
     const size_t pixels = size_t(film.width) * film.height;
-    gpuScene_ = std::make_unique<GpuScene>(context, scene, params, pixels * 2 * sizeof(glm::vec4));
+    gpuScene_ = std::make_unique<GpuScene>(context, scene, params, pixels * kAccumulationBytesPerPixel);
     paramsAddress_ = gpuScene_->paramsAddress();
 
     pipeline_ = std::make_unique<ComputePipeline>(context, std::span<const uint32_t>(pt_render_spv),
         static_cast<uint32_t>(sizeof(gpu::GpuRenderPush)), features.constants(localSize_, localSize_), "render");
+    if (features.countRays) {
+        rayCounts_ = std::make_unique<GpuBuffer>(context, pixels * sizeof(glm::uvec4), "ray counts");
+        rayCounts_->fillZero();
+    }
 }
 
 void Renderer::addSamples(uint32_t count, uint32_t tileSize) {
     if (count == 0) return;
-    if (uint64_t(samples_) + count > UINT32_MAX) throw std::runtime_error("sample count exceeds 2^32");
+    if (uint64_t(firstSample_) + samples_ + count > UINT32_MAX) throw std::runtime_error("sample index exceeds 2^32");
     context_.submitAndWait([&](VkCommandBuffer cmd) {
         recordTiles(cmd, count, tileSize, 0, tileCount(tileSize));
         // Make the sums visible to the host (read back after the fence).
@@ -88,7 +94,7 @@ void Renderer::recordTiles(VkCommandBuffer cmd, uint32_t count, uint32_t tileSiz
     endTile = std::min(endTile, tileCount(tileSize));
     if (count == 0 || firstTile >= endTile) return;
     if (clearPending_) {
-        const VkDeviceSize bytes = VkDeviceSize(w) * h * 2 * sizeof(glm::vec4);
+        const VkDeviceSize bytes = VkDeviceSize(w) * h * kAccumulationBytesPerPixel;
         vkCmdFillBuffer(cmd, accumulation().handle(), 0, bytes, 0);
         clearPending_ = false;
     }
@@ -105,22 +111,25 @@ void Renderer::recordTiles(VkCommandBuffer cmd, uint32_t count, uint32_t tileSiz
         push.sceneParams = paramsAddress_;
         push.tileOrigin = glm::uvec2(x, y);
         push.tileSize = glm::uvec2(std::min(tw, w - x), std::min(th, h - y));
-        push.sampleStart = samples_;
+        push.sampleStart = firstSample_ + samples_;
         push.sampleCount = count;
         push.sampleClamp = sampleClamp_;
+        push.rayCounts = rayCounts_ ? rayCounts_->address() : 0;
         pipeline_->bindAndPush(cmd, &push, sizeof(push));
         vkCmdDispatch(cmd, (push.tileSize.x + localSize_ - 1) / localSize_, (push.tileSize.y + localSize_ - 1) / localSize_, 1);
     }
 }
 
 void Renderer::completePass(uint32_t count) {
-    if (uint64_t(samples_) + count > UINT32_MAX) throw std::runtime_error("sample count exceeds 2^32");
+    if (uint64_t(firstSample_) + samples_ + count > UINT32_MAX) throw std::runtime_error("sample index exceeds 2^32");
     samples_ += count;
 }
 
 void Renderer::reset() {
     samples_ = 0;
+    firstSample_ = 0;
     clearPending_ = true;
+    if (rayCounts_) rayCounts_->fillZero(); // only headless renders count, with nothing in flight
 }
 
 // The scene block's buffer addresses exist only in device memory (GpuScene fills them in), so
@@ -164,7 +173,7 @@ void Renderer::setCamera(const Camera& camera) {
 void Renderer::setFilmSize(int width, int height) {
     validateImageSize(width, height);
     makeParamsEditable();
-    const VkDeviceSize bytes = VkDeviceSize(width) * height * 2 * sizeof(glm::vec4);
+    const VkDeviceSize bytes = VkDeviceSize(width) * height * kAccumulationBytesPerPixel;
     if (bytes > accumulation().size()) {
         vkDeviceWaitIdle(context_.device());
         ownAccumulation_.reset();
@@ -204,31 +213,51 @@ void Renderer::setSampleClamp(float clamp) {
     reset();
 }
 
-Renderer::Readback Renderer::read() const {
-    const size_t pixels = size_t(film_.width) * film_.height;
-    std::vector<glm::vec4> sums(pixels * 2);
-    accumulation().download(sums.data(), sums.size() * sizeof(glm::vec4));
-    Readback r;
-    r.mean.width = r.varianceOfMean.width = film_.width;
-    r.mean.height = r.varianceOfMean.height = film_.height;
-    r.mean.rgba.assign(pixels * 4, 0.0f);
-    r.varianceOfMean.rgba.assign(pixels * 4, 0.0f);
-    const double n = samples_;
-    for (size_t i = 0; i < pixels; ++i) {
-        const glm::vec4 s = sums[2 * i];
-        const glm::vec4 s2 = sums[2 * i + 1];
-        r.droppedSamples += static_cast<uint64_t>(s.w);
-        for (int c = 0; c < 3; ++c) {
-            const double mean = n > 0 ? s[c] / n : 0.0;
-            r.mean.rgba[4 * i + c] = static_cast<float>(mean);
-            // Unbiased sample variance, divided by n for the variance of the mean.
-            const double var = n > 1 ? std::max(0.0, (s2[c] / n - mean * mean) * n / (n - 1)) / n : 0.0;
-            r.varianceOfMean.rgba[4 * i + c] = static_cast<float>(var);
-        }
-        r.mean.rgba[4 * i + 3] = 1.0f;
-        r.varianceOfMean.rgba[4 * i + 3] = 1.0f;
+Renderer::Readback Renderer::read() const { return resolve(readState()); }
+
+AccumulationState Renderer::readState() const {
+    AccumulationState state;
+    state.width = film_.width;
+    state.height = film_.height;
+    state.samples = {firstSample_, firstSample_ + samples_};
+    state.spp = samples_;
+    state.sums.resize(state.pixels() * ACCUMULATION_VEC4S_PER_PIXEL);
+    if (samples_ > 0) accumulation().download(state.sums.data(), state.sums.size() * sizeof(glm::vec4));
+    return state; // zeros before the first pass, even if a reset left the buffer uncleared
+}
+
+void Renderer::loadState(const AccumulationState& state) {
+    if (state.width != film_.width || state.height != film_.height)
+        throw std::runtime_error("saved state is " + std::to_string(state.width) + "x" + std::to_string(state.height) +
+                                 " but the render is " + std::to_string(film_.width) + "x" +
+                                 std::to_string(film_.height));
+    if (state.spp != state.samples.count())
+        throw std::runtime_error("saved state has gaps in its sample range " + state.samples.describe() +
+                                 " and cannot be continued");
+    accumulation().upload(state.sums.data(), state.sums.size() * sizeof(glm::vec4));
+    firstSample_ = state.samples.begin;
+    samples_ = state.spp;
+    clearPending_ = false;
+}
+
+void Renderer::setFirstSample(uint32_t index) {
+    if (samples_ != 0) throw std::logic_error("setFirstSample after samples were added");
+    firstSample_ = index;
+}
+
+Renderer::RayCounts Renderer::rayCounts() const {
+    RayCounts counts;
+    counts.camera = uint64_t(samples_) * film_.width * film_.height;
+    if (!rayCounts_) return counts;
+    std::vector<glm::uvec4> perPixel(size_t(film_.width) * film_.height);
+    rayCounts_->download(perPixel.data(), perPixel.size() * sizeof(glm::uvec4));
+    uint64_t closest = 0;
+    for (const glm::uvec4& c : perPixel) {
+        closest += c.x;
+        counts.shadow += c.y;
     }
-    return r;
+    counts.continuation = closest > counts.camera ? closest - counts.camera : 0;
+    return counts;
 }
 
 } // namespace pt

@@ -1,10 +1,11 @@
 #pragma once
 // Progressive rendering on the GPU: uploads a flattened scene once, then each addSamples()
-// dispatches the megakernel to add samples to every pixel's float32 sums.
+// dispatches the megakernel to add samples to every pixel's double-float sums (accumulation_state.h).
 #include "gpu/compute_pipeline.h"
 #include "gpu/gpu_buffer.h"
 #include "render/gpu_scene.h"
 #include "gpu/vulkan_context.h"
+#include "render/accumulation_state.h"
 #include "render/feature_set.h"
 #include "render/flat_scene.h"
 #include "render/image.h"
@@ -22,7 +23,7 @@ struct FilmSettings {
     glm::vec3 background{0.0f};
 };
 
-// Largest image pt renders: 32 bytes of sums per pixel must fit comfortably in device memory.
+// Largest image pt renders: 64 bytes of sums per pixel must fit comfortably in device memory.
 constexpr int kMaxImageSide = 16384;
 constexpr int64_t kMaxImagePixels = int64_t(1) << 26;
 
@@ -58,32 +59,47 @@ public:
     uint32_t tileCount(uint32_t tileSize) const;
     void recordTiles(VkCommandBuffer cmd, uint32_t count, uint32_t tileSize, uint32_t firstTile, uint32_t endTile);
     void completePass(uint32_t count);
-    // The sums: vec4[2 * width * height], laid out as GpuSceneParams::accumulation says.
+    // The sums: vec4[ACCUMULATION_VEC4S_PER_PIXEL * width * height], laid out as
+    // GpuSceneParams::accumulation says.
     VkDeviceAddress accumulationAddress() const { return accumulation().address(); }
     const Camera& camera() const { return camera_; }
     const FeatureSet& features() const { return features_; }
 
+    // Samples added to every pixel so far; the next pass starts at sample index
+    // firstSample() + samplesPerPixel() of the global sequence.
     uint32_t samplesPerPixel() const { return samples_; }
+    uint32_t firstSample() const { return firstSample_; }
+    // Renders sample indices from `index` on (pt render --samples A:B); only before any pass.
+    void setFirstSample(uint32_t index);
     int width() const { return film_.width; }
     int height() const { return film_.height; }
     double pipelineSeconds() const { return pipeline_->creationSeconds(); }
 
     // Reads the sums back: the mean image, per-pixel variance of that mean, non-finite samples dropped.
-    struct Readback {
-        Image mean;
-        Image varianceOfMean;
-        uint64_t droppedSamples = 0;
-    };
+    using Readback = AccumulatedImage;
     Readback read() const;
+    // The raw state, exactly (checkpoints, partial renders), and its inverse: loadState makes
+    // the renderer continue from `state` (same size) as if it had rendered it.
+    AccumulationState readState() const;
+    void loadState(const AccumulationState& state);
+
+    // Rays traced so far, summed over pixels; only when the pipeline counts them
+    // (FeatureSet::countRays, for pt bench). Camera rays are one per sample.
+    struct RayCounts {
+        uint64_t camera = 0, continuation = 0, shadow = 0;
+    };
+    RayCounts rayCounts() const;
 
 private:
     const GpuBuffer& accumulation() const { return ownAccumulation_ ? *ownAccumulation_ : gpuScene_->accumulation(); }
+    GpuBuffer& accumulation() { return ownAccumulation_ ? *ownAccumulation_ : gpuScene_->accumulation(); }
     void makeParamsEditable();
     void uploadParams();
 
     VulkanContext& context_;
     FilmSettings film_;
     uint32_t samples_ = 0;
+    uint32_t firstSample_ = 0;
     std::unique_ptr<GpuScene> gpuScene_;
     std::unique_ptr<ComputePipeline> pipeline_;
     uint32_t localSize_ = 8;
@@ -96,6 +112,7 @@ private:
     gpu::GpuSceneParams params_{};
     std::unique_ptr<GpuBuffer> ownParams_;
     std::unique_ptr<GpuBuffer> ownAccumulation_;
+    std::unique_ptr<GpuBuffer> rayCounts_; // uvec4 per pixel when features_.countRays
     VkDeviceAddress paramsAddress_ = 0;
 };
 

@@ -13,6 +13,7 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <set>
 #include <sstream>
@@ -21,6 +22,12 @@ namespace pt {
 namespace {
 
 constexpr int kMaxNodeDepth = 1024;
+// A node may be the child of several parents (glTF forbids it, files do it anyway), so a small
+// file can describe an exponential number of instances: 40 nodes that each list the next one
+// twice make 2^40. A tree visits each node once, whatever its size; repeat visits are bounded,
+// and so are the vertices and triangles all instances add up to.
+constexpr size_t kMaxRepeatedNodeVisits = size_t(1) << 16;
+constexpr size_t kMaxInstanced = size_t(1) << 27; // vertices, and triangles
 
 // Images decoded as tinygltf reads them (from data URIs, files or buffer views), with our own
 // decoder: one code path and one set of size limits for every image, and the error names the
@@ -338,8 +345,15 @@ private:
         if (index < 0 || index >= static_cast<int>(model_.nodes.size())) fail("node index " + std::to_string(index) + " out of range");
         if (onPath[index]) fail("node hierarchy is cyclic (node " + std::to_string(index) + " is its own ancestor)");
         if (depth > kMaxNodeDepth) fail("node hierarchy deeper than " + std::to_string(kMaxNodeDepth));
+        if (visited_.size() != model_.nodes.size()) visited_.assign(model_.nodes.size(), false);
+        if (visited_[index] && ++repeatedVisits_ > kMaxRepeatedNodeVisits)
+            fail("node " + std::to_string(index) + " is shared by several parents: the hierarchy expands to more than " +
+                 std::to_string(kMaxRepeatedNodeVisits) + " extra node instances");
+        visited_[index] = true;
         const tinygltf::Node& node = model_.nodes[index];
         glm::mat4 world = parent * localTransform(node, index);
+        for (int i = 0; i < 16; ++i)
+            if (!std::isfinite(glm::value_ptr(world)[i])) fail("node " + std::to_string(index) + ": world transform overflows");
         if (node.mesh >= 0) {
             if (node.mesh >= static_cast<int>(model_.meshes.size())) fail("node " + std::to_string(index) + ": mesh index out of range");
             addMesh(model_.meshes[node.mesh], node.mesh, world);
@@ -512,6 +526,10 @@ private:
             }
             if (prim.material >= static_cast<int>(model_.materials.size())) fail(label + ": material index out of range");
             out.material = prim.material >= 0 ? static_cast<uint32_t>(prim.material) : defaultMaterial();
+            instancedVertices_ += out.positions.size();
+            instancedTriangles_ += out.triangles.size();
+            if (instancedTriangles_ > kMaxInstanced || instancedVertices_ > kMaxInstanced)
+                fail("more than " + std::to_string(kMaxInstanced) + " vertices or triangles once every node instance is expanded");
             if (!out.triangles.empty()) scene_.meshes.push_back(std::move(out));
         }
     }
@@ -536,8 +554,16 @@ private:
             fail("camera " + std::to_string(cameraIndex) + ": degenerate camera transform");
         c.forward = glm::normalize(forward);
         c.up = glm::normalize(up - glm::dot(up, c.forward) * c.forward);
+        // Lengths that overflow (or vanish) leave no usable frame.
+        if (!finite(c.forward) || !finite(c.up) || !(glm::length(c.forward) > 0.5f) || !(glm::length(c.up) > 0.5f))
+            fail("camera " + std::to_string(cameraIndex) + ": degenerate camera transform");
         c.yfov = static_cast<float>(yfov);
-        c.aspectRatio = cam.perspective.aspectRatio > 0 ? static_cast<float>(cam.perspective.aspectRatio) : 0.0f;
+        // Absent (0) means "the image's"; beyond 1:16384 no image of an allowed size has that shape,
+        // and the height derived from it would overflow.
+        const double aspect = cam.perspective.aspectRatio;
+        if (aspect != 0.0 && !(aspect >= 1.0 / 16384 && aspect <= 16384))
+            fail("camera " + std::to_string(cameraIndex) + ": aspectRatio " + std::to_string(aspect) + " must be in [1/16384, 16384]");
+        c.aspectRatio = static_cast<float>(aspect);
         scene_.cameras.push_back(c);
     }
 
@@ -563,6 +589,9 @@ private:
         const glm::vec3 axis = glm::mat3(world) * glm::vec3(0, 0, -1);
         if (!(glm::length(axis) > 0.0f)) fail(where + ": degenerate light transform");
         light.direction = glm::normalize(axis);
+        if (!finite(light.direction) || !(glm::length(light.direction) > 0.5f)) fail(where + ": degenerate light transform");
+        // A finite double intensity can still overflow a float.
+        if (!finite(light.intensity)) fail(label + ": intensity times colour overflows");
         if (src.type == "point") {
             light.type = PunctualLight::Type::Point;
         } else if (src.type == "directional") {
@@ -598,12 +627,21 @@ private:
     std::map<int, uint32_t> imageIndices_;
     Scene scene_;
     int defaultMaterial_ = -1;
+    std::vector<bool> visited_;
+    size_t repeatedVisits_ = 0, instancedVertices_ = 0, instancedTriangles_ = 0;
     std::map<std::string, int> unsupportedCounts_;
 };
 
+// tinygltf's first error line, made safe to print: it can echo the file's bytes (a URI, a JSON
+// excerpt), so control characters become '?' (a hostile file must not drive the terminal) and
+// the length is bounded.
 std::string firstLine(const std::string& s) {
+    constexpr size_t kMaxLength = 300;
     std::string line = s.substr(0, s.find('\n'));
     while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) line.pop_back();
+    for (char& c : line)
+        if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
+    if (line.size() > kMaxLength) line = line.substr(0, kMaxLength) + "...";
     return line;
 }
 
@@ -644,6 +682,21 @@ Scene loadGltfText(std::string_view text, const std::string& displayName, const 
     tinygltf::Model model;
     std::string err, warn;
     bool ok = loader.LoadASCIIFromString(&model, &err, &warn, text.data(), static_cast<unsigned int>(text.size()), baseDir.string());
+    return importModel(ok, model, err, displayName, images);
+}
+
+Scene loadGltfMemory(std::string_view bytes, const std::string& displayName, const std::filesystem::path& baseDir) {
+    if (bytes.empty()) throw SceneError(displayName, "empty file");
+    // tinygltf takes the length as an unsigned int.
+    if (bytes.size() > std::numeric_limits<unsigned int>::max()) throw SceneError(displayName, "file larger than 4 GiB");
+    if (bytes.size() < 4 || std::memcmp(bytes.data(), "glTF", 4) != 0) return loadGltfText(bytes, displayName, baseDir);
+    tinygltf::TinyGLTF loader;
+    DecodedImages images;
+    loader.SetImageLoader(&decodeImage, &images);
+    tinygltf::Model model;
+    std::string err, warn;
+    const bool ok = loader.LoadBinaryFromMemory(&model, &err, &warn, reinterpret_cast<const unsigned char*>(bytes.data()),
+        static_cast<unsigned int>(bytes.size()), baseDir.string());
     return importModel(ok, model, err, displayName, images);
 }
 

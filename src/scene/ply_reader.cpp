@@ -643,14 +643,23 @@ std::string readFileBytes(const fs::path& path) {
 } // namespace
 
 PlyMesh readPly(const std::filesystem::path& path) {
+    std::string bytes;
     try {
-        const std::string bytes = readFileBytes(path);
+        bytes = readFileBytes(path);
+    } catch (const PlyProblem& problem) {
+        throw SceneError(path.string(), problem.what());
+    }
+    return parsePly(bytes, path.string());
+}
+
+PlyMesh parsePly(std::string_view bytes, const std::string& displayName) {
+    try {
         Header header = parseHeader(bytes);
         describeMesh(header);
         checkCountsFit(header);
-        return readBody(header, std::string_view(bytes).substr(header.bodyOffset));
+        return readBody(header, bytes.substr(header.bodyOffset));
     } catch (const PlyProblem& problem) {
-        throw SceneError(path.string(), problem.what());
+        throw SceneError(displayName, problem.what());
     }
 }
 

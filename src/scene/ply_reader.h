@@ -6,6 +6,8 @@
 #include <glm/glm.hpp>
 
 #include <filesystem>
+#include <string>
+#include <string_view>
 #include <vector>
 
 namespace pt {
@@ -26,5 +28,9 @@ struct PlyMesh {
 // bad magic or header, counts the file cannot hold, truncation, non-numeric ascii values,
 // out-of-range indices, non-finite vertex data.
 PlyMesh readPly(const std::filesystem::path& path);
+
+// The same for a PLY file already in memory; errors are "<displayName>: <problem>". Used by the
+// fuzz target (tests/fuzz/), which must not touch the file system.
+PlyMesh parsePly(std::string_view bytes, const std::string& displayName);
 
 } // namespace pt

@@ -72,7 +72,7 @@ double nodeArea(const BvhNode& n)
 }
 
 // Same definition as documented for Bvh::sahCost.
-double sahOf(const std::vector<BvhNode>& nodes, size_t primCount, const BvhBuildOptions& o)
+double sahOf(const pt::BvhNodeArray& nodes, size_t primCount, const BvhBuildOptions& o)
 {
     double sum = 0.0;
     size_t interior = 0;
@@ -580,7 +580,7 @@ TEST(Bvh, DeterministicAcrossThreadCounts)
 }
 
 // Reference object-median build (split the centroid range at the median of the widest axis).
-void medianBuild(std::vector<BvhNode>& nodes, std::vector<uint32_t>& order, const std::vector<Aabb>& prims,
+void medianBuild(pt::BvhNodeArray& nodes, std::vector<uint32_t>& order, const std::vector<Aabb>& prims,
                  uint32_t slot, uint32_t begin, uint32_t end, int maxLeaf)
 {
     Aabb b, cb;

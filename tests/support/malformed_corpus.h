@@ -1,5 +1,5 @@
 #pragma once
-// The malformed-input corpora (tests/data/malformed_gltf/, tests/data/malformed_xml/): their
+// The malformed-input corpora (tests/data/malformed_gltf/, malformed_xml/, malformed_ply/): their
 // files, and from each README's table the lowercase substring each file's error message must
 // contain (after removing the file's path). `corpus` is the folder name; glTF by default.
 #include <filesystem>

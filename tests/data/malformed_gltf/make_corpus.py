@@ -15,6 +15,7 @@ import json
 import math
 import struct
 import sys
+import zlib
 from pathlib import Path
 
 # One triangle in the z=0 plane, plus its indices.
@@ -96,6 +97,13 @@ def triangle_doc(positions=TRIANGLE, indices=INDICES, uri="embed"):
         "buffers": [buffer],
     }
     return doc, data
+
+
+def png_header(width: int, height: int) -> bytes:
+    """A PNG signature and IHDR chunk (8-bit RGBA) with no image data."""
+    ihdr = struct.pack(">IIBBBBB", width, height, 8, 6, 0, 0, 0)
+    chunk = struct.pack(">I", len(ihdr)) + b"IHDR" + ihdr + struct.pack(">I", zlib.crc32(b"IHDR" + ihdr))
+    return b"\x89PNG\r\n\x1a\n" + chunk
 
 
 def to_json(doc) -> bytes:
@@ -199,6 +207,57 @@ def build():
     doc, _ = triangle_doc()
     doc["accessors"][0]["bufferView"] = 9  # only views 0 and 1 exist
     files["bufferview_index_out_of_range.gltf"] = to_json(doc)
+
+    # 40 nodes that each list the next one twice: 2^40 instances of the last node's mesh from a
+    # file of a few kilobytes (glTF forbids shared children; a loader must not trust that).
+    doc, _ = triangle_doc()
+    doc["nodes"] = [{"children": [i + 1, i + 1]} for i in range(40)] + [{"mesh": 0}]
+    files["exponential_instances.gltf"] = to_json(doc)
+
+    # A chain of 1100 nodes (more than the 1024 levels a loader follows), each the only child of the previous one.
+    doc, _ = triangle_doc()
+    doc["nodes"] = [{"children": [i + 1]} for i in range(1100)] + [{"mesh": 0}]
+    files["deep_hierarchy.gltf"] = to_json(doc)
+
+    doc, _ = triangle_doc()
+    doc["scenes"][0]["extras"] = {"width": 100000, "height": 100000}
+    files["absurd_resolution.gltf"] = to_json(doc)
+
+    doc, _ = triangle_doc()
+    doc["cameras"] = [{"type": "perspective", "perspective": {"yfov": 0.8, "znear": 0.01, "aspectRatio": 1e-9}}]
+    doc["nodes"].append({"camera": 0, "translation": [0.0, 0.0, 3.0]})
+    doc["scenes"][0]["nodes"].append(1)
+    files["absurd_aspect_ratio.gltf"] = to_json(doc)
+
+    # A PNG whose header claims 100000 x 100000 pixels (40 GB decoded), as a data URI.
+    doc, _ = triangle_doc()
+    doc["images"] = [{"uri": "data:image/png;base64," + base64.b64encode(png_header(100000, 100000)).decode("ascii")}]
+    doc["textures"] = [{"source": 0}]
+    doc["materials"] = [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}]
+    doc["meshes"][0]["primitives"][0]["material"] = 0
+    files["texture_100000x100000.gltf"] = to_json(doc)
+
+    doc, _ = triangle_doc()
+    doc["images"] = [{"uri": "missing_texture.png"}]
+    doc["textures"] = [{"source": 0}]
+    doc["materials"] = [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}]
+    doc["meshes"][0]["primitives"][0]["material"] = 0
+    files["missing_image.gltf"] = to_json(doc)
+
+    doc, _ = triangle_doc()
+    doc["accessors"][1]["componentType"] = FLOAT  # indices must be unsigned integers
+    files["float_indices.gltf"] = to_json(doc)
+
+    doc, _ = triangle_doc()
+    doc["accessors"][0]["count"] = "three"
+    files["count_is_a_string.gltf"] = to_json(doc)
+
+    # A mesh name with bytes that are not UTF-8 (JSON must be UTF-8).
+    files["non_utf8_json.gltf"] = to_json(triangle_doc()[0]).replace(b'"asset": {', b'"asset": {\n    "copyright": "\xff\xfe",', 1)
+
+    # A buffer that is a character device: endless zeros, not a file.
+    doc, _ = triangle_doc(uri="/dev/zero")
+    files["buffer_is_a_device.gltf"] = to_json(doc)
 
     return files
 

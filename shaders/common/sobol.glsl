@@ -1,0 +1,44 @@
+// Owen-scrambled Sobol' points with per-pixel shuffling (Burley, "Practical Hash-based Owen
+// Scrambling", JCGT 2020), padded in 2D: every 2D sample a path asks for (pixel jitter, lens,
+// each vertex's light point and BSDF direction) is the first two Sobol' dimensions, a
+// (0,2)-sequence, with its own index shuffle and scramble seeded by (pixel, dimension, seed).
+// Each 2D projection is then stratified for any power-of-two prefix of samples while
+// pixels and dimensions stay uncorrelated.
+#ifndef PT_COMMON_SOBOL_GLSL
+#define PT_COMMON_SOBOL_GLSL
+
+// First Sobol' dimension: the van der Corput radical inverse in base 2.
+uint sobolDimension0(uint index) { return bitfieldReverse(index); }
+
+// Second Sobol' dimension: direction numbers v_0 = 2^31, v_k = v_(k-1) ^ (v_(k-1) >> 1)
+// (the Pascal matrix mod 2).
+uint sobolDimension1(uint index) {
+    uint result = 0u;
+    for (uint v = 1u << 31u; index != 0u; index >>= 1u, v ^= v >> 1u)
+        if ((index & 1u) != 0u) result ^= v;
+    return result;
+}
+
+// A random permutation of 32-bit words in which each bit is flipped by a function of the bits
+// above it: nested uniform (Owen) scrambling of x as a binary fraction. The hash works on the
+// reversed word, where carries run from the low to the high bits; constants after Vegdahl,
+// "Building a Better LK Hash" (2021).
+uint owenScramble(uint x, uint seed) {
+    x = bitfieldReverse(x);
+    x ^= x * 0x3d20adeau;
+    x += seed;
+    x *= (seed >> 16u) | 1u;
+    x ^= x * 0x05526c56u;
+    x ^= x * 0x53a22864u;
+    return bitfieldReverse(x);
+}
+
+// The 2D point of sample `index` for one (pixel, dimension) stream, as two 32-bit fractions.
+// Owen-scrambling the index keeps every aligned block of 2^k indices an aligned block, so
+// the first 2^k samples of a pixel are a scrambled (0,k,2)-net.
+uvec2 sobolOwen2(uint index, uvec3 seeds) {
+    uint shuffled = owenScramble(index, seeds.x);
+    return uvec2(owenScramble(sobolDimension0(shuffled), seeds.y), owenScramble(sobolDimension1(shuffled), seeds.z));
+}
+
+#endif

@@ -1,0 +1,6 @@
+// libFuzzer target: the texture_image loader on arbitrary bytes (see fuzz_main.h and tests/fuzz/README.md).
+#include "fuzz/fuzz_main.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+    return pt::test::fuzzEntry(pt::test::FuzzTarget::TextureImage, data, size);
+}

@@ -1,0 +1,230 @@
+// The hard-case suite (issue 7): scenes that break renderers numerically, each checked against
+// an independent expectation (an analytic value, brute force, the same scene at another scale,
+// an energy bound), with tolerances from the Monte Carlo error, and each rendered with zero
+// dropped non-finite samples. Scenes: scenes/hard/ (README there) and built here.
+#include "support/hard_case_support.h"
+
+#include "scene/default_scene.h"
+
+#include <cmath>
+#include <cstdio>
+
+namespace pt::test {
+namespace {
+
+class HardCases : public GpuTest {};
+
+// ---- Scale: the Cornell box at 1e-3, 1 and 1e3, and moved to (1e4, 1e4, 1e4) ----
+TEST_F(HardCases, CornellBoxMeanRadianceIsTheSameAtEveryScaleAndPlace) {
+    const Scene box = loadDefaultScene();
+    IntegratorSettings s;
+    s.maxDepth = 8;
+    struct Case {
+        const char* name;
+        float scale;
+        glm::vec3 offset;
+    };
+    const Case cases[] = {{"scale 1", 1.0f, glm::vec3(0.0f)}, {"scale 1e-3", 1e-3f, glm::vec3(0.0f)},
+        {"scale 1e3", 1e3f, glm::vec3(0.0f)}, {"moved by 1e4", 1.0f, glm::vec3(1e4f)}};
+    ImageStats reference;
+    for (const Case& c : cases) {
+        const Scene scene = scaledScene(box, c.scale, c.offset);
+        const auto r = renderScene(scene, s, scene.cameras.at(0), 48, 48, 32);
+        EXPECT_EQ(r.droppedSamples, 0u) << c.name;
+        const ImageStats st = imageStats(r, 0);
+        std::printf("[          ] %-12s mean %.5f +- %.5f\n", c.name, st.mean, st.standardError);
+        if (c.scale == 1.0f && c.offset == glm::vec3(0.0f)) {
+            reference = st;
+            continue;
+        }
+        EXPECT_NEAR(st.mean, reference.mean, 4.0 * std::hypot(st.standardError, reference.standardError)) << c.name;
+    }
+}
+
+
+Sphere sphereAt(glm::vec3 centre, float radius, uint32_t material) {
+    Sphere s;
+    s.objectToWorld = glm::mat4(glm::mat3(radius));
+    s.objectToWorld[3] = glm::vec4(centre, 1.0f);
+    s.material = material;
+    return s;
+}
+
+Camera lookAt(glm::vec3 from, glm::vec3 to, float yfov, glm::vec3 up = glm::vec3(0, 1, 0)) {
+    Camera c;
+    c.position = from;
+    c.forward = glm::normalize(to - from);
+    c.up = glm::normalize(glm::cross(glm::cross(c.forward, up), c.forward));
+    c.yfov = yfov;
+    return c;
+}
+
+// Renders with the normal sampler and with every random number forced to either end of its
+// range; returns the normal render. Every render must keep all its samples.
+Renderer::Readback renderAllModes(const Scene& scene, const IntegratorSettings& s, const Camera& camera, int size,
+    uint32_t spp, const char* what) {
+    for (uint32_t forced : kForcedModes) {
+        const auto r = renderForced(scene, s, camera, size, size, 1, forced);
+        EXPECT_EQ(r.droppedSamples, 0u) << what << ": random numbers forced to " << (forced == FORCED_RANDOM_ZERO ? "0" : "1 - 2^-24");
+    }
+    auto r = renderScene(scene, s, camera, size, size, spp);
+    EXPECT_EQ(r.droppedSamples, 0u) << what;
+    return r;
+}
+
+// ---- Contacts: a room closed by a box resting on a floor, a 1e-4-thick lid whose underside
+// coincides with the walls' top face; bright light only outside. Inside, every pixel is 0. ----
+Scene sealedRoom(float scale) {
+    Scene scene;
+    Material wall;
+    wall.baseColor = glm::vec3(0.8f);
+    wall.doubleSided = true; // light entering through any gap is reflected, not absorbed
+    scene.materials.push_back(wall);
+    scene.meshes.push_back(makeQuad({-5, 0, 5}, {10, 0, 0}, {0, 0, -10}, 0)); // the floor, y = 0
+    Mesh walls = makeBox({-1, 0, -1}, {1, 1, 1}, 0, true);
+    walls.triangles.erase(walls.triangles.begin() + 4, walls.triangles.begin() + 6); // no bottom: it stands on the floor
+    scene.meshes.push_back(walls);
+    scene.meshes.push_back(makeBox({-1, 1, -1}, {1, 1.0001f, 1}, 0)); // the lid: 1e-4 thick, its bottom face on the walls' top
+    PunctualLight sun;
+    sun.type = PunctualLight::Type::Point;
+    sun.position = glm::vec3(0.5f, 3.0f, 0.3f);
+    sun.intensity = glm::vec3(100.0f);
+    scene.punctualLights.push_back(sun);
+    Environment sky;
+    sky.colour = glm::vec3(10.0f);
+    scene.environment = sky;
+    scene.cameras.push_back(lookAt({0.3f, 0.5f, 0.9f}, {-0.4f, 0.3f, -1.0f}, 1.6f));
+    return scaledScene(scene, scale, glm::vec3(0.0f));
+}
+
+TEST_F(HardCases, NoLightLeaksIntoASealedRoomThroughContactsAndAThinLid) {
+    for (float scale : {1.0f, 1e-3f, 1e3f}) {
+        const Scene scene = sealedRoom(scale);
+        IntegratorSettings s;
+        s.maxDepth = 8;
+        const auto r = renderAllModes(scene, s, scene.cameras[0], 32, 32, "sealed room");
+        const ImageStats st = imageStats(r, 0);
+        std::printf("[          ] sealed room at scale %g: brightest pixel %g\n", scale, st.highest);
+        EXPECT_EQ(st.highest, 0.0) << "light leaked in at scale " << scale;
+    }
+}
+
+// ---- Watertightness: a closed, one-sided emissive cube of 32 x 32 grids per face. Pinhole
+// rays with the pixel jitter forced to 0 (1 - 2^-24) pass through the grid's vertices and
+// edges (to within rounding); each must find a front face (radiance 1), never slip through to
+// the inside of the far face (0) or the bright sky (5). ----
+TEST_F(HardCases, RaysThroughSharedVerticesAndEdgesOfAClosedMeshNeverSlipThrough) {
+    Scene scene;
+    Material glow;
+    glow.baseColor = glm::vec3(0.0f);
+    glow.emission = glm::vec3(1.0f);
+    scene.materials.push_back(glow);
+    const int n = 32;
+    const glm::vec3 faces[6][3] = {{{-1, -1, 1}, {2, 0, 0}, {0, 2, 0}}, {{1, -1, -1}, {-2, 0, 0}, {0, 2, 0}},
+        {{-1, -1, -1}, {0, 0, 2}, {0, 2, 0}}, {{1, -1, 1}, {0, 0, -2}, {0, 2, 0}}, {{-1, 1, 1}, {2, 0, 0}, {0, 0, -2}},
+        {{-1, -1, -1}, {2, 0, 0}, {0, 0, 2}}};
+    for (const auto& f : faces) scene.meshes.push_back(makeGrid(f[0], f[1], f[2], n, 0));
+    Environment sky;
+    sky.colour = glm::vec3(5.0f);
+    scene.environment = sky;
+    // The face z = 1 from z = 2 with tan(yfov / 2) = 1/2: the image spans [-1/2, 1/2]^2 of it,
+    // so the corners of its 32 x 32 pixels (x, y multiples of 1/32) fall on the grid's vertices
+    // (spacing 1/16), on its edges and on its diagonals.
+    Camera camera = lookAt({0, 0, 2}, {0, 0, 0}, 2.0f * std::atan(0.5f));
+    IntegratorSettings s;
+    s.maxDepth = 1;
+    for (uint32_t forced : kForcedModes) {
+        const auto r = renderForced(scene, s, camera, 32, 32, 1, forced);
+        EXPECT_EQ(r.droppedSamples, 0u);
+        const ImageStats st = imageStats(r, 0);
+        EXPECT_EQ(st.lowest, 1.0) << "a ray slipped through (forced " << forced << ")";
+        EXPECT_EQ(st.highest, 1.0) << "a ray slipped through (forced " << forced << ")";
+    }
+    // Rotated, so that the rays meet vertices and edges at general angles.
+    camera = lookAt({1.2f, 1.4f, 1.7f}, {0.01f, -0.02f, 0.03f}, 1.2f);
+    const auto r = renderScene(scene, s, camera, 64, 64, 16);
+    EXPECT_EQ(r.droppedSamples, 0u);
+    const ImageStats inner = imageStats(r, 0, [](int x, int y) { return std::abs(x - 32) < 14 && std::abs(y - 32) < 14; });
+    EXPECT_EQ(inner.lowest, 1.0);
+    EXPECT_EQ(inner.highest, 1.0);
+}
+
+// ---- Spheres ----
+// A sphere of radius 1e5 as the ground under a uniform white sky: a diffuse point on it sees
+// the sky over its whole hemisphere, so every pixel is the albedo (1 - 1e-5 for the curvature);
+// acne (rays hitting the ground they leave) darkens pixels.
+TEST_F(HardCases, HugeGroundSphereHasNoAcne) {
+    Scene scene;
+    Material ground;
+    ground.baseColor = glm::vec3(0.5f);
+    scene.materials.push_back(ground);
+    scene.spheres.push_back(sphereAt({0, -1e5f, 0}, 1e5f, 0));
+    Environment sky;
+    sky.colour = glm::vec3(1.0f);
+    scene.environment = sky;
+    const Camera camera = lookAt({0.3f, 1.0f, 0.2f}, {0.3f, 0.0f, -1.0f}, 0.8f);
+    IntegratorSettings s;
+    s.maxDepth = 8;
+    const auto r = renderAllModes(scene, s, camera, 32, 128, "ground sphere");
+    const ImageStats st = imageStats(r, 0);
+    std::printf("[          ] ground sphere: mean %.5f +- %.5f, lowest %.4f\n", st.mean, st.standardError, st.lowest);
+    EXPECT_NEAR(st.mean, 0.5, 4.0 * st.standardError + 1e-4);
+}
+
+// Camera inside emissive diffuse spheres of radius 1e-3 and 1e4, off-centre: L = Le sum rho^k.
+TEST_F(HardCases, CameraInsideTinyAndHugeSpheresSeesTheAnalyticRadiance) {
+    for (float radius : {1e-3f, 1e4f}) {
+        Scene scene;
+        Material m;
+        m.baseColor = glm::vec3(0.5f);
+        m.emission = glm::vec3(1.0f);
+        m.doubleSided = true;
+        scene.materials.push_back(m);
+        const glm::vec3 centre = glm::vec3(0.3f, -0.2f, 0.1f) * radius;
+        scene.spheres.push_back(sphereAt(centre, radius, 0));
+        const Camera camera = lookAt(centre + glm::vec3(0.5f, 0.2f, 0.0f) * radius, centre - glm::vec3(1, 0, 0) * radius, 1.5f);
+        IntegratorSettings s;
+        s.maxDepth = 6;
+        s.rr = false;
+        const auto r = renderAllModes(scene, s, camera, 24, 32, "inside a sphere");
+        const ImageStats st = imageStats(r, 0);
+        const double expected = (1.0 - std::pow(0.5, 6)) / 0.5;
+        std::printf("[          ] inside a sphere of radius %g: mean %.5f +- %.5f (expected %.5f)\n", radius, st.mean,
+            st.standardError, expected);
+        EXPECT_NEAR(st.mean, expected, 4.0 * st.standardError + 1e-4 * expected) << "radius " << radius;
+    }
+}
+
+// A sphere of radius 1e-3 at distance 1e4, emitting 1: the image integrates to its solid
+// angle, pi r^2 / d^2 (to 1e-14), and nothing lights up away from it.
+TEST_F(HardCases, TinySphereFarAwayCoversItsSolidAngle) {
+    for (glm::vec3 dir : {glm::vec3(0, 0, -1), glm::normalize(glm::vec3(1, 1, 1))}) {
+        Scene scene;
+        Material m;
+        m.baseColor = glm::vec3(0.0f);
+        m.emission = glm::vec3(1.0f);
+        scene.materials.push_back(m);
+        const float d = 1e4f, r = 1e-3f;
+        scene.spheres.push_back(sphereAt(d * dir, r, 0));
+        const int size = 32;
+        const float halfAngle = 4.0f * r / d; // the disc spans a quarter of the image
+        const Camera camera = lookAt({0, 0, 0}, dir, 2.0f * halfAngle, std::abs(dir.y) > 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0));
+        IntegratorSettings s;
+        s.maxDepth = 2;
+        const auto rb = renderAllModes(scene, s, camera, size, 256, "tiny far sphere");
+        const ImageStats st = imageStats(rb, 0);
+        const double pixelSolidAngle = std::pow(2.0 * std::tan(halfAngle) / size, 2.0); // narrow field: cos^3 = 1
+        const double measured = st.mean * st.pixels * pixelSolidAngle;
+        const double error = st.standardError * st.pixels * pixelSolidAngle;
+        const double expected = M_PI * double(r) * r / (double(d) * d);
+        std::printf("[          ] tiny sphere along (%.2f %.2f %.2f): solid angle %.4e +- %.1e, expected %.4e\n", dir.x, dir.y,
+            dir.z, measured, error, expected);
+        EXPECT_NEAR(measured, expected, 4.0 * error + 0.01 * expected);
+        // Clean silhouette: nothing lit beyond 1.5 radii from the centre pixel.
+        const ImageStats outside = imageStats(rb, 0, [&](int x, int y) { return std::hypot(x + 0.5 - size / 2.0, y + 0.5 - size / 2.0) > 6.0 * 1.5; });
+        EXPECT_EQ(outside.highest, 0.0);
+    }
+}
+
+} // namespace
+} // namespace pt::test

@@ -1,0 +1,41 @@
+#pragma once
+// Helpers for the hard-case suite (tests/gpu/hard_cases_test.cpp): renders with the kernel's
+// random numbers pinned to the ends of their range, image statistics with their Monte Carlo
+// error, and scenes moved to another scale or place.
+#include "support/gpu_test_support.h"
+
+#include <functional>
+
+namespace pt::test {
+
+// Every hard-case render runs three times: with the normal sampler, and with every random
+// number forced to 0 and to 1 - 2^-24 (FORCED_RANDOM_*, shaders/common/rng.glsl).
+constexpr uint32_t kForcedModes[] = {FORCED_RANDOM_ZERO, FORCED_RANDOM_ONE};
+
+// renderScene with the kernel's random numbers forced (FORCED_RANDOM_OFF: the normal sampler).
+Renderer::Readback renderForced(const Scene& scene, const IntegratorSettings& settings, const Camera& camera, int width,
+    int height, uint32_t spp, uint32_t forcedRandom);
+
+// Mean of channel `channel` over the pixels `use` accepts (all when empty) and its standard
+// error from the per-pixel variance of the mean.
+struct ImageStats {
+    double mean = 0;
+    double standardError = 0;
+    double lowest = 0, highest = 0;
+    size_t pixels = 0;
+};
+ImageStats imageStats(const Renderer::Readback& r, int channel = 0, const std::function<bool(int x, int y)>& use = {});
+
+// The scene and its cameras mapped by x -> scale * x + offset (radiance is unchanged by it).
+Scene scaledScene(Scene scene, float scale, glm::vec3 offset);
+
+// A closed axis-aligned box of 12 triangles facing outwards (inwards when `inward`).
+Mesh makeBox(glm::vec3 lo, glm::vec3 hi, uint32_t material, bool inward = false);
+
+// An n x n grid of quads (2n^2 triangles sharing vertices and edges) on corner + [0,1]^2 (edgeU, edgeV).
+Mesh makeGrid(glm::vec3 corner, glm::vec3 edgeU, glm::vec3 edgeV, int n, uint32_t material);
+
+// Loads scenes/hard/NAME.
+Scene loadHardScene(const std::string& name);
+
+} // namespace pt::test
