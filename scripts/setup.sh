@@ -14,6 +14,7 @@ packages=(
   libglm-dev libtinygltf-dev nlohmann-json3-dev libstb-dev libopenexr-dev libcli11-dev libpugixml-dev
   libgtest-dev mesa-vulkan-drivers
   libglfw3-dev xvfb xauth
+  python3-venv # scripts/setup_ray_venv.sh: the Ray driver's venv (tools/pt_ray)
   clang libclang-rt-14-dev # scripts/sanitizers.sh: ASan + UBSan build and libFuzzer targets
 )
 
@@ -41,6 +42,7 @@ if grep -qs bookworm /etc/os-release && [[ ! "$mesa_version" =~ ^2[4-9]\. ]]; th
 fi
 
 if [ ${#missing[@]} -eq 0 ] && [ $want_backports_mesa -eq 0 ]; then
+  bash "$(dirname "$0")/setup_ray_venv.sh"
   exit 0
 fi
 
@@ -56,3 +58,4 @@ if [ $want_backports_mesa -eq 1 ]; then
   $SUDO apt-get install -y -qq --no-install-recommends mesa-vulkan-drivers/bookworm-backports >/dev/null \
     || echo "setup: bookworm-backports Mesa unavailable; using Debian 12's Mesa (slower lavapipe)"
 fi
+bash "$(dirname "$0")/setup_ray_venv.sh"

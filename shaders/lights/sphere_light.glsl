@@ -46,8 +46,12 @@ LightSample sampleSphereLight(GpuLight light, vec3 x, vec2 u) {
     float d2 = dot(toCentre, toCentre);
     if (light.radius > 0.0 && d2 > light.radius * light.radius) {
         float oneMinusCosMax = coneOneMinusCos(light.radius, d2);
-        float cosTheta = 1.0 - u.x * oneMinusCosMax;
-        float sinTheta = sqrt(max(0.0, 1.0 - cosTheta * cosTheta));
+        float oneMinusCos = u.x * oneMinusCosMax;
+        float cosTheta = 1.0 - oneMinusCos;
+        // sin^2 = (1 - cos)(1 + cos), not 1 - cos^2: for a sun-sized sphere (1 - cos ~ 1e-5)
+        // the latter keeps only ~2 significant digits, which moves silhouette samples' points
+        // (and their shadow rays' ends) by a good fraction of the radius.
+        float sinTheta = sqrt(max(0.0, oneMinusCos * (2.0 - oneMinusCos)));
         float phi = TWO_PI * u.y;
         float dc = sqrt(d2);
         Frame f = makeFrame(toCentre / dc);

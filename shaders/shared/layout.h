@@ -365,6 +365,7 @@ PT_CHECK_SIZE(GpuRenderPush, 48);
 #define TEST_MODE_BSDF_SAMPLE 6u // outputs[i] = (wi local, pdf), outputs[count + i] = (weight, valid)
 #define TEST_MODE_BSDF_PDF 7u    // inputs: local wi; outputs[i] = (f cos, pdf)
 #define TEST_MODE_TEXTURE 8u     // texture materialIndex at inputs[i] = (u, v, _, _) or point (xyz); outputs[i] = value
+#define TEST_MODE_SOBOL_POINTS 9u // outputs[i] = Sobol' sample i of pixel (0, 0) in dimensions 0-1 and 3-4, as floats
 
 struct GpuTestRay {
     vec3 origin;

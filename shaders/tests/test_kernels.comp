@@ -46,6 +46,12 @@ void main() {
         BsdfSample bs = surfaceSample(m, frame, normalize(push.normal), rng1(rng, 2u), u);
         outputs.v[i] = vec4(bs.wi, bs.valid ? bs.pdf : 0.0);
         outputs.v[push.count + i] = vec4(bs.weight, bs.valid ? 1.0 : 0.0);
+    } else if (push.mode == TEST_MODE_SOBOL_POINTS) {
+        // One pixel's stream, sample index i: the points a render adds to that pixel in order.
+        Rng pixelStream = rngCreate(uvec2(0u), i, push.seed);
+        uvec2 a = sobolOwen2(i, sobolSeeds(pixelStream, 0u));
+        uvec2 b = sobolOwen2(i, sobolSeeds(pixelStream, 3u));
+        outputs.v[i] = vec4(uintToUnitFloat(a.x), uintToUnitFloat(a.y), uintToUnitFloat(b.x), uintToUnitFloat(b.y));
     } else if (push.mode == TEST_MODE_TEXTURE) {
         // Texture push.materialIndex at uv = inputs[i].xy (images) or point inputs[i].xyz.
         vec4 at = Vec4Ref(push.inputs).v[i];

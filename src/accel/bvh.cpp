@@ -163,14 +163,6 @@ bool binTransform(const Box4& cb, int binCount, V4& origin, V4& scale)
     return sc[0] > 0.0f || sc[1] > 0.0f || sc[2] > 0.0f;
 }
 
-// Centroid bounds of a range: exact min/max.
-Box4 centroidBounds(const PrimRef* refs, uint32_t begin, uint32_t end)
-{
-    Box4 cb;
-    for (uint32_t i = begin; i < end; ++i) cb.grow(centroidOf(loadLo(refs[i]), loadHi(refs[i])));
-    return cb;
-}
-
 class Builder {
 public:
     Builder(std::span<const Aabb> primBounds, const BvhBuildOptions& o)

@@ -100,11 +100,16 @@ int main(int argc, char** argv) {
     auto* sppOpt = render->add_option("--spp", o.spp, "Samples per pixel (default 64)")->check(CLI::Range(1u, 1u << 30));
     auto* timeOpt = render->add_option("--time", o.seconds, "Render for this many seconds instead of a fixed spp")->check(CLI::Range(0.001, 1e7));
     sppOpt->excludes(timeOpt);
+    render->add_option("--target-error", o.targetError,
+              "Add samples until the estimated relMSE (from the image's own variance, no reference) is at most "
+              "this; --spp or --time then cap the render")
+        ->check(CLI::Range(1e-12, 1e6));
     render->add_option("--reference", o.reference, "Reference EXR: log relMSE after every pass");
     render->add_option("--error-log", o.errorLog, "CSV of spp, seconds, relMSE after every pass (needs --reference)");
     render->add_option("--tile", o.tileSize, "Split each pass into tiles of this many pixels square (same image)");
     render->add_option("--pass-spp", o.passSpp, "Samples per pass (default: passes of about half a second; same image)");
     render->add_flag("-q,--quiet", o.quiet, "Only print the summary line and errors");
+    render->add_flag("--variance", o.varianceAov, "Add the variance of each pixel's mean to the EXR (channels variance.R/G/B)");
     auto* samplesOpt = render->add_option("--samples", o.samples,
         "Render sample indices A (inclusive) to B (exclusive) of the global sequence, for pt merge");
     samplesOpt->excludes(sppOpt)->excludes(timeOpt);

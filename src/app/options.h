@@ -15,6 +15,7 @@ struct RenderOptions {
     std::string output; // .exr; a tonemapped .png is written beside it
     std::optional<uint32_t> spp;
     std::optional<double> seconds;
+    std::optional<double> targetError; // --target-error: stop at this estimated relMSE (spp, seconds: caps)
     std::optional<int> width, height;
     std::optional<uint32_t> maxDepth;
     std::optional<int> camera; // glTF: index; course XML: the Camera's id
@@ -30,6 +31,7 @@ struct RenderOptions {
     bool validation = false;
     bool allFeatures = false; // compile every feature into the kernel (benchmarking specialisation)
     bool quiet = false;
+    bool varianceAov = false; // --variance: variance-of-the-mean channels in the EXR
     float exposure = 0.0f;
     std::string environment;                   // --env FILE.exr: equirectangular radiance map
     std::optional<glm::vec3> environmentColour; // --env-colour R G B: constant environment

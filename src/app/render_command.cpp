@@ -35,6 +35,17 @@ std::string formatDouble(double v) {
     return s.str();
 }
 
+// --variance: the variance of each pixel's mean as channels variance.R, .G, .B.
+std::vector<ExrChannel> varianceChannels(const Image& varianceOfMean) {
+    std::vector<ExrChannel> channels{{"variance.R", {}}, {"variance.G", {}}, {"variance.B", {}}};
+    const size_t pixels = size_t(varianceOfMean.width) * varianceOfMean.height;
+    for (int c = 0; c < 3; ++c) {
+        channels[c].values.resize(pixels);
+        for (size_t i = 0; i < pixels; ++i) channels[c].values[i] = varianceOfMean.rgba[4 * i + c];
+    }
+    return channels;
+}
+
 int renderJob(VulkanContext& context, const Scene& scene, const FlatScene& flat, const Job& job, const RenderOptions& o,
     const std::optional<Image>& reference, std::ostream* errorLog) {
     // --all-features: the unspecialised kernel, for measuring what specialisation saves.
@@ -70,8 +81,10 @@ int renderJob(VulkanContext& context, const Scene& scene, const FlatScene& flat,
     meta["mpaths_per_second"] = formatDouble(mpaths);
     const double estimate = estimatedRelMse(result.mean, result.varianceOfMean);
     meta["estimated_relmse"] = formatDouble(estimate);
+    if (job.target.targetError > 0) meta["target_error"] = formatDouble(job.target.targetError);
     prepareOutputDirectory(job.output);
     if (session.outputIsState()) writeStateExr(job.output, renderer.readState(), result.mean, meta);
+    else if (o.varianceAov) writeExr(job.output, result.mean, meta, varianceChannels(result.varianceOfMean));
     else writeExr(job.output, result.mean, meta);
     fs::path png = job.output;
     png.replace_extension(".png");
@@ -82,6 +95,9 @@ int renderJob(VulkanContext& context, const Scene& scene, const FlatScene& flat,
                           formatDouble(std::round(mpaths * 1000) / 1000) + " M paths/s, " +
                           std::to_string(result.droppedSamples) + " non-finite samples dropped, estimated relMSE " +
                           formatDouble(estimate);
+    if (job.target.targetError > 0)
+        summary += progress.targetReached ? " (target " + formatDouble(job.target.targetError) + " reached)"
+                                          : " (target " + formatDouble(job.target.targetError) + " not reached: stopped at the cap)";
     if (reference) summary += ", relMSE " + formatDouble(relMse(result.mean, *reference));
     std::fprintf(stderr, "%s\n", summary.c_str());
     if (session.interrupted())

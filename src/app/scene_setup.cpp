@@ -142,8 +142,9 @@ Job makeJob(const Scene& scene, const Camera& camera, const RenderOptions& o, bo
     if (depth < 1) throw std::runtime_error("max depth must be at least 1");
     s.maxDepth = static_cast<uint32_t>(depth);
 
-    job.target.spp = o.spp.value_or(o.seconds ? 0u : cs.spp.value_or(64u));
+    job.target.spp = o.spp.value_or(o.seconds || o.targetError ? 0u : cs.spp.value_or(64u));
     job.target.seconds = o.seconds.value_or(0.0);
+    job.target.targetError = o.targetError.value_or(0.0);
     job.target.passSpp = o.passSpp;
     job.target.tileSize = o.tileSize;
     job.tonemap = cs.tonemap.value_or(TonemapSettings{});

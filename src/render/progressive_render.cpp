@@ -10,6 +10,10 @@
 
 namespace pt {
 
+// Fewest samples per pixel before a target error is judged: below this the per-pixel variance
+// is too noisy and rare paths are mostly unseen.
+constexpr uint32_t kMinTargetErrorSpp = 4;
+
 ProgressiveResult renderProgressively(Renderer& renderer, const ProgressiveTarget& target, const Image* reference,
     std::ostream* errorLog, bool showProgress) {
     using Clock = std::chrono::steady_clock;
@@ -17,16 +21,23 @@ ProgressiveResult renderProgressively(Renderer& renderer, const ProgressiveTarge
     ProgressiveResult result;
     double lastRelMse = NAN;
     const double pixels = double(renderer.width()) * renderer.height();
+    const uint32_t resumedSpp = renderer.samplesPerPixel(); // > 0 after --resume
     while (true) {
         const uint32_t done = renderer.samplesPerPixel();
         if (target.spp > 0 && done >= target.spp) break;
-        const double secondsPerSpp = done > 0 ? result.seconds / done : 0.0;
+        const uint32_t doneHere = done - resumedSpp; // a resumed render's speed is this run's
+        const double secondsPerSpp = doneHere > 0 ? result.seconds / doneHere : 0.0;
         uint32_t pass;
         if (target.passSpp > 0) pass = target.passSpp;
-        else if (done == 0) pass = 1;
+        else if (doneHere == 0) pass = 1;
         else pass = static_cast<uint32_t>(std::clamp(0.5 / std::max(secondsPerSpp, 1e-9), 1.0, 4096.0));
+        if (target.targetError > 0 && result.lastEstimate > 0) {
+            // relMSE falls as 1/spp: aim at the predicted total instead of overshooting by a pass.
+            const double needed = std::ceil(done * result.lastEstimate / target.targetError);
+            pass = static_cast<uint32_t>(std::clamp(needed - done, 1.0, double(pass)));
+        }
         if (target.spp > 0) pass = std::min(pass, target.spp - done);
-        if (target.seconds > 0 && done > 0) {
+        if (target.seconds > 0 && doneHere > 0) {
             // Never start a pass that would overrun the budget.
             const double fits = std::floor((target.seconds - result.seconds) / std::max(secondsPerSpp, 1e-9));
             if (fits < 1.0) break;
@@ -45,7 +56,17 @@ ProgressiveResult renderProgressively(Renderer& renderer, const ProgressiveTarge
                 *errorLog << line.str() << std::flush;
             }
         }
-        progress.update(spp, result.seconds, pixels * spp / std::max(result.seconds, 1e-9) * 1e-6, lastRelMse);
+        progress.update(spp, result.seconds, pixels * (spp - resumedSpp) / std::max(result.seconds, 1e-9) * 1e-6, lastRelMse);
+        // The estimate needs a variance: a few samples per pixel at least.
+        if (target.targetError > 0 && spp >= kMinTargetErrorSpp) {
+            const Renderer::Readback r = renderer.read();
+            result.lastEstimate = estimatedRelMse(r.mean, r.varianceOfMean);
+            if (result.lastEstimate <= target.targetError) {
+                result.targetReached = true;
+                if (target.afterPass) target.afterPass(result.seconds);
+                break;
+            }
+        }
         if (target.afterPass && !target.afterPass(result.seconds)) break;
         if (target.seconds > 0 && result.seconds >= target.seconds) break;
     }

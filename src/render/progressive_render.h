@@ -15,6 +15,9 @@ struct ProgressiveTarget {
     double seconds = 0;    // or after this much render time
     uint32_t passSpp = 0;  // samples per pass; 0 chooses passes of about half a second
     uint32_t tileSize = 0; // split passes into tiles (same image)
+    // > 0: stop once the reference-free relMSE estimate (estimatedRelMse) is at most this;
+    // spp and seconds, when set, are then caps.
+    double targetError = 0;
     // Called after every pass with the render seconds so far; returning false stops early
     // (checkpoints, SIGINT/SIGTERM: render/checkpoint.h).
     std::function<bool(double seconds)> afterPass;
@@ -23,6 +26,8 @@ struct ProgressiveTarget {
 struct ProgressiveResult {
     double seconds = 0; // render time of the passes (excludes relMSE evaluation)
     double lastRelMse = -1;
+    double lastEstimate = -1;     // estimatedRelMse after the last pass (target-error renders)
+    bool targetReached = false;   // targetError was met (not a cap)
 };
 
 // `errorLog` receives "spp,seconds,relmse" lines (without header) when `reference` is given.

@@ -26,7 +26,7 @@ constexpr int kMaxNodeDepth = 1024;
 // file can describe an exponential number of instances: 40 nodes that each list the next one
 // twice make 2^40. A tree visits each node once, whatever its size; repeat visits are bounded,
 // and so are the vertices and triangles all instances add up to.
-constexpr size_t kMaxRepeatedNodeVisits = size_t(1) << 16;
+constexpr size_t kMaxRepeatedNodeVisits = size_t(1) << 12;
 constexpr size_t kMaxInstanced = size_t(1) << 27; // vertices, and triangles
 
 // Images decoded as tinygltf reads them (from data URIs, files or buffer views), with our own
@@ -51,6 +51,50 @@ bool decodeImage(tinygltf::Image* image, const int index, std::string* err, std:
     image->width = decoded->images[index]->width;
     image->height = decoded->images[index]->height;
     return true;
+}
+
+// ---- file access for external buffers and images ----
+// tinygltf's own callbacks trust the file: a URI naming a directory made its ReadWholeFile ask for
+// 2^63 bytes (found by fuzzing), a device such as /dev/zero has no end, and its path expansion
+// runs wordexp() on the URI. Ours take the path as written (relative to the scene's folder),
+// read regular files only and bound their size.
+constexpr uint64_t kMaxExternalFileBytes = uint64_t(1) << 32;
+
+bool fileExists(const std::string& path, void*) {
+    std::error_code ec;
+    return std::filesystem::exists(path, ec);
+}
+
+std::string pathAsWritten(const std::string& path, void*) { return path; }
+
+bool readWholeFile(std::vector<unsigned char>* out, std::string* err, const std::string& path, void*) {
+    auto problem = [&](const std::string& what) {
+        if (err) *err += "File " + what + " : " + path + "\n";
+        return false;
+    };
+    std::error_code ec;
+    const auto status = std::filesystem::status(path, ec);
+    if (status.type() == std::filesystem::file_type::not_found) return problem("not found");
+    if (!std::filesystem::is_regular_file(status)) return problem("is not a regular file");
+    const uint64_t size = std::filesystem::file_size(path, ec);
+    if (ec) return problem("size unreadable");
+    if (size == 0) return problem("is empty");
+    if (size > kMaxExternalFileBytes) return problem("is larger than 4 GiB");
+    std::ifstream in(path, std::ios::binary);
+    if (!in) return problem("cannot be opened");
+    out->resize(size);
+    if (!in.read(reinterpret_cast<char*>(out->data()), static_cast<std::streamsize>(size))) return problem("read failed");
+    return true;
+}
+
+bool refuseWrite(std::string* err, const std::string& path, const std::vector<unsigned char>&, void*) {
+    if (err) *err += "pt never writes glTF files: " + path + "\n";
+    return false;
+}
+
+void configureLoader(tinygltf::TinyGLTF& loader, DecodedImages& images) {
+    loader.SetImageLoader(&decodeImage, &images);
+    loader.SetFsCallbacks(tinygltf::FsCallbacks{&fileExists, &pathAsWritten, &readWholeFile, &refuseWrite, nullptr});
 }
 
 bool finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
@@ -278,7 +322,9 @@ private:
     uint32_t imageIndex(int index, const std::string& where) {
         if (auto it = imageIndices_.find(index); it != imageIndices_.end()) return it->second;
         if (static_cast<size_t>(index) >= decoded_.images.size() || !decoded_.images[index])
-            fail(where + ": image " + std::to_string(index) + " has no data");
+            fail(where + ": image " + std::to_string(index) +
+                 (model_.images[index].uri.empty() || model_.images[index].uri.rfind("data:", 0) == 0 ? "" : " '" + model_.images[index].uri + "'") +
+                 " has no data (its file was not found or could not be read)");
         scene_.textureImages.push_back(std::move(*decoded_.images[index]));
         decoded_.images[index].reset();
         const uint32_t i = static_cast<uint32_t>(scene_.textureImages.size() - 1);
@@ -668,7 +714,7 @@ Scene loadGltfFile(const std::filesystem::path& path) {
 
     tinygltf::TinyGLTF loader;
     DecodedImages images;
-    loader.SetImageLoader(&decodeImage, &images);
+    configureLoader(loader, images);
     tinygltf::Model model;
     std::string err, warn;
     bool ok = binary ? loader.LoadBinaryFromFile(&model, &err, &warn, name) : loader.LoadASCIIFromFile(&model, &err, &warn, name);
@@ -678,7 +724,7 @@ Scene loadGltfFile(const std::filesystem::path& path) {
 Scene loadGltfText(std::string_view text, const std::string& displayName, const std::filesystem::path& baseDir) {
     tinygltf::TinyGLTF loader;
     DecodedImages images;
-    loader.SetImageLoader(&decodeImage, &images);
+    configureLoader(loader, images);
     tinygltf::Model model;
     std::string err, warn;
     bool ok = loader.LoadASCIIFromString(&model, &err, &warn, text.data(), static_cast<unsigned int>(text.size()), baseDir.string());
@@ -692,7 +738,7 @@ Scene loadGltfMemory(std::string_view bytes, const std::string& displayName, con
     if (bytes.size() < 4 || std::memcmp(bytes.data(), "glTF", 4) != 0) return loadGltfText(bytes, displayName, baseDir);
     tinygltf::TinyGLTF loader;
     DecodedImages images;
-    loader.SetImageLoader(&decodeImage, &images);
+    configureLoader(loader, images);
     tinygltf::Model model;
     std::string err, warn;
     const bool ok = loader.LoadBinaryFromMemory(&model, &err, &warn, reinterpret_cast<const unsigned char*>(bytes.data()),

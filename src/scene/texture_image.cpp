@@ -24,6 +24,8 @@
 #include <iterator>
 #include <limits>
 #include <memory>
+#include <optional>
+#include <utility>
 #include <stdexcept>
 
 namespace pt {
@@ -73,6 +75,18 @@ void checkPnmHeader(const unsigned char* bytes, size_t size, const std::string& 
     if (values[2] > 255) fail(source, "16-bit PNM (maxval " + std::to_string(values[2]) + ") is not supported");
 }
 
+// The width and height in a PNG's IHDR chunk (big-endian, right after the signature), clamped to
+// INT_MAX; nothing when the data does not start like a PNG.
+std::optional<std::pair<int, int>> declaredPngSize(const unsigned char* bytes, size_t size) {
+    static const unsigned char kSignature[] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n', 0, 0, 0, 13, 'I', 'H', 'D', 'R'};
+    if (size < 24 || std::memcmp(bytes, kSignature, sizeof(kSignature)) != 0) return std::nullopt;
+    auto read = [&](size_t at) {
+        const uint32_t v = uint32_t(bytes[at]) << 24 | uint32_t(bytes[at + 1]) << 16 | uint32_t(bytes[at + 2]) << 8 | bytes[at + 3];
+        return static_cast<int>(std::min<uint32_t>(v, std::numeric_limits<int>::max()));
+    };
+    return std::pair{read(16), read(20)};
+}
+
 struct StbFree {
     void operator()(void* p) const { stbi_image_free(p); }
 };
@@ -85,8 +99,12 @@ TextureImage decodeTextureImage(const unsigned char* bytes, size_t size, const s
     const int length = static_cast<int>(size);
     checkPnmHeader(bytes, size, source);
     int width = 0, height = 0, channels = 0;
-    if (!stbi_info_from_memory(bytes, length, &width, &height, &channels))
+    if (!stbi_info_from_memory(bytes, length, &width, &height, &channels)) {
+        // stb_image refuses a PNG over 2^30 bytes decoded but then reports "not of any known type";
+        // the size its header declares is the more useful message.
+        if (const auto png = declaredPngSize(bytes, size)) checkSize(png->first, png->second, source);
         fail(source, std::string("cannot decode image (") + stbi_failure_reason() + ")");
+    }
     checkSize(width, height, source);
     const size_t pixels = static_cast<size_t>(width) * static_cast<size_t>(height);
     if (pixels > kMaxPixelsPerByte * size + kAlwaysPlausiblePixels)
@@ -130,7 +148,7 @@ TextureImage loadTextureImage(const std::filesystem::path& path) {
     // A device or FIFO (a scene naming /dev/zero or /dev/stdin) would be read forever.
     std::error_code ec;
     const auto status = std::filesystem::status(path, ec);
-    if (status.type() == std::filesystem::file_type::not_found) fail(source, "image file not found");
+    if (status.type() == std::filesystem::file_type::not_found) fail(source, "cannot open image file (not found)");
     if (!std::filesystem::is_regular_file(status)) fail(source, "not a regular file");
     std::ifstream in(path, std::ios::binary);
     if (!in) fail(source, "cannot open image file");

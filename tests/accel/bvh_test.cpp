@@ -579,6 +579,38 @@ TEST(Bvh, DeterministicAcrossThreadCounts)
     }
 }
 
+TEST(Bvh, BigLeavesAtTheTopLevels)
+{
+    // Leaves bigger than the builder's task size are made by its top (level-by-level) phase:
+    // here the root splits two far-apart clusters and each 10,000-primitive cluster is one leaf
+    // (splitting costs at least traversalCost = 1, more than 10,000 * intersectCost).
+    std::vector<Tri> tris = randomTris(20000, 81, 0.01f);
+    for (size_t i = 0; i < tris.size() / 2; ++i) {
+        tris[i].v0.x += 100.0f;
+        tris[i].v1.x += 100.0f;
+        tris[i].v2.x += 100.0f;
+    }
+    const std::vector<Aabb> prims = boundsOf(tris);
+    BvhBuildOptions opt;
+    opt.maxLeafSize = 100000;
+    opt.intersectCost = 1.0f / 15000.0f;
+    opt.threads = 1;
+    const Bvh one = pt::buildBvh(prims, opt);
+    checkStructure(one, prims, opt);
+    ASSERT_EQ(one.nodes.size(), 3u);
+    EXPECT_EQ(one.nodes[1].count, 10000u);
+    opt.threads = 2;
+    const Bvh two = pt::buildBvh(prims, opt);
+    EXPECT_EQ(two.primOrder, one.primOrder);
+    ASSERT_EQ(two.nodes.size(), one.nodes.size());
+    EXPECT_EQ(std::memcmp(two.nodes.data(), one.nodes.data(), one.nodes.size() * sizeof(BvhNode)), 0);
+    // And the whole scene as one leaf when that is cheapest.
+    opt.intersectCost = 1e-6f;
+    const Bvh single = pt::buildBvh(prims, opt);
+    checkStructure(single, prims, opt);
+    EXPECT_EQ(single.nodes.size(), 1u);
+}
+
 // Reference object-median build (split the centroid range at the median of the widest axis).
 void medianBuild(pt::BvhNodeArray& nodes, std::vector<uint32_t>& order, const std::vector<Aabb>& prims,
                  uint32_t slot, uint32_t begin, uint32_t end, int maxLeaf)

@@ -5,6 +5,7 @@
 // output path could not litter the source tree), with stdout and stderr captured to files.
 #include "support/malformed_corpus.h"
 #include "render/image_io.h"
+#include "render/metrics.h"
 
 #include <gtest/gtest.h>
 
@@ -194,7 +195,7 @@ std::vector<std::string> corpusFiles() { return pt::test::malformedCorpusFiles()
 TEST(CliCorpus, ReadmeTableCoversEveryCorpusFile) {
     const auto expected = expectedSubstrings();
     const auto files = corpusFiles();
-    EXPECT_GE(files.size(), 31u);
+    EXPECT_GE(files.size(), 32u);
     for (const auto& f : files) EXPECT_EQ(expected.count(f), 1u) << f << " has no row in README.md";
 }
 
@@ -700,4 +701,51 @@ TEST_F(CliTest, BenchRejectsBadBudget) {
     const RunResult r = run({"bench", "--width", "8", "--height", "8", "--budgets", "1,x", "--no-plot"});
     EXPECT_EXIT_STATUS(r, 1);
     EXPECT_NE(r.errorLine().find("'x' is not a number of seconds"), std::string::npos) << r;
+}
+
+TEST_F(CliTest, TargetErrorStopsNearTheTrueError) {
+    // The estimate needs no reference; the reference here only checks it.
+    const RunResult r = run({"render", kDiffuseScene.string(), "--target-error", "0.02", "--reference",
+                                kDiffuseReference.string(), "-o", "t.exr", "--quiet"},
+        {}, 120);
+    EXPECT_EXIT_STATUS(r, 0);
+    EXPECT_NE(r.err.find("(target 0.02 reached)"), std::string::npos) << r;
+    pt::ImageMetadata meta;
+    const pt::Image image = pt::readExr(dir_ / "t.exr", &meta);
+    const double trueError = pt::relMse(image, pt::readExr(kDiffuseReference));
+    EXPECT_LE(std::stod(meta.at("estimated_relmse")), 0.02);
+    EXPECT_GT(trueError, 0.02 / 1.5) << meta.at("spp") << " spp";
+    EXPECT_LT(trueError, 0.02 * 1.5) << meta.at("spp") << " spp";
+    EXPECT_EQ(meta.at("target_error"), "0.02");
+}
+
+TEST_F(CliTest, VarianceChannelsMatchTheSpreadOfSeeds) {
+    // Two renders with different seeds differ per pixel by d with E[d^2] = varA + varB. Path
+    // tracing's tails make sums of d^2 erratic, so compare medians: for near-Gaussian pixel
+    // means, d^2 / (varA + varB) is chi-square with one degree of freedom, median 0.455.
+    const std::vector<std::string> names{"variance.R", "variance.G", "variance.B"};
+    std::vector<pt::ExrChannels> variances;
+    std::vector<pt::Image> means;
+    for (const char* seed : {"1", "2"}) {
+        const std::string file = std::string("v") + seed + ".exr";
+        const RunResult r = run({"render", "--width", "32", "--height", "32", "--spp", "64", "--seed", seed, "--variance",
+            "-o", file, "--quiet"});
+        ASSERT_EQ(r.status, 0) << r;
+        variances.push_back(pt::readExrChannels(dir_ / file, names));
+        means.push_back(pt::readExr(dir_ / file));
+    }
+    std::vector<double> ratios;
+    for (int c = 0; c < 3; ++c)
+        for (size_t i = 0; i < variances[0].channels[c].values.size(); ++i) {
+            const double va = variances[0].channels[c].values[i], vb = variances[1].channels[c].values[i];
+            ASSERT_TRUE(std::isfinite(va) && va >= 0 && std::isfinite(vb) && vb >= 0);
+            if (va + vb <= 0) continue; // black pixels: nothing to compare
+            const double d = means[0].rgba[4 * i + c] - means[1].rgba[4 * i + c];
+            ratios.push_back(d * d / (va + vb));
+        }
+    ASSERT_GT(ratios.size(), 1000u);
+    std::nth_element(ratios.begin(), ratios.begin() + ratios.size() / 2, ratios.end());
+    const double median = ratios[ratios.size() / 2];
+    EXPECT_GT(median, 0.3); // a variance twice too large gives 0.23
+    EXPECT_LT(median, 0.65); // half as large, 0.9
 }

@@ -126,8 +126,8 @@ TEST_F(StateRoundTrip, MergedPartitionMatchesTheSingleRender) {
     EXPECT_EQ(merged.spp, 17u);
     const auto a = resolve(merged).mean.rgba;
     ASSERT_EQ(a.size(), single.size());
-    // Equal up to the final rounding to float: the sums agree to ~1e-14 relative (double-float
-    // parts added in double), so a mean differs from the single render's by at most one ulp.
+    // Equal up to the final rounding to float: both sums are within n * 2^-48 (relative) of the
+    // exact sum (double-float parts added in double), so a mean differs by at most one ulp.
     size_t identical = 0;
     for (size_t i = 0; i < a.size(); ++i) {
         identical += a[i] == single[i];

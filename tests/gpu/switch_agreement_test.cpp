@@ -1,5 +1,6 @@
 // Every combination of the integrator switches is an unbiased estimator of the same image:
-// NEE on/off, MIS on/off, Russian roulette on/off, cosine or uniform direction sampling.
+// NEE on/off, MIS on/off, Russian roulette on/off, cosine or uniform direction sampling, and
+// the Sobol' sampler.
 // Each is compared with the all-on render block by block, against their combined noise.
 #include "render/metrics.h"
 #include "scene/gltf_loader.h"
@@ -13,9 +14,11 @@ namespace {
 struct Combination {
     bool nee, mis, rr;
     DirectionSampling sampling;
+    SamplerKind sampler = SamplerKind::Independent;
     std::string name() const {
         return std::string(nee ? "nee" : "no-nee") + (nee ? (mis ? "+mis" : "+no-mis") : "") + (rr ? "+rr" : "+no-rr") +
-               (sampling == DirectionSampling::Cosine ? "+cosine" : "+uniform");
+               (sampling == DirectionSampling::Cosine ? "+cosine" : "+uniform") +
+               (sampler == SamplerKind::Sobol ? "+sobol" : "");
     }
 };
 
@@ -27,6 +30,9 @@ std::vector<Combination> allCombinations() {
             for (bool rr : {true, false})
                 for (auto sampling : {DirectionSampling::Cosine, DirectionSampling::Uniform}) out.push_back({nee, mis, rr, sampling});
         }
+    // The Sobol' sampler with and without light sampling: the same image as independent samples.
+    out.push_back({true, true, true, DirectionSampling::Cosine, SamplerKind::Sobol});
+    out.push_back({false, false, true, DirectionSampling::Cosine, SamplerKind::Sobol});
     return out;
 }
 
@@ -41,6 +47,7 @@ protected:
             s.mis = c.mis;
             s.rr = c.rr;
             s.sampling = c.sampling;
+            s.sampler = c.sampler;
             s.maxDepth = 8;
             s.seed = seed;
             return renderScene(scene, s, camera, size, size, spp);

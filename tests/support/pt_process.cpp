@@ -34,8 +34,15 @@ std::filesystem::path freshTestDirectory(const std::string& name) {
 PtRun runPt(const std::filesystem::path& dir, const std::vector<std::string>& args,
     const std::map<std::string, std::string>& env, const std::function<void(pid_t, double)>& whileRunning,
     double timeoutSeconds) {
-    std::vector<std::string> argStrings = {PT_BINARY};
-    argStrings.insert(argStrings.end(), args.begin(), args.end());
+    std::vector<std::string> argv = {PT_BINARY};
+    argv.insert(argv.end(), args.begin(), args.end());
+    return runProgram(dir, argv, env, whileRunning, timeoutSeconds);
+}
+
+PtRun runProgram(const std::filesystem::path& dir, const std::vector<std::string>& argStrings0,
+    const std::map<std::string, std::string>& env, const std::function<void(pid_t, double)>& whileRunning,
+    double timeoutSeconds) {
+    std::vector<std::string> argStrings = argStrings0;
     std::vector<char*> argv;
     for (auto& a : argStrings) argv.push_back(a.data());
     argv.push_back(nullptr);

@@ -21,6 +21,12 @@ struct PtRun {
     std::string describe() const; // for failure messages
 };
 
+// Runs argv[0] (a path) with `args`; `whileRunning(pid, seconds)` is called every few
+// milliseconds until it exits.
+PtRun runProgram(const std::filesystem::path& dir, const std::vector<std::string>& argv,
+    const std::map<std::string, std::string>& env = {},
+    const std::function<void(pid_t, double)>& whileRunning = {}, double timeoutSeconds = 120);
+
 // `whileRunning(pid, seconds)` is called every few milliseconds until pt exits.
 PtRun runPt(const std::filesystem::path& dir, const std::vector<std::string>& args,
     const std::map<std::string, std::string>& env = {},

@@ -246,6 +246,7 @@ def build():
 
     doc, _ = triangle_doc()
     doc["accessors"][1]["componentType"] = FLOAT  # indices must be unsigned integers
+    doc["accessors"][1]["bufferView"] = 0  # the positions' view: three floats fit there
     files["float_indices.gltf"] = to_json(doc)
 
     doc, _ = triangle_doc()
@@ -258,6 +259,10 @@ def build():
     # A buffer that is a character device: endless zeros, not a file.
     doc, _ = triangle_doc(uri="/dev/zero")
     files["buffer_is_a_device.gltf"] = to_json(doc)
+
+    # A buffer that is a folder (this one): tinygltf's own reader asked for 2^63 bytes.
+    doc, _ = triangle_doc(uri=".")
+    files["buffer_is_a_directory.gltf"] = to_json(doc)
 
     return files
 
