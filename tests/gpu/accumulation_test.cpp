@@ -6,6 +6,7 @@
 #include "support/gpu_test_support.h"
 
 #include <cmath>
+#include <cstdio>
 
 namespace pt::test {
 namespace {
@@ -26,6 +27,7 @@ void expectConstant(const Renderer::Readback& r, float expected, const char* wha
         // A constant has no variance; float32 sums of squares would report ~1e-3 * L^2 here.
         EXPECT_LT(r.varianceOfMean.rgba[i], 1e-12) << what << " pixel " << i / 4;
     }
+    std::printf("%s at %u spp: worst relative error over the pixels %.3g\n", what, kManySamples, worst);
     EXPECT_LT(worst, 1e-6) << what << ": worst relative error over the pixels";
 }
 
@@ -35,7 +37,9 @@ TEST_F(Accumulation, PlainFloatSumsWouldDrift) {
     // Why the kernel keeps double-floats: this is what a float32 running sum does.
     float sum = 0.0f;
     for (uint32_t i = 0; i < kManySamples; ++i) sum += 0.3f;
-    EXPECT_GT(std::abs(double(sum) / kManySamples / 0.3 - 1.0), 1e-4);
+    const double drift = std::abs(double(sum) / kManySamples / double(0.3f) - 1.0);
+    std::printf("float32 running sum of %u x 0.3f: relative error %.3g\n", kManySamples, drift);
+    EXPECT_GT(drift, 1e-4);
 }
 
 TEST_F(Accumulation, EmitterSeenDirectlyStaysConstantAtOneHundredThousandSamples) {

@@ -1,7 +1,5 @@
 #include "support/hard_case_support.h"
 
-#include "scene/scene_loader.h"
-
 #include <algorithm>
 #include <cmath>
 
@@ -92,7 +90,5 @@ Mesh makeGrid(glm::vec3 corner, glm::vec3 edgeU, glm::vec3 edgeV, int n, uint32_
     m.material = material;
     return m;
 }
-
-Scene loadHardScene(const std::string& name) { return loadScene(testDataDir().parent_path() / "scenes" / "hard" / name); }
 
 } // namespace pt::test

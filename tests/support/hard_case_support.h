@@ -35,7 +35,4 @@ Mesh makeBox(glm::vec3 lo, glm::vec3 hi, uint32_t material, bool inward = false)
 // An n x n grid of quads (2n^2 triangles sharing vertices and edges) on corner + [0,1]^2 (edgeU, edgeV).
 Mesh makeGrid(glm::vec3 corner, glm::vec3 edgeU, glm::vec3 edgeV, int n, uint32_t material);
 
-// Loads scenes/hard/NAME.
-Scene loadHardScene(const std::string& name);
-
 } // namespace pt::test

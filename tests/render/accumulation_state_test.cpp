@@ -1,0 +1,98 @@
+// The accumulation state on the host: sample-range parsing, merging (exact double-float sums,
+// overlap refused, gaps found) and the state EXR round trip (bit for bit).
+#include "render/accumulation_state.h"
+#include "render/state_file.h"
+#include "shared/layout.h"
+
+#include <gtest/gtest.h>
+
+#include <unistd.h>
+
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+
+namespace pt {
+namespace {
+
+AccumulationState state(SampleRange range, float sumHi, float sumLo, float dropped = 0) {
+    AccumulationState s;
+    s.width = 2;
+    s.height = 1;
+    s.samples = range;
+    s.spp = range.count();
+    s.sums.assign(2 * ACCUMULATION_VEC4S_PER_PIXEL, glm::vec4(0.0f));
+    for (size_t p = 0; p < 2; ++p) {
+        s.sums[ACCUMULATION_VEC4S_PER_PIXEL * p + ACCUM_SUM] = glm::vec4(sumHi, sumHi, sumHi, dropped);
+        s.sums[ACCUMULATION_VEC4S_PER_PIXEL * p + ACCUM_SUM_LO] = glm::vec4(sumLo, sumLo, sumLo, 0.0f);
+        s.sums[ACCUMULATION_VEC4S_PER_PIXEL * p + ACCUM_SUM_SQUARES] = glm::vec4(sumHi, sumHi, sumHi, 0.0f);
+    }
+    return s;
+}
+
+TEST(SampleRange, ParsesAndRejects) {
+    const SampleRange r = parseSampleRange("5:12");
+    EXPECT_EQ(r.begin, 5u);
+    EXPECT_EQ(r.end, 12u);
+    EXPECT_EQ(r.count(), 7u);
+    for (const char* bad : {"5", "5:5", "7:3", "a:4", "1:99999999999", ":4", "3:", "-1:4"})
+        EXPECT_THROW(parseSampleRange(bad), std::runtime_error) << bad;
+}
+
+TEST(MergeStates, AddsTheDoubleFloatSumsExactly) {
+    // hi + lo carries more than a float: 1 + 2^-30 survives the merge of two such parts.
+    const float lo = std::ldexp(1.0f, -30);
+    const AccumulationState merged = mergeStates({state({4, 8}, 1.0f, lo, 1), state({0, 4}, 1.0f, lo, 2)});
+    EXPECT_EQ(merged.samples.begin, 0u);
+    EXPECT_EQ(merged.samples.end, 8u);
+    EXPECT_EQ(merged.spp, 8u);
+    EXPECT_EQ(merged.sum(0).x, 2.0 + 2.0 * double(lo));
+    EXPECT_EQ(merged.dropped(1), 3u);
+    EXPECT_EQ(resolve(merged).droppedSamples, 6u);
+}
+
+TEST(MergeStates, RefusesOverlapAndFindsGaps) {
+    EXPECT_THROW(mergeStates({state({0, 5}, 1, 0), state({4, 8}, 1, 0)}), std::runtime_error);
+    const auto gaps = findGaps({{10, 12}, {0, 4}, {6, 10}});
+    ASSERT_EQ(gaps.size(), 1u);
+    EXPECT_EQ(gaps[0].describe(), "4:6");
+    const AccumulationState withGap = mergeStates({state({0, 4}, 1, 0), state({6, 10}, 1, 0)});
+    EXPECT_EQ(withGap.spp, 8u);
+    EXPECT_EQ(withGap.samples.describe(), "0:10");
+}
+
+TEST(StateFile, RoundTripsBitForBit) {
+    const auto path = std::filesystem::temp_directory_path() / ("pt_state_" + std::to_string(::getpid()) + ".exr");
+    AccumulationState s = state({3, 9}, 1.1f, std::ldexp(1.3f, -27), 2);
+    s.sums[5].y = -0.0f; // every float, signs and all
+    const AccumulatedImage image = resolve(s);
+    writeStateExr(path, s, image.mean, {{"seed", "4"}});
+    ImageMetadata meta;
+    const AccumulationState back = readStateExr(path, meta);
+    std::filesystem::remove(path);
+    EXPECT_EQ(back.samples.describe(), "3:9");
+    EXPECT_EQ(back.spp, 6u);
+    EXPECT_EQ(meta["seed"], "4");
+    ASSERT_EQ(back.sums.size(), s.sums.size());
+    EXPECT_EQ(std::memcmp(back.sums.data(), s.sums.data(), s.sums.size() * sizeof(glm::vec4)), 0);
+}
+
+TEST(StateFile, ReadingAPlainImageNamesTheMissingChannel) {
+    const auto path = std::filesystem::temp_directory_path() / ("pt_plain_" + std::to_string(::getpid()) + ".exr");
+    Image plain;
+    plain.width = plain.height = 1;
+    plain.rgba = {1, 2, 3, 1};
+    writeExr(path, plain, {});
+    ImageMetadata meta;
+    try {
+        readStateExr(path, meta);
+        ADD_FAILURE() << "a plain image read as a state";
+    } catch (const std::runtime_error& e) {
+        EXPECT_NE(std::string(e.what()).find("state.sum.R"), std::string::npos) << e.what();
+        EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos);
+    }
+    std::filesystem::remove(path);
+}
+
+} // namespace
+} // namespace pt
