@@ -74,13 +74,15 @@ bool traverseTree(bool sphereTree, bool anyHit, Ray ray, WatertightRay wray, Box
     NodeRef nodes = sphereTree ? NodeRef(scene.sphereNodes) : sceneNodes;
     uint numNodes = sphereTree ? scene.numSphereNodes : scene.numNodes;
     if (numNodes == 0u) return false;
-    GpuBvhNode node = nodes.v[0];
-    if (boxEntry(node.lo, node.hi, boxRay, hit.t) == MISS) return false;
+    GpuBvhNode root = nodes.v[0];
+    if (boxEntry(root.lo, root.hi, boxRay, hit.t) == MISS) return false;
     uint stack[TRAVERSAL_STACK_SIZE];
     int stackSize = 0;
+    uint nodeIndex = 0u;
     bool found = false;
     while (true) {
         if (DEBUG_VIEW == DEBUG_VIEW_BVH_COST) ++traversalNodeVisits;
+        GpuBvhNode node = nodes.v[nodeIndex];
         if (node.count > 0u) {
             for (uint i = node.leftOrFirst; i < node.leftOrFirst + node.count; ++i) {
                 float t;
@@ -116,15 +118,15 @@ bool traverseTree(bool sphereTree, bool anyHit, Ray ray, WatertightRay wray, Box
             bool hitB = tb != MISS;
             if (hitA || hitB) {
                 bool aFirst = hitA && (!hitB || ta <= tb);
-                if (hitA && hitB && stackSize < TRAVERSAL_STACK_SIZE) stack[stackSize++] = aFirst ? left + 1u : left;
-                // The near child's record is already loaded: descend without fetching it again
-                // (a third fewer node loads per step; loads are gathers on lavapipe).
-                node = aFirst ? a : b;
+                uint near = aFirst ? left : left + 1u;
+                uint far = aFirst ? left + 1u : left;
+                if (hitA && hitB && stackSize < TRAVERSAL_STACK_SIZE) stack[stackSize++] = far;
+                nodeIndex = near;
                 continue;
             }
         }
         if (stackSize == 0) break;
-        node = nodes.v[stack[--stackSize]];
+        nodeIndex = stack[--stackSize];
     }
     return found;
 }
