@@ -178,8 +178,6 @@ public:
     void run(Bvh& out)
     {
         const uint32_t n = uint32_t(input_.size());
-        auto t0 = std::chrono::steady_clock::now();
-        auto T = [&](const char* what) { auto t1 = std::chrono::steady_clock::now(); if (getenv("PT_BVH_PROFILE")) fprintf(stderr, "%s %.1f ms\n", what, std::chrono::duration<double>(t1 - t0).count() * 1e3); t0 = t1; };
         // Uninitialised on purpose: every element is written before it is read, and zero-filling
         // 32 bytes per primitive on one thread would cost more than the top levels' binning.
         refs_.reset(new PrimRef[n]);
@@ -205,12 +203,10 @@ public:
                 rootCentroids.grow(cb[c]);
             }
         }
-        T("init");
         std::vector<BvhNode> nodes{ BvhNode{ rootBounds.lo3(), 0, rootBounds.hi3(), 0 } };
 
         int maxDepth = 0;
         std::vector<Task> tasks;
-        T("top");
         buildTop(nodes, WorkItem{ 0, 0, n, 0, rootCentroids }, tasks, maxDepth);
 
         // Preorder of the top tree: where a sequential depth-first build would have allocated
@@ -238,7 +234,6 @@ public:
             }
         }
 
-        T("events");
         // Phase 2: every task's subtree goes into its own vector; local node 0 is the task root.
         std::vector<std::vector<BvhNode>> local(tasks.size());
         std::vector<int> localDepth(tasks.size(), 0);
@@ -268,7 +263,6 @@ public:
         }
         alt_.reset();
 
-        T("tasks");
         // Phase 3: final positions from the preorder events, then copy with remapped indices.
         std::vector<uint32_t> topIndex(nodes.size(), 0); // phase-1 index -> final index
         std::vector<size_t> base(tasks.size());          // final index of a task's local node 1
@@ -302,7 +296,6 @@ public:
         });
         std::vector<BvhNode>().swap(nodes);
 
-        T("assembly");
         out.primOrder.resize(n);
         {
             const size_t chunks = chunkCount(n);
@@ -313,9 +306,7 @@ public:
         }
         refs_.reset();
 
-        T("primOrder");
         out.sahCost = sahCost(placed, n);
-        T("sah");
         out.maxDepth = maxDepth;
         out.nodes = std::move(placed);
     }

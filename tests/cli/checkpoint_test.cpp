@@ -37,15 +37,19 @@ std::string errorLines(const std::string& err) {
     return std::to_string(count) + ": " + lines;
 }
 
+// ctest runs every test in its own process: the uninterrupted render is made by the tests that
+// compare with it.
 class Checkpoint : public ::testing::Test {
 protected:
-    static void SetUpTestSuite() {
-        dir_ = freshTestDirectory("checkpoint");
+    void SetUp() override { dir_ = freshTestDirectory("checkpoint"); }
+    void TearDown() override {
+        if (!HasFailure()) fs::remove_all(dir_);
+    }
+    void renderUninterrupted() {
         const PtRun r = runPt(dir_, with({"-o", "uninterrupted.exr"}));
         ASSERT_EQ(r.status, 0) << r.describe();
         uninterrupted_ = readExr(dir_ / "uninterrupted.exr");
     }
-    static void TearDownTestSuite() { fs::remove_all(dir_); }
 
     // Sends `signal` once the checkpoint file exists, then resumes; returns the final image.
     void interruptAndResume(int signal, int expectedStatus, const std::string& name) {
@@ -71,15 +75,15 @@ protected:
         EXPECT_EQ(image.rgba, uninterrupted_.rgba) << "resumed render differs from the uninterrupted one";
     }
 
-    static fs::path dir_;
-    static Image uninterrupted_;
+    fs::path dir_;
+    Image uninterrupted_;
 };
-fs::path Checkpoint::dir_;
-Image Checkpoint::uninterrupted_;
 
-TEST_F(Checkpoint, SigtermSavesAndResumeIsBitIdentical) { interruptAndResume(SIGTERM, 143, "term"); }
-
-TEST_F(Checkpoint, SigintSavesAndResumeIsBitIdentical) { interruptAndResume(SIGINT, 130, "int"); }
+TEST_F(Checkpoint, SigtermAndSigintSaveAndResumeIsBitIdentical) {
+    renderUninterrupted();
+    interruptAndResume(SIGTERM, 143, "term");
+    interruptAndResume(SIGINT, 130, "int");
+}
 
 TEST_F(Checkpoint, ResumeRefusesACheckpointOfAnotherRender) {
     const fs::path checkpoint = dir_ / "other.ckpt.exr";
@@ -91,6 +95,7 @@ TEST_F(Checkpoint, ResumeRefusesACheckpointOfAnotherRender) {
 }
 
 TEST_F(Checkpoint, DeviceLostSavesProgressThenResumesBitIdentically) {
+    renderUninterrupted();
     const fs::path checkpoint = dir_ / "lost.ckpt.exr";
     // The 40th submission and every later one report VK_ERROR_DEVICE_LOST.
     const PtRun lost = runPt(dir_, with({"-o", "lost.exr", "--checkpoint", checkpoint.string(), "--checkpoint-every", "0"}),

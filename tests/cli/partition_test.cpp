@@ -30,28 +30,26 @@ int64_t ulpDistance(float a, float b) {
     return std::abs(int64_t(ia) - int64_t(ib));
 }
 
+// ctest runs every test in its own process, so each test renders only the parts it needs.
 class Partition : public ::testing::Test {
 protected:
-    static void SetUpTestSuite() {
-        dir_ = freshTestDirectory("partition");
-        auto run = [](const std::vector<std::string>& more) {
-            const PtRun r = runPt(dir_, with(kRender, more));
-            ASSERT_EQ(r.status, 0) << r.describe();
-        };
-        run({"--spp", "12", "--seed", "5", "-o", "single.exr"});
-        run({"--samples", "0:5", "--seed", "5", "-o", "a.exr"});
-        run({"--samples", "5:9", "--seed", "5", "-o", "b.exr"});
-        run({"--samples", "9:12", "--seed", "5", "-o", "c.exr"});
-        run({"--samples", "4:9", "--seed", "5", "-o", "overlapping.exr"});
-        run({"--samples", "9:12", "--seed", "6", "-o", "other-seed.exr"});
+    void SetUp() override { dir_ = freshTestDirectory("partition"); }
+    void TearDown() override {
+        if (!HasFailure()) fs::remove_all(dir_); // keep the evidence of a failure
     }
-    static void TearDownTestSuite() { fs::remove_all(dir_); }
-    static PtRun merge(const std::vector<std::string>& args) { return runPt(dir_, with({"merge"}, args)); }
-    static fs::path dir_;
+    void render(const std::vector<std::string>& more) {
+        const PtRun r = runPt(dir_, with(kRender, more));
+        ASSERT_EQ(r.status, 0) << r.describe();
+    }
+    PtRun merge(const std::vector<std::string>& args) { return runPt(dir_, with({"merge"}, args)); }
+    fs::path dir_;
 };
-fs::path Partition::dir_;
 
 TEST_F(Partition, MergeOfAPartitionEqualsTheSingleRenderUpToOneUlp) {
+    render({"--spp", "12", "--seed", "5", "-o", "single.exr"});
+    render({"--samples", "0:5", "--seed", "5", "-o", "a.exr"});
+    render({"--samples", "5:9", "--seed", "5", "-o", "b.exr"});
+    render({"--samples", "9:12", "--seed", "5", "-o", "c.exr"});
     const PtRun r = merge({"c.exr", "a.exr", "b.exr", "-o", "merged.exr"}); // any order
     ASSERT_EQ(r.status, 0) << r.describe();
     ImageMetadata meta;
@@ -71,42 +69,46 @@ TEST_F(Partition, MergeOfAPartitionEqualsTheSingleRenderUpToOneUlp) {
         merged.rgba.size(), static_cast<long long>(worst));
     EXPECT_LE(worst, 1);
     EXPECT_GT(identical, merged.rgba.size() * 9 / 10);
-}
 
-TEST_F(Partition, MergeRefusesOverlappingRanges) {
-    const PtRun r = merge({"a.exr", "overlapping.exr", "c.exr", "-o", "bad.exr"});
-    EXPECT_EQ(r.status, 1) << r.describe();
-    EXPECT_NE(r.err.find("overlap"), std::string::npos) << r.err;
-    EXPECT_FALSE(fs::exists(dir_ / "bad.exr"));
-}
+    // Merged files are parts again: (a + b) + c is the same image.
+    ASSERT_EQ(merge({"a.exr", "b.exr", "-o", "ab.exr"}).status, 0);
+    ASSERT_EQ(merge({"ab.exr", "c.exr", "-o", "abc.exr"}).status, 0);
+    ImageMetadata nested;
+    const Image abc = readExr(dir_ / "abc.exr", &nested);
+    EXPECT_EQ(nested["spp"], "12");
+    for (size_t i = 0; i < abc.rgba.size(); ++i) ASSERT_LE(ulpDistance(abc.rgba[i], merged.rgba[i]), 1) << i;
 
-TEST_F(Partition, MergeReportsGapsAndMergesThemOnlyWhenAllowed) {
+    // A gap is an error unless allowed; allowed, the image has the samples present.
     const PtRun refused = merge({"a.exr", "c.exr", "-o", "gap.exr"});
     EXPECT_EQ(refused.status, 1) << refused.describe();
     EXPECT_NE(refused.err.find("5:9"), std::string::npos) << refused.err;
+    EXPECT_FALSE(fs::exists(dir_ / "gap.exr"));
     const PtRun allowed = merge({"a.exr", "c.exr", "--allow-gaps", "-o", "gap.exr"});
     ASSERT_EQ(allowed.status, 0) << allowed.describe();
-    ImageMetadata meta;
-    readExr(dir_ / "gap.exr", &meta);
-    EXPECT_EQ(meta["spp"], "8");
+    ImageMetadata gapMeta;
+    readExr(dir_ / "gap.exr", &gapMeta);
+    EXPECT_EQ(gapMeta["spp"], "8");
 }
 
-TEST_F(Partition, MergeRefusesPartsOfAnotherRender) {
-    const PtRun r = merge({"a.exr", "b.exr", "other-seed.exr", "-o", "mixed.exr"});
-    EXPECT_EQ(r.status, 1) << r.describe();
-    EXPECT_NE(r.err.find("seed"), std::string::npos) << r.err;
-    const PtRun plain = merge({"a.exr", "single.exr", "-o", "mixed.exr"}); // a normal render has no state
-    EXPECT_EQ(plain.status, 1) << plain.describe();
-    EXPECT_NE(plain.err.find("single.exr"), std::string::npos) << plain.err;
-}
-
-TEST_F(Partition, MergedPartsMergeAgain) {
-    ASSERT_EQ(merge({"a.exr", "b.exr", "-o", "ab.exr"}).status, 0);
-    const PtRun r = merge({"ab.exr", "c.exr", "-o", "abc.exr"});
-    ASSERT_EQ(r.status, 0) << r.describe();
-    ImageMetadata meta;
-    readExr(dir_ / "abc.exr", &meta);
-    EXPECT_EQ(meta["spp"], "12");
+TEST_F(Partition, MergeRefusesOverlapsOtherRendersAndPlainImages) {
+    render({"--samples", "0:5", "--seed", "5", "-o", "a.exr"});
+    render({"--samples", "4:9", "--seed", "5", "-o", "overlapping.exr"});
+    render({"--samples", "9:12", "--seed", "6", "-o", "other-seed.exr"});
+    const PtRun overlap = merge({"a.exr", "overlapping.exr", "-o", "bad.exr"});
+    EXPECT_EQ(overlap.status, 1) << overlap.describe();
+    EXPECT_NE(overlap.err.find("overlap"), std::string::npos) << overlap.err;
+    const PtRun seed = merge({"a.exr", "other-seed.exr", "-o", "bad.exr"});
+    EXPECT_EQ(seed.status, 1) << seed.describe();
+    EXPECT_NE(seed.err.find("seed"), std::string::npos) << seed.err;
+    Image plain; // a normal render's output has no state channels
+    plain.width = 32;
+    plain.height = 24;
+    plain.rgba.assign(32 * 24 * 4, 0.5f);
+    writeExr(dir_ / "plain.exr", plain, {});
+    const PtRun notAPart = merge({"a.exr", "plain.exr", "-o", "bad.exr"});
+    EXPECT_EQ(notAPart.status, 1) << notAPart.describe();
+    EXPECT_NE(notAPart.err.find("plain.exr"), std::string::npos) << notAPart.err;
+    EXPECT_FALSE(fs::exists(dir_ / "bad.exr"));
 }
 
 } // namespace

@@ -60,25 +60,24 @@ pid_t findChunkWorker() {
 
 class RayDriver : public ::testing::Test {
 protected:
-    static void SetUpTestSuite() {
+    void SetUp() override {
+        if (!fs::exists(PT_RAY_PYTHON)) GTEST_SKIP() << PT_RAY_PYTHON << " missing: run scripts/setup.sh";
         dir_ = freshTestDirectory("ray");
-        if (!fs::exists(PT_RAY_PYTHON)) return;
         const PtRun r = runPt(dir_, {"render", "--spp", "16", "--width", "32", "--height", "24", "--max-depth", "4",
                                         "--seed", "3", "-o", "single.exr", "-q"});
         ASSERT_EQ(r.status, 0) << r.describe();
     }
-    static void TearDownTestSuite() { fs::remove_all(dir_); }
-    void SetUp() override {
-        if (!fs::exists(PT_RAY_PYTHON)) GTEST_SKIP() << PT_RAY_PYTHON << " missing: run scripts/setup.sh";
+    void TearDown() override {
+        if (!dir_.empty() && !HasFailure()) fs::remove_all(dir_);
     }
-    static PtRun driver(const std::string& output, const std::function<void(pid_t, double)>& whileRunning = {}) {
+    PtRun driver(const std::string& output, const std::function<void(pid_t, double)>& whileRunning = {}) {
         return runProgram(dir_,
             {PT_RAY_PYTHON, "-m", "pt_ray", "render", "--spp", "16", "--chunks", "4", "--num-cpus", "2", "--pt",
                 PT_BINARY, "--pt-args", kPtArgs, "-o", output},
             {{"PYTHONPATH", PT_RAY_PACKAGE_DIR}, {"RAY_USAGE_STATS_ENABLED", "0"}}, whileRunning, 240);
     }
     // The merged image equals the single render up to the last rounding (in practice exactly).
-    static void expectEqualsSingleRender(const std::string& output) {
+    void expectEqualsSingleRender(const std::string& output) {
         ImageMetadata meta;
         const Image merged = readExr(dir_ / output, &meta);
         const Image single = readExr(dir_ / "single.exr");
@@ -88,9 +87,8 @@ protected:
         for (size_t i = 0; i < merged.rgba.size(); ++i)
             ASSERT_LE(std::abs(merged.rgba[i] - single.rgba[i]), std::abs(single.rgba[i]) * 1.2e-7f) << "value " << i;
     }
-    static fs::path dir_;
+    fs::path dir_;
 };
-fs::path RayDriver::dir_;
 
 TEST_F(RayDriver, FourChunksEqualTheSingleRenderAndAReRunSkipsThem) {
     const PtRun r = driver("four.exr");
