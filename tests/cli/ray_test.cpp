@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <sstream>
@@ -84,8 +85,13 @@ protected:
         EXPECT_EQ(meta["spp"], "16");
         EXPECT_EQ(meta["merged_parts"], "4");
         ASSERT_EQ(merged.rgba.size(), single.rgba.size());
-        for (size_t i = 0; i < merged.rgba.size(); ++i)
+        size_t identical = 0;
+        for (size_t i = 0; i < merged.rgba.size(); ++i) {
+            identical += merged.rgba[i] == single.rgba[i];
             ASSERT_LE(std::abs(merged.rgba[i] - single.rgba[i]), std::abs(single.rgba[i]) * 1.2e-7f) << "value " << i;
+        }
+        std::printf("%s: %zu of %zu values bit-identical to the single render\n", output.c_str(), identical,
+            merged.rgba.size());
     }
     fs::path dir_;
 };
