@@ -19,6 +19,7 @@
 #endif
 
 #include <algorithm>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <iterator>
@@ -87,6 +88,43 @@ std::optional<std::pair<int, int>> declaredPngSize(const unsigned char* bytes, s
     return std::pair{read(16), read(20)};
 }
 
+// Radiance .hdr run-length data: stb_image's decoder loops forever on a run count of 0, which
+// is also what it reads past the end of truncated data (found by fuzz_texture_image). Walk the
+// scanlines as it will and reject such files first; anything else odd is left to stb_image,
+// which reports it.
+void checkHdrRunLengths(const unsigned char* bytes, size_t size, const std::string& source) {
+    size_t at = 0;
+    auto line = [&] {
+        std::string text;
+        while (at < size && bytes[at] != '\n') text += static_cast<char>(bytes[at++]);
+        if (at < size) ++at;
+        return text;
+    };
+    while (at < size && !line().empty()) {} // header lines up to the blank one
+    int height = 0, width = 0;
+    if (std::sscanf(line().c_str(), "-Y %d +X %d", &height, &width) != 2) return;
+    if (width < 8 || width >= 32768 || height <= 0) return; // stored flat: read to the end, no loop
+    for (int y = 0; y < height; ++y) {
+        if (at + 4 > size) fail(source, "Radiance HDR data ends at scanline " + std::to_string(y) + " of " + std::to_string(height));
+        if (bytes[at] != 2 || bytes[at + 1] != 2 || (bytes[at + 2] & 0x80)) return; // not run-length encoded
+        at += 4;
+        for (int channel = 0; channel < 4; ++channel)
+            for (int x = 0; x < width;) {
+                if (at >= size) fail(source, "Radiance HDR data ends inside scanline " + std::to_string(y));
+                int count = bytes[at++];
+                if (count == 0) fail(source, "Radiance HDR run of length 0 in scanline " + std::to_string(y) + " (corrupt data)");
+                if (count > 128) {
+                    count -= 128;
+                    ++at; // the repeated value
+                } else {
+                    at += count; // literal values
+                }
+                if (count > width - x) return; // stb_image reports "bad RLE data"
+                x += count;
+            }
+    }
+}
+
 struct StbFree {
     void operator()(void* p) const { stbi_image_free(p); }
 };
@@ -115,6 +153,7 @@ TextureImage decodeTextureImage(const unsigned char* bytes, size_t size, const s
     image.width = width;
     image.height = height;
     if (stbi_is_hdr_from_memory(bytes, length)) {
+        checkHdrRunLengths(bytes, size, source);
         std::unique_ptr<float, StbFree> data(stbi_loadf_from_memory(bytes, length, &width, &height, &channels, 4));
         if (!data) fail(source, std::string("cannot decode image (") + stbi_failure_reason() + ")");
         image.rgbaF.resize(pixels);

@@ -71,4 +71,33 @@ TEST(TextureImage, BadImagesAreErrorsNamingTheSource) {
     fs::remove(ldr);
 }
 
+// Found by fuzz_texture_image: run-length data with a run of length 0, or ending inside a
+// scanline, made stb_image loop forever. Both must be quick one-line errors naming the source.
+TEST(TextureImage, CorruptRadianceRunLengthsAreErrorsNotHangs) {
+    auto message = [](const std::string& bytes) {
+        try {
+            pt::decodeTextureImage(reinterpret_cast<const unsigned char*>(bytes.data()), bytes.size(), "sky.hdr");
+        } catch (const std::exception& e) {
+            return std::string(e.what());
+        }
+        return std::string("(no error)");
+    };
+    const std::string header = "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 2 +X 8\n";
+    const std::string scanlineStart("\x02\x02\x00\x08", 4);
+    // The fuzzer's input (base64 Iz9SQURJQU5DRQpGT1JNQVQ9MzItYml0X3JsZV9yZ2JlCgotWSAgMitYIDgK...).
+    const std::string fuzzed = "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y  2+X 8\n" +
+        std::string("\x02\x02\x00\x08\x88\x28\x88\x32\x88\x3c\x88\x81\x02\x02\x00\x08\x88\x28\x88\x32\x88\x3c\x01\x00", 26);
+    EXPECT_NE(message(fuzzed), "(no error)");
+    EXPECT_NE(message(header + scanlineStart + std::string("\x00", 1)).find("sky.hdr: Radiance HDR run of length 0"),
+        std::string::npos);
+    EXPECT_NE(message(header + scanlineStart + std::string("\x88\x10", 2)).find("sky.hdr: Radiance HDR data ends inside scanline 0"),
+        std::string::npos);
+    // A well-formed run-length file still decodes: two scanlines, each channel one run of 8.
+    std::string good = header;
+    for (int y = 0; y < 2; ++y) good += scanlineStart + std::string("\x88\x80\x88\x40\x88\x20\x88\x82", 8);
+    const pt::TextureImage image = pt::decodeTextureImage(reinterpret_cast<const unsigned char*>(good.data()), good.size(), "good.hdr");
+    ASSERT_EQ(image.rgbaF.size(), 16u);
+    EXPECT_NEAR(image.rgbaF[15].x, 2.0f, 0.02f);
+}
+
 } // namespace
