@@ -86,7 +86,7 @@ TEST(TextureImage, CorruptRadianceRunLengthsAreErrorsNotHangs) {
     const std::string scanlineStart("\x02\x02\x00\x08", 4);
     // The fuzzer's input (base64 Iz9SQURJQU5DRQpGT1JNQVQ9MzItYml0X3JsZV9yZ2JlCgotWSAgMitYIDgK...).
     const std::string fuzzed = "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y  2+X 8\n" +
-        std::string("\x02\x02\x00\x08\x88\x28\x88\x32\x88\x3c\x88\x81\x02\x02\x00\x08\x88\x28\x88\x32\x88\x3c\x01\x00", 26);
+        std::string("\x02\x02\x00\x08\x88\x28\x88\x32\x88\x3c\x88\x81\x02\x02\x00\x08\x88\x28\x88\x32\x88\x3c\x01\x00", 24);
     EXPECT_NE(message(fuzzed), "(no error)");
     EXPECT_NE(message(header + scanlineStart + std::string("\x00", 1)).find("sky.hdr: Radiance HDR run of length 0"),
         std::string::npos);
