@@ -22,6 +22,19 @@ vec3 offsetRayOrigin(vec3 p, vec3 n) {
         abs(p.z) < OFFSET_ORIGIN ? p.z + OFFSET_FLOAT_SCALE * n.z : pInt.z);
 }
 
+// Hanika's shadow-terminator offset ("Hacking the Shadow Terminator", Ray Tracing Gems II,
+// ch. 4, 2021): a triangle with smooth vertex normals stands for a curved surface; near the
+// terminator a shadow ray leaving the flat triangle below its plane re-enters the mesh and
+// shadows points the smooth normal says are lit. Move the origin onto the smooth surface: the
+// barycentric blend of p projected onto the tangent plane of each vertex, projected only where
+// p lies below that plane (convex parts; concave ones keep p). p0..p2 the corners, n0..n2 their
+// unit normals on the side of the geometric normal (zero where the file had none valid), b the
+// barycentric weights of p0, p1, p2.
+vec3 shadowTerminatorPoint(vec3 p, vec3 p0, vec3 p1, vec3 p2, vec3 n0, vec3 n1, vec3 n2, vec3 b) {
+    vec3 lift = b.x * min(0.0, dot(p - p0, n0)) * n0 + b.y * min(0.0, dot(p - p1, n1)) * n1 + b.z * min(0.0, dot(p - p2, n2)) * n2;
+    return p - lift;
+}
+
 // Offset to the side of the surface that direction d points to.
 vec3 spawnOrigin(vec3 p, vec3 ng, vec3 d) { return offsetRayOrigin(p, dot(ng, d) >= 0.0 ? ng : -ng); }
 

@@ -10,6 +10,8 @@ struct SurfaceInteraction {
     vec3 p;          // hit point from barycentrics (more accurate than origin + t * direction)
     vec3 ng;         // unit geometric normal, front side = counter-clockwise winding
     vec3 ns;         // unit shading normal, on the same side as ng
+    vec3 nSurface;   // the surface's own normal: ns before any normal map (the interpolated vertex normal, or ng)
+    vec3 pSmooth;    // origin for shadow rays leaving on the side of nSurface: on the smooth surface (Hanika)
     bool frontFace;  // the ray arrived from the front side
     uint materialIndex;
     uint lightIndex;
@@ -43,7 +45,8 @@ SurfaceInteraction makeSphereInteraction(Ray ray, Hit hit) {
     si.p = transformPoint(sphere.objectToWorld, po) + offset;
     // Normals map with the inverse transpose of objectToWorld, i.e. the transpose of worldToObject.
     si.ng = normalize(sphere.worldToObject[0].xyz * po.x + sphere.worldToObject[1].xyz * po.y + sphere.worldToObject[2].xyz * po.z);
-    si.ns = si.ng;
+    si.ns = si.nSurface = si.ng;
+    si.pSmooth = si.p;
     si.frontFace = dot(ray.direction, si.ng) < 0.0;
     si.materialIndex = sphere.materialIndex;
     si.lightIndex = sphere.lightIndex;
@@ -77,15 +80,21 @@ SurfaceInteraction makeInteraction(Ray ray, Hit hit) {
     si.p = b0 * tri.p0 + hit.bary.x * tri.p1 + hit.bary.y * tri.p2;
     si.ng = normalize(cross(tri.p1 - tri.p0, tri.p2 - tri.p0));
     si.ns = si.ng;
+    si.pSmooth = si.p;
     if (smoothNormals) {
         vec3 n = b0 * sh.n0 + hit.bary.x * sh.n1 + hit.bary.y * sh.n2;
         float len2 = dot(n, n);
         // Degenerate interpolated normals fall back to the geometric one.
         if (len2 > 0.0 && !isinf(len2)) {
             n *= inversesqrt(len2);
-            si.ns = dot(n, si.ng) < 0.0 ? -n : n;
+            float side = dot(n, si.ng) < 0.0 ? -1.0 : 1.0;
+            si.ns = side * n;
+            si.pSmooth = shadowTerminatorPoint(si.p, tri.p0, tri.p1, tri.p2, side * sh.n0, side * sh.n1, side * sh.n2,
+                vec3(b0, hit.bary.x, hit.bary.y));
+            if (!allFinite(si.pSmooth)) si.pSmooth = si.p;
         }
     }
+    si.nSurface = si.ns;
     si.frontFace = dot(ray.direction, si.ng) < 0.0;
     si.materialIndex = tri.materialIndex;
     si.lightIndex = tri.lightIndex;

@@ -33,6 +33,10 @@ vec3 estimateDirect(SurfaceInteraction si, Frame frame, vec3 woLocal, GpuMateria
     vec2 uPoint = rng2(rng, bounceDimension(depth, DIM_LIGHT_POINT));
     LightSample ls = sampleLight(si.p, uSelect, uPoint);
     if (ls.pdf <= 0.0 || maxComponent(ls.radiance) <= 0.0) return vec3(0.0);
+    // An opaque surface is lit from its own side only, whatever a normal map says: light
+    // below it would come through (si.nSurface faces wo here; smooth vertex normals count as
+    // the surface, whose terminator Hanika's offset then handles).
+    if (!isTransmissiveSurface(mat) && dot(ls.wi, si.nSurface) <= 0.0) return vec3(0.0);
     vec3 wiLocal = toLocal(frame, ls.wi);
     vec3 fCos = surfaceEval(mat, woLocal, wiLocal);
     if (maxComponent(fCos) <= 0.0) return vec3(0.0);
@@ -113,7 +117,11 @@ vec3 tracePath(Ray ray, Rng rng) {
             // Opaque surfaces: one-sided ones are black from behind; double-sided ones flip.
             if (!si.frontFace && !doubleSided) break;
             Frame frame = makeFrame(si.frontFace ? si.ns : -si.ns);
-            if (!si.frontFace) si.ng = -si.ng;
+            if (!si.frontFace) {
+                si.ng = -si.ng;
+                si.nSurface = -si.nSurface;
+                si.pSmooth = si.p; // the smooth surface bulges towards the front
+            }
             vec3 woLocal = toLocal(frame, wo);
             if (HAS_MIRROR && mat.type == MATERIAL_MIRROR) {
                 bs = mirrorSample(mat.baseColor, frame, woLocal);

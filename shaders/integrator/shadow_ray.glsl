@@ -17,7 +17,9 @@ const float SHADOW_RAY_FAR = 0.9999;
 bool lightOccluded(SurfaceInteraction si, LightSample ls) {
     countShadowRay();
     Ray shadow;
-    shadow.origin = spawnOrigin(si.p, si.ng, ls.wi);
+    // Towards the side the surface's normal faces, from the smooth surface (Hanika's
+    // shadow-terminator offset, shaders/common/ray_offset.glsl).
+    shadow.origin = spawnOrigin(dot(ls.wi, si.nSurface) > 0.0 ? si.pSmooth : si.p, si.ng, ls.wi);
     float tMax = SHADOW_RAY_FAR;
     if (ls.distance == FLOAT_MAX) {
         shadow.direction = ls.wi; // directional light: unoccluded to infinity

@@ -12,8 +12,6 @@
 namespace pt::test {
 namespace {
 
-class HardCases : public GpuTest {};
-
 // ---- Scale: the Cornell box at 1e-3, 1 and 1e3, and moved to (1e4, 1e4, 1e4) ----
 TEST_F(HardCases, CornellBoxMeanRadianceIsTheSameAtEveryScaleAndPlace) {
     const Scene box = loadDefaultScene();
@@ -41,36 +39,6 @@ TEST_F(HardCases, CornellBoxMeanRadianceIsTheSameAtEveryScaleAndPlace) {
     }
 }
 
-
-Sphere sphereAt(glm::vec3 centre, float radius, uint32_t material) {
-    Sphere s;
-    s.objectToWorld = glm::mat4(glm::mat3(radius));
-    s.objectToWorld[3] = glm::vec4(centre, 1.0f);
-    s.material = material;
-    return s;
-}
-
-Camera lookAt(glm::vec3 from, glm::vec3 to, float yfov, glm::vec3 up = glm::vec3(0, 1, 0)) {
-    Camera c;
-    c.position = from;
-    c.forward = glm::normalize(to - from);
-    c.up = glm::normalize(glm::cross(glm::cross(c.forward, up), c.forward));
-    c.yfov = yfov;
-    return c;
-}
-
-// Renders with the normal sampler and with every random number forced to either end of its
-// range; returns the normal render. Every render must keep all its samples.
-Renderer::Readback renderAllModes(const Scene& scene, const IntegratorSettings& s, const Camera& camera, int size,
-    uint32_t spp, const char* what) {
-    for (uint32_t forced : kForcedModes) {
-        const auto r = renderForced(scene, s, camera, size, size, 1, forced);
-        EXPECT_EQ(r.droppedSamples, 0u) << what << ": random numbers forced to " << (forced == FORCED_RANDOM_ZERO ? "0" : "1 - 2^-24");
-    }
-    auto r = renderScene(scene, s, camera, size, size, spp);
-    EXPECT_EQ(r.droppedSamples, 0u) << what;
-    return r;
-}
 
 // ---- Contacts: a room closed by a box resting on a floor, a 1e-4-thick lid whose underside
 // coincides with the walls' top face; bright light only outside. Inside, every pixel is 0. ----
@@ -234,13 +202,6 @@ TEST_F(HardCases, TinySphereFarAwayCoversItsSolidAngle) {
     }
 }
 
-
-// The world-space ray of pixel (x, y) at sub-pixel position (jx, jy), as the kernel's pinhole camera makes it.
-glm::vec3 pixelDirection(const gpu::GpuCamera& c, int width, int height, double x, double y) {
-    const float fx = float(x / width), fy = float(y / height);
-    const float u = c.window.x + (c.window.y - c.window.x) * fx, v = c.window.w + (c.window.z - c.window.w) * fy;
-    return glm::normalize(c.forward + u * c.right + v * c.up);
-}
 
 // ---- Sphere lights: irradiance on a diffuse plane (albedo 1, so radiance = E / pi) from a
 // sphere light wholly above it is E = pi L sin^2(theta_max) cos(alpha) = pi L r^2 cos(alpha) / d^2,

@@ -15,6 +15,17 @@ Renderer::Readback renderForced(const Scene& scene, const IntegratorSettings& se
     return renderer.read();
 }
 
+Renderer::Readback renderAllModes(const Scene& scene, const IntegratorSettings& settings, const Camera& camera, int size,
+    uint32_t spp, const char* what) {
+    for (uint32_t forced : kForcedModes) {
+        const auto r = renderForced(scene, settings, camera, size, size, 1, forced);
+        EXPECT_EQ(r.droppedSamples, 0u) << what << ": random numbers forced to " << (forced == FORCED_RANDOM_ZERO ? "0" : "1 - 2^-24");
+    }
+    auto r = renderScene(scene, settings, camera, size, size, spp);
+    EXPECT_EQ(r.droppedSamples, 0u) << what;
+    return r;
+}
+
 ImageStats imageStats(const Renderer::Readback& r, int channel, const std::function<bool(int, int)>& use) {
     ImageStats s;
     double sum = 0, variance = 0;
@@ -54,6 +65,31 @@ Scene scaledScene(Scene scene, float scale, glm::vec3 offset) {
     }
     return scene;
 }
+
+Sphere sphereAt(glm::vec3 centre, float radius, uint32_t material) {
+    Sphere s;
+    s.objectToWorld = glm::mat4(glm::mat3(radius));
+    s.objectToWorld[3] = glm::vec4(centre, 1.0f);
+    s.material = material;
+    return s;
+}
+
+Camera lookAt(glm::vec3 from, glm::vec3 to, float yfov, glm::vec3 up) {
+    Camera c;
+    c.position = from;
+    c.forward = glm::normalize(to - from);
+    c.up = glm::normalize(glm::cross(glm::cross(c.forward, up), c.forward));
+    c.yfov = yfov;
+    return c;
+}
+
+glm::vec3 pixelDirection(const gpu::GpuCamera& c, int width, int height, double x, double y) {
+    const float fx = float(x / width), fy = float(y / height);
+    const float u = c.window.x + (c.window.y - c.window.x) * fx, v = c.window.w + (c.window.z - c.window.w) * fy;
+    return glm::normalize(c.forward + u * c.right + v * c.up);
+}
+
+std::filesystem::path hardScenePath(const char* fileName) { return testDataDir().parent_path() / "scenes" / "hard" / fileName; }
 
 Mesh makeBox(glm::vec3 lo, glm::vec3 hi, uint32_t material, bool inward) {
     Mesh m;

@@ -8,6 +8,9 @@
 
 namespace pt::test {
 
+// The fixture of every hard-case test (tests/gpu/hard_cases_*test.cpp).
+class HardCases : public GpuTest {};
+
 // Every hard-case render runs three times: with the normal sampler, and with every random
 // number forced to 0 and to 1 - 2^-24 (FORCED_RANDOM_*, shaders/common/rng.glsl).
 constexpr uint32_t kForcedModes[] = {FORCED_RANDOM_ZERO, FORCED_RANDOM_ONE};
@@ -15,6 +18,11 @@ constexpr uint32_t kForcedModes[] = {FORCED_RANDOM_ZERO, FORCED_RANDOM_ONE};
 // renderScene with the kernel's random numbers forced (FORCED_RANDOM_OFF: the normal sampler).
 Renderer::Readback renderForced(const Scene& scene, const IntegratorSettings& settings, const Camera& camera, int width,
     int height, uint32_t spp, uint32_t forcedRandom);
+
+// renderForced in both forced modes (1 spp each) and with the normal sampler (`spp`), every
+// render expected to keep all its samples; returns the normal render. `what` names the case.
+Renderer::Readback renderAllModes(const Scene& scene, const IntegratorSettings& settings, const Camera& camera, int size,
+    uint32_t spp, const char* what);
 
 // Mean of channel `channel` over the pixels `use` accepts (all when empty) and its standard
 // error from the per-pixel variance of the mean.
@@ -28,6 +36,17 @@ ImageStats imageStats(const Renderer::Readback& r, int channel = 0, const std::f
 
 // The scene and its cameras mapped by x -> scale * x + offset (radiance is unchanged by it).
 Scene scaledScene(Scene scene, float scale, glm::vec3 offset);
+
+// A sphere of `radius` at `centre`, and a camera at `from` looking at `to`.
+Sphere sphereAt(glm::vec3 centre, float radius, uint32_t material);
+Camera lookAt(glm::vec3 from, glm::vec3 to, float yfov, glm::vec3 up = glm::vec3(0, 1, 0));
+
+// The world-space direction of the ray through image point (x, y) (pixel units, (0, 0) the
+// top-left corner), as the kernel's pinhole camera makes it.
+glm::vec3 pixelDirection(const gpu::GpuCamera& c, int width, int height, double x, double y);
+
+// A scene file of scenes/hard/.
+std::filesystem::path hardScenePath(const char* fileName);
 
 // A closed axis-aligned box of 12 triangles facing outwards (inwards when `inward`).
 Mesh makeBox(glm::vec3 lo, glm::vec3 hi, uint32_t material, bool inward = false);
