@@ -317,24 +317,10 @@ void writeExrImpl(const std::filesystem::path& path, const Image& image,
 
 }  // namespace
 
-ExrChannels readExrChannels(const std::filesystem::path& path, const std::vector<std::string>& names,
-                            ImageMetadata* metadata) {
+// Runs an OpenEXR read, turning every failure into one "<path>: <problem>" error.
+template <class Read> auto withExrErrors(const std::filesystem::path& path, Read read) -> decltype(read()) {
     try {
-        return readExrChannelsImpl(path, names, metadata);
-    } catch (const IoError&) {
-        throw;
-    } catch (const std::bad_alloc&) {
-        fail(path, "out of memory while reading (corrupt header?)");
-    } catch (const std::exception& e) {
-        fail(path, std::string("corrupt or truncated OpenEXR file (") + e.what() + ")");
-    } catch (...) {
-        fail(path, "corrupt or truncated OpenEXR file (unknown error)");
-    }
-}
-
-Image readExr(const std::filesystem::path& path, ImageMetadata* metadata) {
-    try {
-        return readExrImpl(path, metadata);
+        return read();
     } catch (const IoError&) {
         throw;
     } catch (const FileWriteError&) {
@@ -348,6 +334,15 @@ Image readExr(const std::filesystem::path& path, ImageMetadata* metadata) {
     } catch (...) {
         fail(path, "corrupt or truncated OpenEXR file (unknown error)");
     }
+}
+
+ExrChannels readExrChannels(const std::filesystem::path& path, const std::vector<std::string>& names,
+                            ImageMetadata* metadata) {
+    return withExrErrors(path, [&] { return readExrChannelsImpl(path, names, metadata); });
+}
+
+Image readExr(const std::filesystem::path& path, ImageMetadata* metadata) {
+    return withExrErrors(path, [&] { return readExrImpl(path, metadata); });
 }
 
 void writeExr(const std::filesystem::path& path, const Image& image,
