@@ -435,18 +435,13 @@ private:
                 const int shift = 8 * d.axis;
                 const uint32_t mid = frontier[un.item].begin + d.leftCount;
                 uint32_t l = un.leftDst, r = un.rightDst;
-                const V4 inf = splat(kInf), negInf = splat(-kInf);
                 Box4 cl, cr;
                 for (uint32_t i = un.begin; i < un.end; ++i) {
                     const PrimRef& p = src[i];
                     const bool left = d.mode == Mode::Binned ? int((p.binKeys >> shift) & 0xffu) < d.bin : i < mid;
                     dst[left ? l : r] = p;
                     // Branch-free: the side is unpredictable.
-                    const V4 c = centroidOf(loadLo(p), loadHi(p));
-                    cl.lo = vmin(cl.lo, select(left, c, inf));
-                    cl.hi = vmax(cl.hi, select(left, c, negInf));
-                    cr.lo = vmin(cr.lo, select(left, inf, c));
-                    cr.hi = vmax(cr.hi, select(left, negInf, c));
+                    addCentroidToSide(centroidOf(loadLo(p), loadHi(p)), left, cl, cr);
                     l += uint32_t(left);
                     r += uint32_t(!left);
                 }
@@ -569,7 +564,6 @@ private:
     uint32_t partition(uint32_t begin, uint32_t end, int axis, int splitBin, Box4& leftCentroids, Box4& rightCentroids)
     {
         const int shift = 8 * axis;
-        const V4 inf = splat(kInf), negInf = splat(-kInf);
         Box4 cl, cr;
         uint32_t l = begin;
         for (uint32_t i = begin; i < end; ++i) {
@@ -577,11 +571,7 @@ private:
             refs_[i] = refs_[l];
             refs_[l] = t;
             const bool left = int((t.binKeys >> shift) & 0xffu) < splitBin;
-            const V4 c = centroidOf(loadLo(t), loadHi(t));
-            cl.lo = vmin(cl.lo, select(left, c, inf));
-            cl.hi = vmax(cl.hi, select(left, c, negInf));
-            cr.lo = vmin(cr.lo, select(left, inf, c));
-            cr.hi = vmax(cr.hi, select(left, negInf, c));
+            addCentroidToSide(centroidOf(loadLo(t), loadHi(t)), left, cl, cr);
             l += uint32_t(left);
         }
         leftCentroids = cl;

@@ -176,4 +176,15 @@ struct Box4 {
     }
 };
 
+// Grows `left` or `right` by the centroid c, branch-free (during a partition the side is
+// unpredictable): the other box is grown by an empty point (+inf low, -inf high).
+inline void addCentroidToSide(V4 c, bool isLeft, Box4& left, Box4& right)
+{
+    const V4 inf = splat(kInf), negInf = splat(-kInf);
+    left.lo = vmin(left.lo, select(isLeft, c, inf));
+    left.hi = vmax(left.hi, select(isLeft, c, negInf));
+    right.lo = vmin(right.lo, select(isLeft, inf, c));
+    right.hi = vmax(right.hi, select(isLeft, negInf, c));
+}
+
 } // namespace pt::bvh_detail
