@@ -12,6 +12,7 @@ struct SurfaceInteraction {
     vec3 ns;         // unit shading normal, on the same side as ng
     vec3 nSurface;   // the surface's own normal: ns before any normal map (the interpolated vertex normal, or ng)
     vec3 pSmooth;    // origin for shadow rays leaving on the side of nSurface: on the smooth surface (Hanika)
+    float magnitude; // largest coordinate magnitude of the primitive hit: scales the ray offset
     bool frontFace;  // the ray arrived from the front side
     uint materialIndex;
     uint lightIndex;
@@ -47,6 +48,9 @@ SurfaceInteraction makeSphereInteraction(Ray ray, Hit hit) {
     si.ng = normalize(sphere.worldToObject[0].xyz * po.x + sphere.worldToObject[1].xyz * po.y + sphere.worldToObject[2].xyz * po.z);
     si.ns = si.nSurface = si.ng;
     si.pSmooth = si.p;
+    vec3 centre = vec3(sphere.objectToWorld[0].w, sphere.objectToWorld[1].w, sphere.objectToWorld[2].w) + offset;
+    vec3 axisLengths = vec3(length(sphere.objectToWorld[0].xyz), length(sphere.objectToWorld[1].xyz), length(sphere.objectToWorld[2].xyz));
+    si.magnitude = maxComponent(abs(centre)) + maxComponent(axisLengths);
     si.frontFace = dot(ray.direction, si.ng) < 0.0;
     si.materialIndex = sphere.materialIndex;
     si.lightIndex = sphere.lightIndex;
@@ -81,6 +85,7 @@ SurfaceInteraction makeInteraction(Ray ray, Hit hit) {
     si.ng = normalize(cross(tri.p1 - tri.p0, tri.p2 - tri.p0));
     si.ns = si.ng;
     si.pSmooth = si.p;
+    si.magnitude = maxComponent(max(max(abs(tri.p0), abs(tri.p1)), abs(tri.p2)));
     if (smoothNormals) {
         vec3 n = b0 * sh.n0 + hit.bary.x * sh.n1 + hit.bary.y * sh.n2;
         float len2 = dot(n, n);

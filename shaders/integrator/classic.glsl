@@ -125,7 +125,7 @@ vec3 traceClassic(Ray ray, Rng rng) {
             rng2(rng, bounceDimension(depth, DIM_BSDF_DIRECTION)));
         if (!bs.valid || maxComponent(bs.weight) <= 0.0) break;
         beta *= bs.weight;
-        ray.origin = spawnOrigin(si.p, si.ng, bs.wi);
+        ray.origin = spawnOrigin(si.p, si.ng, bs.wi, si.magnitude);
         ray.direction = bs.wi;
     }
     return L;

@@ -132,6 +132,10 @@ vec3 tracePath(Ray ray, Rng rng) {
                 bs = surfaceSample(mat, frame, woLocal, rng1(rng, bounceDimension(depth, DIM_BSDF_LOBE)),
                     rng2(rng, bounceDimension(depth, DIM_BSDF_DIRECTION)));
             }
+            // A normal map tilts the sampling hemisphere; a reflection it sends below the
+            // surface's own normal would pass through an opaque surface. End it there, as direct
+            // light from that side is refused (shadow_ray.glsl), so both strategies agree.
+            if (HAS_NORMAL_MAPS && dot(bs.wi, si.nSurface) <= 0.0) break;
         }
         if (!bs.valid || maxComponent(bs.weight) <= 0.0) break;
         beta *= bs.weight;
@@ -149,7 +153,7 @@ vec3 tracePath(Ray ray, Rng rng) {
                 beta /= 1.0 - q;
             }
         }
-        ray.origin = spawnOrigin(si.p, si.ng, bs.wi);
+        ray.origin = spawnOrigin(si.p, si.ng, bs.wi, si.magnitude);
         ray.direction = bs.wi;
     }
     return L;

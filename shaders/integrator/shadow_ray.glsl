@@ -19,15 +19,16 @@ bool lightOccluded(SurfaceInteraction si, LightSample ls) {
     Ray shadow;
     // Towards the side the surface's normal faces, from the smooth surface (Hanika's
     // shadow-terminator offset, shaders/common/ray_offset.glsl).
-    shadow.origin = spawnOrigin(dot(ls.wi, si.nSurface) > 0.0 ? si.pSmooth : si.p, si.ng, ls.wi);
+    shadow.origin = spawnOrigin(dot(ls.wi, si.nSurface) > 0.0 ? si.pSmooth : si.p, si.ng, ls.wi, si.magnitude);
     float tMax = SHADOW_RAY_FAR;
     if (ls.distance == FLOAT_MAX) {
         shadow.direction = ls.wi; // directional light: unoccluded to infinity
         tMax = FLOAT_MAX;
     } else {
         // Offset the light end too (surfaces only), then stop just short of it.
-        // (Lights no ray can hit have nothing to offset from.)
-        vec3 target = ls.isDelta ? ls.point : offsetRayOrigin(ls.point, dot(ls.normal, ls.wi) < 0.0 ? ls.normal : -ls.normal);
+        // (Lights no ray can hit have nothing to offset from.) The light's size is not at hand,
+        // so the offset is the unit-size one: at worst the ray stops 1/65536 short of a tiny light.
+        vec3 target = ls.isDelta ? ls.point : offsetRayOrigin(ls.point, dot(ls.normal, ls.wi) < 0.0 ? ls.normal : -ls.normal, 1.0);
         shadow.direction = target - shadow.origin;
     }
     return traceAny(shadow, tMax);

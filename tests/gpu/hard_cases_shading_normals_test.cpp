@@ -111,7 +111,7 @@ TEST_F(HardCases, LowPolySphereWithSmoothNormalsHasNoBlackTerminatorBandAndNoLea
 // towards +u and -u, lit from below by a directional light (the camera above): no light may come
 // through (the geometric side decides), whatever the shading normal says. Lit from above at a
 // grazing 80 degrees, every pixel stays within 0 <= L <= E / pi and the stripes tilted towards
-// the light are lit.
+// the light are lit. An emitter below stays invisible to BSDF-sampled rays too.
 TEST_F(HardCases, NormalMappedPlaneLetsNoLightThroughAndKeepsItsLitStripesLit) {
     Scene scene;
     TextureImage stripes;
@@ -155,6 +155,23 @@ TEST_F(HardCases, NormalMappedPlaneLetsNoLightThroughAndKeepsItsLitStripesLit) {
             EXPECT_LE(st.highest, 1.0 + 1e-4);
             EXPECT_GT(st.mean, 0.1);
         }
+    }
+    // A large emitter below the plane, which only BSDF-sampled rays can find: a reflection the
+    // normal map tilts below the plane must end there, not pass through and see the emitter,
+    // with and without light sampling (MIS weighs the BSDF-sampled hit).
+    scene.punctualLights.clear();
+    Material lamp;
+    lamp.baseColor = glm::vec3(0.0f);
+    lamp.emission = glm::vec3(1.0f);
+    scene.materials.push_back(lamp);
+    scene.meshes.push_back(makeQuad({-10, -0.5f, -10}, {0, 0, 20}, {20, 0, 0}, 1)); // faces +y
+    for (bool nee : {true, false}) {
+        s.nee = s.mis = nee;
+        const auto r = renderScene(scene, s, camera, size, size, 32);
+        EXPECT_EQ(r.droppedSamples, 0u);
+        const ImageStats st = imageStats(r, 0);
+        std::printf("[          ] normal-mapped plane, emitter below, NEE %s: highest %.5f\n", nee ? "on" : "off", st.highest);
+        EXPECT_EQ(st.highest, 0.0) << "a BSDF-sampled ray passed through the plane, NEE " << (nee ? "on" : "off");
     }
 }
 
