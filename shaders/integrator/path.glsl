@@ -145,8 +145,9 @@ vec3 tracePath(Ray ray, Rng rng) {
 
         // Russian roulette on throughput with the radiance scaling of refractions undone, so a
         // path inside glass is not killed just for having entered it (pbrt-v4's etaScale).
+        // Throughput at or above scene.rrThreshold always continues.
         if (USE_RR && depth >= scene.rrStartDepth) {
-            float m = maxComponent(beta * etaScale);
+            float m = maxComponent(beta * etaScale) / scene.rrThreshold;
             if (m < 1.0) {
                 float q = max(0.0, 1.0 - m);
                 if (rng1(rng, bounceDimension(depth, DIM_ROULETTE)) < q) break;

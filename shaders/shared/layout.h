@@ -334,7 +334,7 @@ struct GpuSceneParams {
     float envSamplingTotal; // sum of the sampling weights (for the pdf)
     uint backgroundTexture; // course replace_background: camera rays that escape see this, or NO_TEXTURE
     vec3 ambientLight;      // classic integrator: the course's AmbientLight Ia
-    uint pad3;
+    float rrThreshold;      // Russian roulette: throughput at or above this always continues
     uint64_t motions;       // vec4[]: xyz = an object's translation over the shutter interval
     uint64_t tangents;      // GpuTriangleTangents[] (one per triangle), or none
 };

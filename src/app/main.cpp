@@ -46,6 +46,10 @@ void addSceneOptions(CLI::App* cmd, pt::RenderOptions& o, SwitchWords& w) {
     cmd->add_option("--max-depth", o.maxDepth, "Ray segments per path including the camera ray (1: emitters only, 2: direct light); default 16")
         ->check(CLI::Range(1u, 65536u));
     cmd->add_option("--rr-start", o.integrator.rrStartDepth, "Russian roulette starts after this many segments (default 5)");
+    cmd->add_option("--rr-threshold", o.integrator.rrThreshold,
+           "Russian roulette: paths with throughput at least this always continue, others survive with probability "
+           "throughput / threshold (default 0.5; pbrt and Mitsuba use 1)")
+        ->check(CLI::Range(1e-3, 1e3));
     cmd->add_option("--seed", o.integrator.seed, "Random seed (default 0)");
     cmd->add_option("--nee", w.nee, "Next event estimation (light sampling): on|off (default on)")->check(CLI::IsMember({"on", "off"}));
     cmd->add_option("--mis", w.mis, "Multiple importance sampling of light and BSDF samples: on|off (default on)")->check(CLI::IsMember({"on", "off"}));

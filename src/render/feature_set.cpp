@@ -12,7 +12,7 @@ std::string IntegratorSettings::describe() const {
     s << "nee=" << (nee ? "on" : "off") << " mis=" << (mis ? "on" : "off") << " rr=" << (rr ? "on" : "off")
       << " sampling=" << (sampling == DirectionSampling::Cosine ? "cosine" : "uniform")
       << " sampler=" << (sampler == SamplerKind::Sobol ? "sobol" : "independent") << " max-depth=" << maxDepth
-      << " rr-start=" << rrStartDepth << " seed=" << seed;
+      << " rr-start=" << rrStartDepth << " rr-threshold=" << rrThreshold << " seed=" << seed;
     return s.str();
 }
 

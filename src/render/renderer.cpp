@@ -49,6 +49,7 @@ Renderer::Renderer(VulkanContext& context, const FlatScene& scene, const Feature
     params.imageSize = glm::uvec2(film.width, film.height);
     params.maxDepth = settings.maxDepth;
     params.rrStartDepth = settings.rrStartDepth;
+    params.rrThreshold = settings.rrThreshold;
     params.seed = settings.seed;
     const size_t pixels = size_t(film.width) * film.height;
     gpuScene_ = std::make_unique<GpuScene>(context, scene, params, pixels * kAccumulationBytesPerPixel);
@@ -192,6 +193,7 @@ void Renderer::setIntegrator(const IntegratorSettings& settings, const FeatureSe
     makeParamsEditable();
     params_.maxDepth = settings.maxDepth;
     params_.rrStartDepth = settings.rrStartDepth;
+    params_.rrThreshold = settings.rrThreshold;
     params_.seed = settings.seed;
     uploadParams();
     const auto constants = features.constants(localSize_, localSize_);

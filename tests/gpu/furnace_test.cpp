@@ -87,6 +87,28 @@ TEST_F(Furnace, EverySettingConvergesToTheAnalyticRadiance) {
     }
 }
 
+// Russian roulette is unbiased whatever its threshold: paths below it survive with probability
+// throughput / threshold and are reweighted. From throughput 1 (always on) to 4 (most paths
+// thinned from the second bounce on), the furnace stays exact.
+TEST_F(Furnace, RussianRouletteThresholdsKeepTheFurnaceExact) {
+    Camera camera;
+    camera.position = glm::vec3(0.0f);
+    camera.yfov = 1.5f;
+    for (float threshold : {0.25f, 1.0f, 4.0f}) {
+        IntegratorSettings s;
+        s.nee = false; // BSDF sampling only: every path length is decided by the roulette
+        s.maxDepth = 64;
+        s.rrStartDepth = 2;
+        s.rrThreshold = threshold;
+        auto r = renderScene(enclosure(), s, camera, 32, 32, 64);
+        EXPECT_EQ(r.droppedSamples, 0u);
+        Stats st = imageMean(r);
+        const double expected = expectedRadiance(s.maxDepth);
+        EXPECT_NEAR(st.mean, expected, 4.0 * st.standardError + 2e-5 * expected)
+            << "threshold " << threshold << " (standard error " << st.standardError << ")";
+    }
+}
+
 TEST_F(Furnace, WrongAlbedoIsDetected) {
     // Negative control: the same comparison against a slightly different albedo must fail.
     IntegratorSettings s;
