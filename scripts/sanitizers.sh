@@ -3,9 +3,11 @@
 # and command-line tests and the loaders' libFuzzer targets with clang, AddressSanitizer and
 # UndefinedBehaviorSanitizer in their own build directory, then runs
 #   - pt_host_tests and pt_cli_tests (every finding aborts the test: -fno-sanitize-recover=all),
+#   - a sample of the GPU tests that covers the host side of rendering (scene flattening, BVH
+#     upload, textures, environment tables, the accumulation state, partitions and checkpoints,
+#     degenerate input): lavapipe itself is not instrumented, and the whole GPU suite would take
+#     longer than this step may (10 minutes on 2 cores, build included); this sample takes ~70 s,
 #   - a short fuzz run of each loader (its seed corpus, then PT_FUZZ_SECONDS of mutation).
-# The GPU tests are left out: lavapipe is not instrumented, and under ASan they would take longer
-# than this whole step may (10 minutes on 2 cores, build included).
 # Usage: bash scripts/sanitizers.sh   (env: PT_ASAN_BUILD_DIR, default build-asan; PT_FUZZ_SECONDS, default 20)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -19,7 +21,7 @@ command -v clang++ >/dev/null || { echo "sanitizers: clang++ not found (scripts/
 # -O1: a third of -O2's compile time, and sanitizer reports keep usable stacks.
 cmake -S . -B "$build" -G Ninja -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS=-O1 \
   -DPT_SANITIZE=ON -DPT_FUZZ=ON -DPT_FUZZ_SHORT_SECONDS="$fuzz_seconds" >/dev/null
-cmake --build "$build" -j "$jobs" --target pt pt_host_tests pt_cli_tests \
+cmake --build "$build" -j "$jobs" --target pt pt_host_tests pt_cli_tests pt_gpu_tests \
   fuzz_gltf fuzz_ceng795 fuzz_ply fuzz_texture_image
 
 # Leaks in the Vulkan loader and Mesa's lavapipe are theirs, not ours: suppressed with a reason
@@ -35,5 +37,6 @@ export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 # The command line on every malformed input and the basic commands; the long renders of pt bench,
 # partitions and checkpoints run in the ordinary build only (under ASan they alone take minutes).
 "$build/tests/pt_cli_tests" --gtest_brief=1 --gtest_filter='*Corpus*:CliTest.*:-CliTest.Bench*'
+"$build/tests/pt_gpu_tests" --gtest_brief=1 --gtest_filter='MitsubaReference.CornellBoxDiffuse:OwnScenes.Textured*:TraversalTest.*:HardCases.Degenerate*:EnvironmentLight.*:Partition*:Checkpoint*:Accumulation*'
 ctest --test-dir "$build" -L fuzz -j "$jobs" --output-on-failure
-echo "sanitizers: host tests, CLI tests and fuzz runs clean under ASan + UBSan"
+echo "sanitizers: host tests, CLI tests, GPU test sample and fuzz runs clean under ASan + UBSan"
