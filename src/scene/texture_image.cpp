@@ -1,6 +1,7 @@
 #include "scene/texture_image.h"
 
 #include "render/image_io.h"
+#include "scene/stb_input_checks.h"
 
 // STB_IMAGE_STATIC keeps stb_image's symbols private to this file: tinygltf's shared library
 // carries its own copy, and a global definition here would interpose on it.
@@ -51,31 +52,6 @@ void checkSize(int width, int height, const std::string& source) {
 constexpr size_t kMaxPixelsPerByte = 16384;
 constexpr size_t kAlwaysPlausiblePixels = 1 << 16;
 
-// Debian 12's stb_image (2022-09) has two bugs in binary PNM (P5, P6) that fuzzing found, fixed
-// upstream since: header numbers are accumulated in an int that overflows (undefined behaviour),
-// and a 16-bit image's channels are converted as if 8-bit before reading twice the buffer
-// allocated (a heap overflow). The header is read here first, as stb_image reads it, and such
-// files are rejected.
-void checkPnmHeader(const unsigned char* bytes, size_t size, const std::string& source) {
-    if (size < 2 || bytes[0] != 'P' || (bytes[1] != '5' && bytes[1] != '6')) return;
-    auto space = [](unsigned char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\v' || c == '\f' || c == '\r'; };
-    constexpr int kMaxDigits = 8; // the largest side allowed, 16384, has 5
-    size_t i = 2;
-    long values[3] = {};
-    for (long& value : values) {
-        for (;;) { // whitespace, and comments from '#' to the end of the line
-            while (i < size && space(bytes[i])) ++i;
-            if (i >= size || bytes[i] != '#') break;
-            while (i < size && bytes[i] != '\n' && bytes[i] != '\r') ++i;
-        }
-        for (int digits = 0; i < size && bytes[i] >= '0' && bytes[i] <= '9'; ++i) {
-            if (++digits > kMaxDigits) fail(source, "PNM header number with more than " + std::to_string(kMaxDigits) + " digits");
-            value = value * 10 + (bytes[i] - '0');
-        }
-    }
-    if (values[2] > 255) fail(source, "16-bit PNM (maxval " + std::to_string(values[2]) + ") is not supported");
-}
-
 // The width and height in a PNG's IHDR chunk (big-endian, right after the signature), clamped to
 // INT_MAX; nothing when the data does not start like a PNG.
 std::optional<std::pair<int, int>> declaredPngSize(const unsigned char* bytes, size_t size) {
@@ -88,45 +64,6 @@ std::optional<std::pair<int, int>> declaredPngSize(const unsigned char* bytes, s
     return std::pair{read(16), read(20)};
 }
 
-// Radiance .hdr run-length data: stb_image's decoder loops forever on a run count of 0, which
-// is also what it reads past the end of truncated data (found by fuzz_texture_image). Walk the
-// scanlines as it will and reject such files first; anything else odd is left to stb_image,
-// which reports it.
-void checkHdrRunLengths(const unsigned char* bytes, size_t size, const std::string& source) {
-    size_t at = 0;
-    // One header line as stb_image sees it: a C string, so a NUL byte ends it (a line starting
-    // with NUL is the blank line that ends the header; found by the fuzzer's long run).
-    auto line = [&] {
-        std::string text;
-        while (at < size && bytes[at] != '\n') text += static_cast<char>(bytes[at++]);
-        if (at < size) ++at;
-        return text.substr(0, text.find('\0'));
-    };
-    while (at < size && !line().empty()) {} // header lines up to the blank one
-    int height = 0, width = 0;
-    if (std::sscanf(line().c_str(), "-Y %d +X %d", &height, &width) != 2) return;
-    if (width < 8 || width >= 32768 || height <= 0) return; // stored flat: read to the end, no loop
-    for (int y = 0; y < height; ++y) {
-        if (at + 4 > size) fail(source, "Radiance HDR data ends at scanline " + std::to_string(y) + " of " + std::to_string(height));
-        if (bytes[at] != 2 || bytes[at + 1] != 2 || (bytes[at + 2] & 0x80)) return; // not run-length encoded
-        at += 4;
-        for (int channel = 0; channel < 4; ++channel)
-            for (int x = 0; x < width;) {
-                if (at >= size) fail(source, "Radiance HDR data ends inside scanline " + std::to_string(y));
-                int count = bytes[at++];
-                if (count == 0) fail(source, "Radiance HDR run of length 0 in scanline " + std::to_string(y) + " (corrupt data)");
-                if (count > 128) {
-                    count -= 128;
-                    ++at; // the repeated value
-                } else {
-                    at += count; // literal values
-                }
-                if (count > width - x) return; // stb_image reports "bad RLE data"
-                x += count;
-            }
-    }
-}
-
 struct StbFree {
     void operator()(void* p) const { stbi_image_free(p); }
 };
@@ -137,7 +74,7 @@ TextureImage decodeTextureImage(const unsigned char* bytes, size_t size, const s
     if (size == 0) fail(source, "image data is empty");
     if (size > static_cast<size_t>(std::numeric_limits<int>::max())) fail(source, "image data is larger than 2 GiB");
     const int length = static_cast<int>(size);
-    checkPnmHeader(bytes, size, source);
+    rejectInputsStbImageMishandles(bytes, size, source);
     int width = 0, height = 0, channels = 0;
     if (!stbi_info_from_memory(bytes, length, &width, &height, &channels)) {
         // stb_image refuses a PNG over 2^30 bytes decoded but then reports "not of any known type";
@@ -155,7 +92,6 @@ TextureImage decodeTextureImage(const unsigned char* bytes, size_t size, const s
     image.width = width;
     image.height = height;
     if (stbi_is_hdr_from_memory(bytes, length)) {
-        checkHdrRunLengths(bytes, size, source);
         std::unique_ptr<float, StbFree> data(stbi_loadf_from_memory(bytes, length, &width, &height, &channels, 4));
         if (!data) fail(source, std::string("cannot decode image (") + stbi_failure_reason() + ")");
         image.rgbaF.resize(pixels);

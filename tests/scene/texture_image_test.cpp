@@ -7,6 +7,8 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <utility>
 #include <string>
 
 namespace fs = std::filesystem;
@@ -101,3 +103,52 @@ TEST(TextureImage, CorruptRadianceRunLengthsAreErrorsNotHangs) {
 }
 
 } // namespace
+
+namespace {
+
+std::string readCorpusFile(const std::string& name) {
+    std::ifstream in(fs::path(PT_TEST_DATA_DIR) / "fuzz" / "corpus" / "texture_image" / name, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+pt::TextureImage decodeString(const std::string& bytes, const std::string& source) {
+    return pt::decodeTextureImage(reinterpret_cast<const unsigned char*>(bytes.data()), bytes.size(), source);
+}
+
+} // namespace
+
+// The checks run before stb_image (src/scene/stb_input_checks.cpp) walk JPEG markers and PNG
+// chunks; they must pass every well-formed file: baseline and progressive JPEG (Huffman tables
+// between scans), PNG with several chunks.
+TEST(TextureImage, WellFormedJpegAndPngPassTheInputChecks) {
+    for (const char* name : {"baseline.jpg", "progressive.jpg", "rgba.png", "palette.png", "grey16.png"}) {
+        const std::string bytes = readCorpusFile(name);
+        ASSERT_FALSE(bytes.empty()) << name;
+        const pt::TextureImage t = decodeString(bytes, name);
+        EXPECT_GT(t.width, 0) << name;
+        EXPECT_EQ(t.rgba8.size(), size_t(t.width) * t.height) << name;
+    }
+    const pt::TextureImage jpeg = decodeString(readCorpusFile("baseline.jpg"), "baseline.jpg");
+    EXPECT_EQ(jpeg.width, 24);
+    EXPECT_EQ(jpeg.height, 16);
+}
+
+// Inputs found by the long fuzz run: a JPEG Huffman table of more than 256 codes (stb_image
+// writes past its table) and a PNG chunk claiming 2.3 GB in a 125-byte file (stb_image
+// allocates it). Both are one-line errors naming the source.
+TEST(TextureImage, HostileHuffmanTablesAndChunkLengthsAreErrors) {
+    const std::pair<const char*, const char*> cases[] = {
+        {"crash-jpeg-dht-over-256-codes.jpg", "JPEG Huffman table with"},
+        {"oom-png-idat-length-2gib.png", "PNG chunk at byte"},
+    };
+    for (auto [name, problem] : cases) {
+        std::string message = "(no error)";
+        try {
+            decodeString(readCorpusFile(name), name);
+        } catch (const std::exception& e) {
+            message = e.what();
+        }
+        EXPECT_EQ(message.rfind(std::string(name) + ": cannot decode image (", 0), 0u) << message;
+        EXPECT_NE(message.find(problem), std::string::npos) << message;
+    }
+}
