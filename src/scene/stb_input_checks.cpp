@@ -101,9 +101,13 @@ void checkPngChunkLengths(const unsigned char* bytes, size_t size, const std::st
 // follow one another while the segment's length lasts; entropy-coded data between markers is
 // skipped (0xFF 0x00 is a stuffed byte, 0xFF 0xD0-0xD7 restart markers).
 void checkJpegHuffmanTables(const unsigned char* bytes, size_t size, const std::string& source) {
-    if (size < 4 || bytes[0] != 0xFF || bytes[1] != 0xD8) return;
+    // The start of image, 0xFF 0xD8, after any number of 0xFF fill bytes (stb_image allows them).
+    if (size < 2 || bytes[0] != 0xFF) return;
+    size_t at = 1;
+    while (at < size && bytes[at] == 0xFF) ++at;
+    if (at >= size || bytes[at] != 0xD8) return;
+    ++at;
     auto byteAt = [&](size_t i) -> int { return i < size ? bytes[i] : 0; }; // stb_image reads 0 past the end
-    size_t at = 2;
     while (at + 4 <= size) {
         if (bytes[at] != 0xFF) {
             ++at;

@@ -139,6 +139,7 @@ TEST(TextureImage, WellFormedJpegAndPngPassTheInputChecks) {
 TEST(TextureImage, HostileHuffmanTablesAndChunkLengthsAreErrors) {
     const std::pair<const char*, const char*> cases[] = {
         {"crash-jpeg-dht-over-256-codes.jpg", "JPEG Huffman table with"},
+        {"crash-jpeg-fill-bytes-before-start.jpg", "JPEG Huffman table with"}, // 0xFF 0xFF 0xD8: fill bytes first
         {"oom-png-idat-length-2gib.png", "PNG chunk at byte"},
     };
     for (auto [name, problem] : cases) {
