@@ -11,7 +11,7 @@ if [ "$(id -u)" -ne 0 ]; then SUDO=sudo; else SUDO=; fi
 packages=(
   build-essential cmake ninja-build pkg-config
   libvulkan-dev vulkan-validationlayers glslang-tools spirv-tools vulkan-tools
-  libglm-dev libtinygltf-dev nlohmann-json3-dev libstb-dev libopenexr-dev libcli11-dev libpugixml-dev
+  libglm-dev libtinygltf-dev nlohmann-json3-dev libstb-dev libopenexr-dev libcli11-dev libpugixml-dev libjpeg-dev
   libgtest-dev mesa-vulkan-drivers
   libglfw3-dev xvfb xauth
   python3-venv # scripts/setup_ray_venv.sh: the Ray driver's venv (tools/pt_ray)

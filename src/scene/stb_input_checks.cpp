@@ -95,51 +95,6 @@ void checkPngChunkLengths(const unsigned char* bytes, size_t size, const std::st
     }
 }
 
-// JPEG: stb_image builds a Huffman table from its 16 code counts without checking that they
-// total at most 256, and writes past its 257-entry array when they do (found by
-// fuzz_texture_image's long run). Every DHT segment is read first, as stb_image reads it: tables
-// follow one another while the segment's length lasts; entropy-coded data between markers is
-// skipped (0xFF 0x00 is a stuffed byte, 0xFF 0xD0-0xD7 restart markers).
-void checkJpegHuffmanTables(const unsigned char* bytes, size_t size, const std::string& source) {
-    // The start of image, 0xFF 0xD8, after any number of 0xFF fill bytes (stb_image allows them).
-    if (size < 2 || bytes[0] != 0xFF) return;
-    size_t at = 1;
-    while (at < size && bytes[at] == 0xFF) ++at;
-    if (at >= size || bytes[at] != 0xD8) return;
-    ++at;
-    auto byteAt = [&](size_t i) -> int { return i < size ? bytes[i] : 0; }; // stb_image reads 0 past the end
-    while (at + 4 <= size) {
-        if (bytes[at] != 0xFF) {
-            ++at;
-            continue;
-        }
-        const int marker = bytes[at + 1];
-        if (marker == 0xFF) {
-            ++at; // fill byte
-            continue;
-        }
-        if (marker == 0x00 || marker == 0x01 || (marker >= 0xD0 && marker <= 0xD8)) {
-            at += 2;
-            continue;
-        }
-        if (marker == 0xD9) return; // end of image
-        const long length = long(bytes[at + 2]) << 8 | bytes[at + 3];
-        if (marker == 0xC4) {
-            size_t table = at + 4;
-            for (long left = length - 2; left > 0;) {
-                int codes = 0;
-                for (int i = 1; i <= 16; ++i) codes += byteAt(table + i);
-                if (codes > 256)
-                    fail(source, "cannot decode image (JPEG Huffman table with " + std::to_string(codes) +
-                                     " codes, at most 256 are possible: corrupt data)");
-                table += 17 + size_t(codes);
-                left -= 17 + codes;
-            }
-        }
-        at += 2 + size_t(length);
-    }
-}
-
 } // namespace
 
 void rejectInputsStbImageMishandles(const unsigned char* bytes, size_t size, const std::string& source) {
@@ -147,7 +102,6 @@ void rejectInputsStbImageMishandles(const unsigned char* bytes, size_t size, con
     const auto startsWith = [&](const char* text) { return size >= std::strlen(text) && std::memcmp(bytes, text, std::strlen(text)) == 0; };
     if (startsWith("#?RADIANCE\n") || startsWith("#?RGBE\n")) checkHdrRunLengths(bytes, size, source); // stb_image's test
     checkPngChunkLengths(bytes, size, source);
-    checkJpegHuffmanTables(bytes, size, source);
 }
 
 } // namespace pt

@@ -1,6 +1,7 @@
 #include "scene/texture_image.h"
 
 #include "render/image_io.h"
+#include "scene/jpeg_decode.h"
 #include "scene/stb_input_checks.h"
 
 // STB_IMAGE_STATIC keeps stb_image's symbols private to this file: tinygltf's shared library
@@ -74,6 +75,15 @@ TextureImage decodeTextureImage(const unsigned char* bytes, size_t size, const s
     if (size == 0) fail(source, "image data is empty");
     if (size > static_cast<size_t>(std::numeric_limits<int>::max())) fail(source, "image data is larger than 2 GiB");
     const int length = static_cast<int>(size);
+    if (looksLikeJpeg(bytes, size)) {
+        DecodedJpeg jpeg = decodeJpeg(bytes, size, source, kMaxTextureSide, kMaxPixelsPerByte * size + kAlwaysPlausiblePixels);
+        TextureImage image;
+        image.source = source;
+        image.width = jpeg.width;
+        image.height = jpeg.height;
+        image.rgba8 = std::move(jpeg.rgba8);
+        return image;
+    }
     rejectInputsStbImageMishandles(bytes, size, source);
     int width = 0, height = 0, channels = 0;
     if (!stbi_info_from_memory(bytes, length, &width, &height, &channels)) {
