@@ -49,11 +49,18 @@ bool decodeInto(const unsigned char* bytes, size_t size, Header* header, std::ve
     jpeg_create_decompress(&cinfo);
     jpeg_mem_src(&cinfo, bytes, static_cast<unsigned long>(size));
     jpeg_read_header(&cinfo, TRUE);
+    // The size is judged from the header, before jpeg_start_decompress: for a progressive JPEG
+    // that allocates coefficients for the whole image (4 GB for a hostile 156-byte file).
+    header->width = static_cast<int>(cinfo.image_width);
+    header->height = static_cast<int>(cinfo.image_height);
+    if (!reserve(*header, pixels, message)) {
+        jpeg_destroy_decompress(&cinfo);
+        return false;
+    }
     cinfo.out_color_space = JCS_EXT_RGBA; // libjpeg-turbo: RGBA bytes, alpha 255
     jpeg_start_decompress(&cinfo);
-    header->width = static_cast<int>(cinfo.output_width);
-    header->height = static_cast<int>(cinfo.output_height);
-    if (!reserve(*header, pixels, message)) {
+    if (cinfo.output_width != cinfo.image_width || cinfo.output_height != cinfo.image_height) {
+        std::snprintf(message, JMSG_LENGTH_MAX, "JPEG output size differs from its header");
         jpeg_destroy_decompress(&cinfo);
         return false;
     }
