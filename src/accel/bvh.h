@@ -52,6 +52,10 @@ struct DefaultInitAllocator : std::allocator<T> {
     void construct(U* p) noexcept(std::is_nothrow_default_constructible_v<U>) { ::new (static_cast<void*>(p)) U; }
     template <class U, class... Args>
     void construct(U* p, Args&&... args) { ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...); }
+    // Arrays of 2 MiB and more on transparent huge pages (bvh.cpp: fewer page faults when the
+    // build first writes them).
+    T* allocate(size_t count);
+    void deallocate(T* p, size_t count) noexcept;
 };
 using BvhNodeArray = std::vector<BvhNode, DefaultInitAllocator<BvhNode>>;
 
