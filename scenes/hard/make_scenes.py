@@ -14,6 +14,7 @@ import json
 import math
 import os
 import struct
+import zlib
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 NAN = float("nan")
@@ -48,6 +49,43 @@ def f32_normalize(v):
     d = f32(f32(f32(v[0] * v[0]) + f32(v[1] * v[1])) + f32(v[2] * v[2]))
     inv = f32(1.0 / f32(math.sqrt(d)))
     return [f32(c * inv) for c in v]
+
+
+def f32_dot(a, b):
+    """glm::dot on float vec3s: (x + y) + z of the products, each step rounded to float."""
+    return f32(f32(f32(a[0] * b[0]) + f32(a[1] * b[1])) + f32(a[2] * b[2]))
+
+
+def f32_cross(a, b):
+    """glm::cross on float vec3s, each product and difference rounded to float."""
+    return [f32(f32(a[1] * b[2]) - f32(b[1] * a[2])), f32(f32(a[2] * b[0]) - f32(b[2] * a[0])),
+            f32(f32(a[0] * b[1]) - f32(b[0] * a[1]))]
+
+
+def f32_step(x, k):
+    """The float k steps (units in the last place) from the float x (x != 0)."""
+    bits = struct.unpack("<i", struct.pack("<f", x))[0]
+    return struct.unpack("<f", struct.pack("<i", bits + k))[0]
+
+
+def f32_preimage(want, reads_as):
+    """A float vector next to `want` (its zeros kept) that reads_as() maps to exactly `want`:
+    the glTF loader renormalises what a node's matrix gives, and the result must be the float
+    vector a test computes, bit for bit."""
+    steps = sorted(((i, j, k) for i in range(-3, 4) for j in range(-3, 4) for k in range(-3, 4)),
+                   key=lambda t: sum(abs(c) for c in t))
+    for t in steps:
+        if any(t[i] and want[i] == 0 for i in range(3)):
+            continue
+        v = [f32_step(want[i], t[i]) if t[i] else want[i] for i in range(3)]
+        if reads_as(v) == want:
+            return v
+    raise ValueError(want)
+
+
+def columns(x, y, z, t=(0.0, 0.0, 0.0)):
+    """A glTF node matrix (column-major) with columns x, y, z and translation t."""
+    return [short(c) for c in list(x) + [0.0] + list(y) + [0.0] + list(z) + [0.0] + list(t) + [1.0]]
 
 
 def look_at_rotation(eye, target, up=(0.0, 1.0, 0.0)):
@@ -91,13 +129,16 @@ class Gltf:
             "nodes": [], "meshes": [], "materials": [], "accessors": [], "bufferViews": [], "cameras": [],
         }
 
-    def material(self, name, base=1.0, emission=0.0, double_sided=False):
-        """A Lambertian material (specularFactor 0), black and emitting `emission` when given."""
+    def material(self, name, base=1.0, emission=0.0, double_sided=False, normal_texture=None):
+        """A Lambertian material (specularFactor 0), black and emitting `emission` when given;
+        `normal_texture`: the index of its tangent-space normal map (see texture)."""
         m = {"name": name, "pbrMetallicRoughness": {"baseColorFactor": [base, base, base, 1.0], "metallicFactor": 0.0,
                                                     "roughnessFactor": 1.0},
              "extensions": {"KHR_materials_specular": {"specularFactor": 0.0}}}
         if double_sided:
             m["doubleSided"] = True
+        if normal_texture is not None:
+            m["normalTexture"] = {"index": normal_texture}
         if emission > 0:
             m["emissiveFactor"] = [1.0, 1.0, 1.0]
             m["extensions"]["KHR_materials_emissive_strength"] = {"emissiveStrength": emission}
@@ -115,14 +156,27 @@ class Gltf:
         self.doc["accessors"].append(acc)
         return len(self.doc["accessors"]) - 1
 
-    def mesh(self, name, material, positions, triangles, normals=None, node=None, short_indices=False):
-        """A triangle mesh and the node placing it (`node`: extra node fields, e.g. rotation)."""
+    def texture(self, name, png_bytes):
+        """A texture of the PNG `png_bytes`, embedded as a data URI, sampled nearest and repeated.
+        Return its index. (As a normal map pt reads it as linear: no sRGB decoding.)"""
+        self.doc.setdefault("images", []).append(
+            {"name": name, "uri": "data:image/png;base64," + base64.b64encode(png_bytes).decode()})
+        self.doc.setdefault("samplers", []).append({"magFilter": 9728, "minFilter": 9728, "wrapS": 10497, "wrapT": 10497})
+        self.doc.setdefault("textures", []).append({"sampler": len(self.doc["samplers"]) - 1,
+                                                    "source": len(self.doc["images"]) - 1})
+        return len(self.doc["textures"]) - 1
+
+    def mesh(self, name, material, positions, triangles, normals=None, node=None, short_indices=False, uvs=None):
+        """A triangle mesh and the node placing it (`node`: extra node fields, e.g. rotation);
+        `uvs`: TEXCOORD_0, as pt reads it ((0, 0) the image's top-left corner)."""
         flat = [c for p in positions for c in p]
         lo = [min(p[i] for p in positions) for i in range(3)]
         hi = [max(p[i] for p in positions) for i in range(3)]
         attributes = {"POSITION": self._accessor(flat, "f", "VEC3", 5126, len(positions), 34962, {"min": lo, "max": hi})}
         if normals is not None:
             attributes["NORMAL"] = self._accessor([c for n in normals for c in n], "f", "VEC3", 5126, len(normals), 34962)
+        if uvs is not None:
+            attributes["TEXCOORD_0"] = self._accessor([c for uv in uvs for c in uv], "f", "VEC2", 5126, len(uvs), 34962)
         index_format, index_type = ("H", 5123) if short_indices else ("I", 5125)
         indices = self._accessor([i for t in triangles for i in t], index_format, "SCALAR", index_type, 3 * len(triangles), 34963)
         self.doc["meshes"].append({"name": name, "primitives": [{"attributes": attributes, "indices": indices,
@@ -133,12 +187,16 @@ class Gltf:
         self.doc["nodes"].append(node)
         self.doc["scenes"][0]["nodes"].append(len(self.doc["nodes"]) - 1)
 
-    def camera(self, name, yfov, translation, rotation):
+    def camera(self, name, yfov, translation=None, rotation=None, matrix=None):
+        """A perspective camera placed by translation and rotation, or by a node `matrix`."""
         self.doc["cameras"].append({"type": "perspective", "perspective": {"yfov": yfov, "znear": 0.01}})
-        self.node({"name": name, "camera": len(self.doc["cameras"]) - 1, "translation": translation, "rotation": rotation})
+        placement = {"matrix": matrix} if matrix is not None else {"translation": translation, "rotation": rotation}
+        self.node(dict(name=name, camera=len(self.doc["cameras"]) - 1, **placement))
 
-    def directional_light(self, name, irradiance, rotation):
-        self._light(name, {"type": "directional", "intensity": irradiance}, {"rotation": rotation})
+    def directional_light(self, name, irradiance, rotation=None, matrix=None):
+        """Irradiance `irradiance` (W/m^2) travelling along the node's -z (by rotation or `matrix`)."""
+        self._light(name, {"type": "directional", "intensity": irradiance},
+                    {"matrix": matrix} if matrix is not None else {"rotation": rotation})
 
     def point_light(self, name, intensity, translation):
         """Radiant intensity `intensity` (W/sr) at `translation`."""
@@ -252,8 +310,9 @@ def smooth_icosphere():
 
 
 def box(lo, hi, inward=False):
-    """makeBox of tests/support/hard_case_support.cpp: corner i takes hi where bit (x, y, z) of i is
-    set; 12 triangles facing out (in), two per face in the order -x, +x, -y, +y, -z, +z."""
+    """A closed axis-aligned box, as the tests' makeBox built it before these files: corner i
+    takes hi where bit (x, y, z) of i is set; 12 triangles facing out (in), two per face in the
+    order -x, +x, -y, +y, -z, +z."""
     corners = [[hi[0] if i & 1 else lo[0], hi[1] if i & 2 else lo[1], hi[2] if i & 4 else lo[2]] for i in range(8)]
     triangles = []
     for a, b, c, d in [[0, 4, 6, 2], [1, 3, 7, 5], [0, 1, 5, 4], [2, 6, 7, 3], [0, 2, 3, 1], [4, 5, 7, 6]]:
@@ -326,8 +385,8 @@ def sealed_room(file_name, scale):
 
 
 def grid(corner, u, v, n):
-    """makeGrid of tests/support/hard_case_support.cpp: n x n quads on corner + [0,1]^2 (u, v),
-    their diagonals alternating so that vertices are shared by 4, 6 and 8 triangles."""
+    """n x n quads on corner + [0,1]^2 (u, v), as the tests' makeGrid built them before these
+    files, their diagonals alternating so that vertices are shared by 4, 6 and 8 triangles."""
     points = [[corner[k] + u[k] * (i / n) + v[k] * (j / n) for k in range(3)] for j in range(n + 1) for i in range(n + 1)]
     triangles = []
     for j in range(n):
@@ -356,6 +415,57 @@ def watertight_cube():
     eye, target = [1.2, 1.4, 1.7], [0.01, -0.02, 0.03]
     g.camera("general angle", 1.2, eye, look_at_rotation(eye, target))
     g.write("watertight-cube.gltf")
+
+
+def png_rgb8(width, height, texels):
+    """A lossless 8-bit RGB PNG of `texels` ([r, g, b] row by row, top row first), with no gAMA,
+    sRGB or iCCP chunk: a decoder gives back exactly these bytes."""
+    def chunk(kind, data):
+        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data) & 0xFFFFFFFF)
+
+    rows = b"".join(b"\0" + bytes(c for t in texels[y * width:(y + 1) * width] for c in t) for y in range(height))
+    return (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, 8, 2, 0, 0, 0)) +
+            chunk(b"IDAT", zlib.compress(rows, 9)) + chunk(b"IEND", b""))
+
+
+def normal_mapped_plane(file_name, what, sun_elevation_degrees=None, emitter_below=False):
+    """The plane x, z in [-1, 1] facing +y (u along +x), its normal map 8 x 1 texels sampled
+    nearest: stripes (+-0.87, 0, 0.5) in tangent space, stored as (n + 1) / 2, i.e. the bytes
+    (239 or 16, 128, 191), tilting the shading normal by about 60 degrees towards +u and -u in
+    turn. The camera looks down at its centre from (0, 2, 0.01), 0.005 rad off the vertical.
+    Either a directional light of irradiance pi from `sun_elevation_degrees` above the horizon
+    (towards +x; negative: below the plane) or, with `emitter_below`, a 20 x 20 emitter of
+    radiance 1 0.5 below the plane facing it, which only BSDF-sampled rays can find."""
+    g = Gltf(file_name[:-len(".gltf")],
+             "A white Lambertian plane whose normal map tilts its shading normal by about 60 degrees in alternating "
+             "stripes, seen from above, " + what, width=32, height=32, max_depth=2)
+    stripes = png_rgb8(8, 1, [[16 if i % 2 else 239, 128, 191] for i in range(8)])
+    white = g.material("white, normal-mapped", normal_texture=g.texture("stripes", stripes))
+    g.mesh("plane", white, quad([-1, 0, 1], [2, 0, 0], [0, 0, -2]), QUAD, uvs=[[0, 1], [1, 1], [1, 0], [0, 0]])
+    # The test's camera, lookAt((0, 2, 0.01), (0, 0, 0), 0.9) (tests/support/hard_case_support.cpp),
+    # as floats: a node matrix whose columns the loader turns back into exactly its forward and up.
+    eye = [0.0, 2.0, f32(0.01)]
+    forward = f32_normalize([f32(0.0 - eye[i]) for i in range(3)])
+    up = f32_normalize(f32_cross(f32_cross(forward, [0.0, 1.0, 0.0]), forward))
+    back = f32_preimage([-c for c in forward], f32_normalize)  # the loader: forward = normalize(-z)
+
+    def loaded_up(y):  # the loader: y made orthogonal to forward, normalised
+        d = f32_dot(y, forward)
+        return f32_normalize([f32(y[i] - f32(d * forward[i])) for i in range(3)])
+
+    y = f32_preimage(up, loaded_up)
+    g.camera("above", 0.9, matrix=columns(f32_normalize(f32_cross(y, back)), y, back, eye))
+    if sun_elevation_degrees is not None:
+        # The test's sun: direction -(cos e, sin e, 0) in float, e = glm::radians(float degrees).
+        # It travels along the node's -z; the z column is -direction, renormalised by the loader.
+        e = f32(f32(sun_elevation_degrees) * RADIANS_PER_DEGREE)
+        to_light = [f32(math.cos(e)), f32(math.sin(e)), 0.0]
+        z = f32_preimage(to_light, f32_normalize)
+        g.directional_light("sun", math.pi, matrix=columns([0.0, 0.0, -1.0], [-z[1], z[0], 0.0], z))
+    if emitter_below:
+        lamp = g.material("lamp", base=0.0, emission=1.0)
+        g.mesh("lamp below", lamp, quad([-10, -0.5, -10], [0, 0, 20], [20, 0, 0]), QUAD)
+    g.write(file_name)
 
 
 # ---- CENG795 XML: analytic spheres, glass and a sky ----
@@ -526,6 +636,13 @@ if __name__ == "__main__":
     for name, scale in [("1", 1.0), ("1e-3", 1e-3), ("1e3", 1e3)]:
         sealed_room("sealed-room-scale-%s.gltf" % name, scale)
     watertight_cube()
+    normal_mapped_plane("normal-mapped-plane-light-below.gltf", "lit from 40 degrees below by a directional light of "
+                        "irradiance pi: no light may come through, whatever the shading normal says.", -40.0)
+    normal_mapped_plane("normal-mapped-plane-light-grazing.gltf", "lit from 10 degrees above by a directional light of "
+                        "irradiance pi: every pixel within 0 <= L <= E / pi, the stripes tilted towards the light lit.", 10.0)
+    normal_mapped_plane("normal-mapped-plane-emitter-below.gltf", "over a 20 x 20 emitter of radiance 1 0.5 below it: "
+                        "reflections the normal map tilts below the plane must end there, so every pixel is 0.",
+                        emitter_below=True)
     white_sky()
     ground_sphere()
     for name, radius in [("1e-3", 1e-3), ("1e-2", 1e-2), ("1", 1.0), ("1e4", 1e4)]:

@@ -107,41 +107,65 @@ TEST_F(HardCases, LowPolySphereWithSmoothNormalsHasNoBlackTerminatorBandAndNoLea
     EXPECT_NEAR(bandMeasured, bandExpected, 0.03 * bandExpected + 4.0 * std::sqrt(bandVariance));
 }
 
-// A plane whose normal map tilts the shading normal by about 60 degrees, in alternating stripes
-// towards +u and -u, lit from below by a directional light (the camera above): no light may come
-// through (the geometric side decides), whatever the shading normal says. Lit from above at a
-// grazing 80 degrees, every pixel stays within 0 <= L <= E / pi and the stripes tilted towards
-// the light are lit. An emitter below stays invisible to BSDF-sampled rays too.
-TEST_F(HardCases, NormalMappedPlaneLetsNoLightThroughAndKeepsItsLitStripesLit) {
-    Scene scene;
-    TextureImage stripes;
-    stripes.width = 8;
-    stripes.height = 1;
+// scenes/hard/normal-mapped-plane-*.gltf: a white plane (x, z in [-1, 1], facing +y, u along +x)
+// whose normal map (8 x 1 texels, nearest) tilts the shading normal by about 60 degrees in
+// alternating stripes towards +u and -u, under a camera looking straight down. Checks what all
+// three files hold: the plane, its map (decoded without sRGB: the bytes as written) and camera.
+void expectNormalMappedPlane(const Scene& scene, const char* file) {
+    ASSERT_FALSE(scene.meshes.empty()) << file;
+    const Mesh& plane = scene.meshes[0];
+    EXPECT_EQ(plane.positions, (std::vector<glm::vec3>{{-1, 0, 1}, {1, 0, 1}, {1, 0, -1}, {-1, 0, -1}})) << file;
+    EXPECT_EQ(plane.triangles, (std::vector<glm::uvec3>{{0, 1, 2}, {0, 2, 3}})) << file; // faces +y
+    EXPECT_EQ(plane.uvs, (std::vector<glm::vec2>{{0, 1}, {1, 1}, {1, 0}, {0, 0}})) << file;
+    EXPECT_TRUE(plane.normals.empty() && plane.tangents.empty()) << file;
+    const Material& m = scene.materials.at(plane.material);
+    EXPECT_EQ(m.type, MaterialType::Diffuse) << file;
+    EXPECT_EQ(m.baseColor, glm::vec3(1.0f)) << file;
+    EXPECT_FALSE(m.emissive() || m.doubleSided) << file;
+    ASSERT_TRUE(m.normalTexture) << file;
+    EXPECT_EQ(m.normalScale, 1.0f) << file;
+    EXPECT_FALSE(m.bumpMap || m.normalMapYDown) << file;
+    const Texture& t = scene.textures.at(*m.normalTexture);
+    EXPECT_EQ(t.type, Texture::Type::Image) << file;
+    EXPECT_EQ(t.encoding, Texture::Encoding::Linear) << file;
+    EXPECT_FALSE(t.bilinear) << file;
+    const TextureImage& stripes = scene.textureImages.at(t.image);
+    ASSERT_EQ(stripes.width, 8) << file;
+    ASSERT_EQ(stripes.height, 1) << file;
+    ASSERT_EQ(stripes.rgba8.size(), 8u) << file;
     for (int i = 0; i < 8; ++i) // (+-0.87, 0, 0.5) in tangent space, stored as (n + 1) / 2
-        stripes.rgba8.push_back((i % 2 ? 16u : 239u) | 128u << 8 | 191u << 16 | 255u << 24);
-    scene.textureImages.push_back(stripes);
-    Texture t;
-    t.bilinear = false;
-    scene.textures.push_back(t);
-    Material m;
-    m.baseColor = glm::vec3(1.0f);
-    m.normalTexture = 0;
-    scene.materials.push_back(m);
-    Mesh plane = makeQuad({-1, 0, 1}, {2, 0, 0}, {0, 0, -2}, 0); // faces +y; u along +x
-    plane.uvs = {{0, 1}, {1, 1}, {1, 0}, {0, 0}};
-    scene.meshes.push_back(plane);
+        EXPECT_EQ(stripes.rgba8[i], (i % 2 ? 16u : 239u) | 128u << 8 | 191u << 16 | 255u << 24) << file << ", texel " << i;
+    ASSERT_EQ(scene.cameras.size(), 1u) << file;
+    const Camera expected = lookAt({0.0f, 2.0f, 0.01f}, {0.0f, 0.0f, 0.0f}, 0.9f), &c = scene.cameras[0];
+    EXPECT_EQ(c.position, expected.position) << file;
+    EXPECT_LE(glm::length(c.forward - expected.forward), 1e-6f) << file;
+    EXPECT_LE(glm::length(c.up - expected.up), 1e-6f) << file;
+    EXPECT_EQ(c.yfov, expected.yfov) << file;
+}
+
+// The plane lit from below by a directional light (the camera above): no light may come through
+// (the geometric side decides), whatever the shading normal says. Lit from above at a grazing 80
+// degrees, every pixel stays within 0 <= L <= E / pi and the stripes tilted towards the light are
+// lit. An emitter below stays invisible to BSDF-sampled rays too.
+TEST_F(HardCases, NormalMappedPlaneLetsNoLightThroughAndKeepsItsLitStripesLit) {
     const int size = 32;
-    const Camera camera = lookAt({0.0f, 2.0f, 0.01f}, {0.0f, 0.0f, 0.0f}, 0.9f);
     IntegratorSettings s;
     s.maxDepth = 2;
     for (bool fromBelow : {true, false}) {
-        PunctualLight sun;
-        sun.type = PunctualLight::Type::Directional;
+        const char* file = fromBelow ? "normal-mapped-plane-light-below.gltf" : "normal-mapped-plane-light-grazing.gltf";
+        const Scene scene = loadHardScene(file, s);
+        ASSERT_NO_FATAL_FAILURE(expectNormalMappedPlane(scene, file));
+        ASSERT_EQ(scene.meshes.size(), 1u) << file;
+        // A directional light of irradiance pi (radiance E / pi = 1 off a white plane facing it)
+        // from 40 degrees below or 10 degrees above the plane, towards +x.
+        ASSERT_EQ(scene.punctualLights.size(), 1u) << file;
+        const PunctualLight& sun = scene.punctualLights[0];
+        EXPECT_EQ(sun.type, PunctualLight::Type::Directional) << file;
+        EXPECT_EQ(sun.intensity, glm::vec3(float(M_PI))) << file;
         const float elevation = glm::radians(fromBelow ? -40.0f : 10.0f);
-        sun.direction = -glm::vec3(std::cos(elevation), std::sin(elevation), 0.0f);
-        sun.intensity = glm::vec3(float(M_PI));
-        scene.punctualLights = {sun};
+        EXPECT_LE(glm::length(sun.direction + glm::vec3(std::cos(elevation), std::sin(elevation), 0.0f)), 1e-6f) << file;
         // (The forced random numbers once: the two lights compile the same kernel.)
+        const Camera& camera = scene.cameras[0];
         const auto r = fromBelow ? renderAllModes(scene, s, camera, size, 8, "normal map, light below")
                                  : renderScene(scene, s, camera, size, size, 8);
         EXPECT_EQ(r.droppedSamples, 0u);
@@ -158,16 +182,26 @@ TEST_F(HardCases, NormalMappedPlaneLetsNoLightThroughAndKeepsItsLitStripesLit) {
     }
     // A large emitter below the plane, which only BSDF-sampled rays can find: a reflection the
     // normal map tilts below the plane must end there, not pass through and see the emitter,
-    // with and without light sampling (MIS weighs the BSDF-sampled hit).
-    scene.punctualLights.clear();
-    Material lamp;
-    lamp.baseColor = glm::vec3(0.0f);
-    lamp.emission = glm::vec3(1.0f);
-    scene.materials.push_back(lamp);
-    scene.meshes.push_back(makeQuad({-10, -0.5f, -10}, {0, 0, 20}, {20, 0, 0}, 1)); // faces +y
+    // with and without light sampling (MIS weighs the BSDF-sampled hit). NEE is the test's
+    // setting (glTF cannot say it).
+    const char* file = "normal-mapped-plane-emitter-below.gltf";
+    const Scene scene = loadHardScene(file, s);
+    ASSERT_NO_FATAL_FAILURE(expectNormalMappedPlane(scene, file));
+    EXPECT_TRUE(scene.punctualLights.empty()) << file;
+    ASSERT_EQ(scene.meshes.size(), 2u) << file;
+    // The emitter: 20 x 20, radiance 1, black, one-sided, 0.5 below the plane and facing it.
+    const Mesh& emitter = scene.meshes[1];
+    EXPECT_EQ(emitter.positions, (std::vector<glm::vec3>{{-10, -0.5f, -10}, {-10, -0.5f, 10}, {10, -0.5f, 10}, {10, -0.5f, -10}}))
+        << file;
+    EXPECT_EQ(emitter.triangles, (std::vector<glm::uvec3>{{0, 1, 2}, {0, 2, 3}})) << file; // faces +y
+    const Material& lamp = scene.materials.at(emitter.material);
+    EXPECT_EQ(lamp.type, MaterialType::Diffuse) << file;
+    EXPECT_EQ(lamp.emission, glm::vec3(1.0f)) << file;
+    EXPECT_EQ(lamp.baseColor, glm::vec3(0.0f)) << file;
+    EXPECT_FALSE(lamp.doubleSided || lamp.emissiveTexture) << file;
     for (bool nee : {true, false}) {
         s.nee = s.mis = nee;
-        const auto r = renderScene(scene, s, camera, size, size, 32);
+        const auto r = renderScene(scene, s, scene.cameras[0], size, size, 32);
         EXPECT_EQ(r.droppedSamples, 0u);
         const ImageStats st = imageStats(r, 0);
         std::printf("[          ] normal-mapped plane, emitter below, NEE %s: highest %.5f\n", nee ? "on" : "off", st.highest);

@@ -17,24 +17,6 @@
 namespace pt::test {
 namespace {
 
-// Loads scenes/hard/FILE and checks that what the file says about rendering agrees with the
-// test's settings `s` (a course camera's RendererParams, a depth from MaxRecursionDepth or glTF
-// extras.max_depth), so that `pt render scenes/hard/FILE` renders what the test checks.
-Scene loadHardScene(const char* file, const IntegratorSettings& s) {
-    Scene scene = loadScene(hardScenePath(file));
-    EXPECT_FALSE(scene.cameras.empty()) << file;
-    if (scene.hints.maxDepth) EXPECT_EQ(*scene.hints.maxDepth, int(s.maxDepth)) << file;
-    for (const Camera& c : scene.cameras) {
-        const CameraRenderSettings& cs = c.settings;
-        if (cs.maxDepth) EXPECT_EQ(*cs.maxDepth, int(s.maxDepth)) << file;
-        if (cs.nee) EXPECT_EQ(*cs.nee, s.nee) << file;
-        if (cs.importanceSampling) EXPECT_EQ(*cs.importanceSampling, s.sampling == DirectionSampling::Cosine) << file;
-        if (cs.russianRoulette) EXPECT_EQ(*cs.russianRoulette, s.rr) << file;
-        if (cs.classic) EXPECT_FALSE(*cs.classic) << file;
-    }
-    return scene;
-}
-
 // glTF cannot hold a sky: the tests of glTF scenes add theirs (`--env-colour` by hand).
 void addSky(Scene& scene, float radiance) {
     Environment sky;

@@ -1,5 +1,7 @@
 #include "support/hard_case_support.h"
 
+#include "scene/scene_loader.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -66,14 +68,6 @@ Scene scaledScene(Scene scene, float scale, glm::vec3 offset) {
     return scene;
 }
 
-Sphere sphereAt(glm::vec3 centre, float radius, uint32_t material) {
-    Sphere s;
-    s.objectToWorld = glm::mat4(glm::mat3(radius));
-    s.objectToWorld[3] = glm::vec4(centre, 1.0f);
-    s.material = material;
-    return s;
-}
-
 Camera lookAt(glm::vec3 from, glm::vec3 to, float yfov, glm::vec3 up) {
     Camera c;
     c.position = from;
@@ -91,40 +85,19 @@ glm::vec3 pixelDirection(const gpu::GpuCamera& c, int width, int height, double 
 
 std::filesystem::path hardScenePath(const char* fileName) { return testDataDir().parent_path() / "scenes" / "hard" / fileName; }
 
-Mesh makeBox(glm::vec3 lo, glm::vec3 hi, uint32_t material, bool inward) {
-    Mesh m;
-    m.name = "box";
-    for (int i = 0; i < 8; ++i) m.positions.push_back({i & 1 ? hi.x : lo.x, i & 2 ? hi.y : lo.y, i & 4 ? hi.z : lo.z});
-    // Outward-facing (counter-clockwise seen from outside) quads: -x, +x, -y, +y, -z, +z.
-    const glm::uvec4 faces[] = {{0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}};
-    for (glm::uvec4 f : faces) {
-        if (inward) std::swap(f.y, f.w);
-        m.triangles.push_back({f.x, f.y, f.z});
-        m.triangles.push_back({f.x, f.z, f.w});
+Scene loadHardScene(const char* file, const IntegratorSettings& s) {
+    Scene scene = loadScene(hardScenePath(file));
+    EXPECT_FALSE(scene.cameras.empty()) << file;
+    if (scene.hints.maxDepth) EXPECT_EQ(*scene.hints.maxDepth, int(s.maxDepth)) << file;
+    for (const Camera& c : scene.cameras) {
+        const CameraRenderSettings& cs = c.settings;
+        if (cs.maxDepth) EXPECT_EQ(*cs.maxDepth, int(s.maxDepth)) << file;
+        if (cs.nee) EXPECT_EQ(*cs.nee, s.nee) << file;
+        if (cs.importanceSampling) EXPECT_EQ(*cs.importanceSampling, s.sampling == DirectionSampling::Cosine) << file;
+        if (cs.russianRoulette) EXPECT_EQ(*cs.russianRoulette, s.rr) << file;
+        if (cs.classic) EXPECT_FALSE(*cs.classic) << file;
     }
-    m.material = material;
-    return m;
-}
-
-Mesh makeGrid(glm::vec3 corner, glm::vec3 edgeU, glm::vec3 edgeV, int n, uint32_t material) {
-    Mesh m;
-    m.name = "grid";
-    for (int j = 0; j <= n; ++j)
-        for (int i = 0; i <= n; ++i) m.positions.push_back(corner + edgeU * (float(i) / n) + edgeV * (float(j) / n));
-    auto at = [n](int i, int j) { return uint32_t(j * (n + 1) + i); };
-    for (int j = 0; j < n; ++j)
-        for (int i = 0; i < n; ++i) {
-            // Alternate the diagonal so that vertices are shared by 4, 6 and 8 triangles.
-            if ((i + j) % 2) {
-                m.triangles.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1)});
-                m.triangles.push_back({at(i, j), at(i + 1, j + 1), at(i, j + 1)});
-            } else {
-                m.triangles.push_back({at(i, j), at(i + 1, j), at(i, j + 1)});
-                m.triangles.push_back({at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)});
-            }
-        }
-    m.material = material;
-    return m;
+    return scene;
 }
 
 } // namespace pt::test

@@ -1,7 +1,7 @@
 #pragma once
-// Helpers for the hard-case suite (tests/gpu/hard_cases_test.cpp): renders with the kernel's
-// random numbers pinned to the ends of their range, image statistics with their Monte Carlo
-// error, and scenes moved to another scale or place.
+// Helpers for the hard-case suite (tests/gpu/hard_cases_*test.cpp): the scene files of
+// scenes/hard/, renders with the kernel's random numbers pinned to the ends of their range,
+// image statistics with their Monte Carlo error, and scenes moved to another scale or place.
 #include "support/gpu_test_support.h"
 
 #include <functional>
@@ -37,8 +37,7 @@ ImageStats imageStats(const Renderer::Readback& r, int channel = 0, const std::f
 // The scene and its cameras mapped by x -> scale * x + offset (radiance is unchanged by it).
 Scene scaledScene(Scene scene, float scale, glm::vec3 offset);
 
-// A sphere of `radius` at `centre`, and a camera at `from` looking at `to`.
-Sphere sphereAt(glm::vec3 centre, float radius, uint32_t material);
+// A camera at `from` looking at `to`.
 Camera lookAt(glm::vec3 from, glm::vec3 to, float yfov, glm::vec3 up = glm::vec3(0, 1, 0));
 
 // The world-space direction of the ray through image point (x, y) (pixel units, (0, 0) the
@@ -48,10 +47,9 @@ glm::vec3 pixelDirection(const gpu::GpuCamera& c, int width, int height, double 
 // A scene file of scenes/hard/.
 std::filesystem::path hardScenePath(const char* fileName);
 
-// A closed axis-aligned box of 12 triangles facing outwards (inwards when `inward`).
-Mesh makeBox(glm::vec3 lo, glm::vec3 hi, uint32_t material, bool inward = false);
-
-// An n x n grid of quads (2n^2 triangles sharing vertices and edges) on corner + [0,1]^2 (edgeU, edgeV).
-Mesh makeGrid(glm::vec3 corner, glm::vec3 edgeU, glm::vec3 edgeV, int n, uint32_t material);
+// Loads scenes/hard/FILE and checks that what the file says about rendering agrees with the
+// test's settings `s` (a course camera's RendererParams, a depth from MaxRecursionDepth or glTF
+// extras.max_depth), so that `pt render scenes/hard/FILE` renders what the test checks.
+Scene loadHardScene(const char* file, const IntegratorSettings& s);
 
 } // namespace pt::test
