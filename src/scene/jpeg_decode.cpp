@@ -3,6 +3,7 @@
 #include <csetjmp>
 #include <cstdio> // jpeglib.h needs FILE
 #include <cstring>
+#include <new>
 #include <stdexcept>
 
 #include <jpeglib.h>
@@ -27,14 +28,8 @@ struct ErrorManager {
 
 void ignoreMessage(j_common_ptr, int) {} // warnings (such as "premature end of data") are not printed
 
-struct Header {
-    int width = 0, height = 0;
-};
-
-// Decodes into `pixels` (resized by `reserve` once the header is read); returns false with
-// `message` set on any error.
-bool decodeInto(const unsigned char* bytes, size_t size, Header* header, std::vector<uint32_t>* pixels,
-    bool (*reserve)(const Header&, std::vector<uint32_t>*, char*), char* message) {
+// Decodes into `image` (its size and pixels); returns false with `message` set on any error.
+bool decodeInto(const unsigned char* bytes, size_t size, int maxSide, size_t maxPixels, TextureImage* image, char* message) {
     jpeg_decompress_struct cinfo;
     ErrorManager err;
     cinfo.err = jpeg_std_error(&err.pub);
@@ -51,9 +46,19 @@ bool decodeInto(const unsigned char* bytes, size_t size, Header* header, std::ve
     jpeg_read_header(&cinfo, TRUE);
     // The size is judged from the header, before jpeg_start_decompress: for a progressive JPEG
     // that allocates coefficients for the whole image (4 GB for a hostile 156-byte file).
-    header->width = static_cast<int>(cinfo.image_width);
-    header->height = static_cast<int>(cinfo.image_height);
-    if (!reserve(*header, pixels, message)) {
+    image->width = static_cast<int>(cinfo.image_width);
+    image->height = static_cast<int>(cinfo.image_height);
+    const size_t pixels = size_t(cinfo.image_width) * cinfo.image_height;
+    if (image->width <= 0 || image->height <= 0 || image->width > maxSide || image->height > maxSide || pixels > maxPixels) {
+        std::snprintf(message, JMSG_LENGTH_MAX, "JPEG of %dx%d pixels is empty, too large or implausible for its data",
+            image->width, image->height);
+        jpeg_destroy_decompress(&cinfo);
+        return false;
+    }
+    try {
+        image->rgba8.assign(pixels, 0u);
+    } catch (const std::bad_alloc&) {
+        std::snprintf(message, JMSG_LENGTH_MAX, "out of memory for %dx%d pixels", image->width, image->height);
         jpeg_destroy_decompress(&cinfo);
         return false;
     }
@@ -65,7 +70,7 @@ bool decodeInto(const unsigned char* bytes, size_t size, Header* header, std::ve
         return false;
     }
     while (cinfo.output_scanline < cinfo.output_height) {
-        JSAMPROW row = reinterpret_cast<JSAMPROW>(pixels->data() + size_t(cinfo.output_scanline) * cinfo.output_width);
+        JSAMPROW row = reinterpret_cast<JSAMPROW>(image->rgba8.data() + size_t(cinfo.output_scanline) * cinfo.output_width);
         jpeg_read_scanlines(&cinfo, &row, 1);
     }
     jpeg_finish_decompress(&cinfo);
@@ -82,30 +87,13 @@ bool looksLikeJpeg(const unsigned char* bytes, size_t size) {
     return at < size && bytes[at] == 0xD8;
 }
 
-DecodedJpeg decodeJpeg(const unsigned char* bytes, size_t size, const std::string& source, int maxSide, size_t maxPixels) {
-    // The limits reach the C-style reserve callback through these (one decode per thread at a time).
-    static thread_local int sideLimit;
-    static thread_local size_t pixelLimit;
-    sideLimit = maxSide;
-    pixelLimit = maxPixels;
-    auto reserve = [](const Header& h, std::vector<uint32_t>* pixels, char* message) {
-        if (h.width <= 0 || h.height <= 0 || h.width > sideLimit || h.height > sideLimit ||
-            size_t(h.width) * size_t(h.height) > pixelLimit) {
-            std::snprintf(message, JMSG_LENGTH_MAX, "JPEG of %dx%d pixels is empty, too large or implausible for its data",
-                h.width, h.height);
-            return false;
-        }
-        pixels->assign(size_t(h.width) * size_t(h.height), 0u);
-        return true;
-    };
-    DecodedJpeg out;
-    Header header;
+TextureImage decodeJpeg(const unsigned char* bytes, size_t size, const std::string& source, int maxSide, size_t maxPixels) {
+    TextureImage image;
+    image.source = source;
     char message[JMSG_LENGTH_MAX] = {};
-    if (!decodeInto(bytes, size, &header, &out.rgba8, reserve, message))
+    if (!decodeInto(bytes, size, maxSide, maxPixels, &image, message))
         throw std::runtime_error(source + ": cannot decode image (" + message + ")");
-    out.width = header.width;
-    out.height = header.height;
-    return out;
+    return image;
 }
 
 } // namespace pt

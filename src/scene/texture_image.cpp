@@ -21,7 +21,6 @@
 #endif
 
 #include <algorithm>
-#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <iterator>
@@ -75,15 +74,7 @@ TextureImage decodeTextureImage(const unsigned char* bytes, size_t size, const s
     if (size == 0) fail(source, "image data is empty");
     if (size > static_cast<size_t>(std::numeric_limits<int>::max())) fail(source, "image data is larger than 2 GiB");
     const int length = static_cast<int>(size);
-    if (looksLikeJpeg(bytes, size)) {
-        DecodedJpeg jpeg = decodeJpeg(bytes, size, source, kMaxTextureSide, kMaxPixelsPerByte * size + kAlwaysPlausiblePixels);
-        TextureImage image;
-        image.source = source;
-        image.width = jpeg.width;
-        image.height = jpeg.height;
-        image.rgba8 = std::move(jpeg.rgba8);
-        return image;
-    }
+    if (looksLikeJpeg(bytes, size)) return decodeJpeg(bytes, size, source, kMaxTextureSide, kMaxPixelsPerByte * size + kAlwaysPlausiblePixels);
     rejectInputsStbImageMishandles(bytes, size, source);
     int width = 0, height = 0, channels = 0;
     if (!stbi_info_from_memory(bytes, length, &width, &height, &channels)) {

@@ -1,6 +1,7 @@
 #pragma once
-// Decoding the images textures read: PNG, JPEG, BMP, TGA and the like through stb_image (kept as
-// 8-bit RGBA), Radiance .hdr through stb_image and OpenEXR through OpenEXR (kept as float).
+// Decoding the images textures read: PNG, BMP, TGA and the like through stb_image and JPEG through
+// libjpeg-turbo (kept as 8-bit RGBA), Radiance .hdr through stb_image and OpenEXR through OpenEXR
+// (kept as float).
 #include "scene/scene.h"
 
 #include <cstddef>
