@@ -4,31 +4,34 @@
 #include "common/math.glsl"
 
 // Concentric square-to-disk map (Shirley and Chiu 1997): low distortion, keeps stratification.
-vec2 sampleConcentricDisk(vec2 u) {
-    vec2 o = 2.0 * u - 1.0;
+// Returns the signed radius r and the angle theta; the point is r (cos theta, sin theta).
+// u is moved to the middle of its 2^-24 cell, so |r| < 1 always: the rim (u = 0) would give a
+// tangent direction of zero pdf, and a path that draws it (1 in 2^23) would end there.
+vec2 concentricDiskPolar(vec2 u) {
+    vec2 o = 2.0 * u - (1.0 - 1.0 / 16777216.0);
     if (o.x == 0.0 && o.y == 0.0) return vec2(0.0);
-    float r, theta;
-    if (abs(o.x) > abs(o.y)) {
-        r = o.x;
-        theta = (PI / 4.0) * (o.y / o.x);
-    } else {
-        r = o.y;
-        theta = (PI / 2.0) - (PI / 4.0) * (o.x / o.y);
-    }
-    return r * vec2(cos(theta), sin(theta));
+    if (abs(o.x) > abs(o.y)) return vec2(o.x, (PI / 4.0) * (o.y / o.x));
+    return vec2(o.y, (PI / 2.0) - (PI / 4.0) * (o.x / o.y));
 }
 
-// Cosine-weighted hemisphere around +z (Malley's method); pdf = cos(theta) / pi.
+vec2 sampleConcentricDisk(vec2 u) {
+    vec2 polar = concentricDiskPolar(u);
+    return polar.x * vec2(cos(polar.y), sin(polar.y));
+}
+
+// Cosine-weighted hemisphere around +z (Malley's method); pdf = cos(theta) / pi. The height
+// comes from the radius, not from 1 - |disk point|^2: GPU sin and cos are approximate, and
+// cos^2 + sin^2 >= 1 would put an interior point on the rim.
 vec3 sampleCosineHemisphere(vec2 u) {
-    vec2 d = sampleConcentricDisk(u);
-    float z = sqrt(max(0.0, 1.0 - dot(d, d)));
-    return vec3(d, z);
+    vec2 polar = concentricDiskPolar(u);
+    float z = sqrt(max(0.0, (1.0 - polar.x) * (1.0 + polar.x)));
+    return vec3(polar.x * vec2(cos(polar.y), sin(polar.y)), z);
 }
 float cosineHemispherePdf(float cosTheta) { return max(cosTheta, 0.0) * INV_PI; }
 
-// Uniform hemisphere around +z; pdf = 1 / (2 pi).
+// Uniform hemisphere around +z; pdf = 1 / (2 pi). z = 1 - u.x lies in (0, 1], never tangent.
 vec3 sampleUniformHemisphere(vec2 u) {
-    float z = u.x;
+    float z = 1.0 - u.x;
     float r = sqrt(max(0.0, 1.0 - z * z));
     float phi = TWO_PI * u.y;
     return vec3(r * cos(phi), r * sin(phi), z);

@@ -41,15 +41,18 @@ bool intersectTriangle(WatertightRay r, vec3 p0, vec3 p1, vec3 p2, float tMax, o
     vec3 a = vec3(a3[r.axis.x], a3[r.axis.y], a3[r.axis.z]);
     vec3 b = vec3(b3[r.axis.x], b3[r.axis.y], b3[r.axis.z]);
     vec3 c = vec3(c3[r.axis.x], c3[r.axis.y], c3[r.axis.z]);
-    float ax = a.x - r.shear.x * a.z;
-    float ay = a.y - r.shear.y * a.z;
-    float bx = b.x - r.shear.x * b.z;
-    float by = b.y - r.shear.y * b.z;
-    float cx = c.x - r.shear.x * c.z;
-    float cy = c.y - r.shear.y * c.z;
-    float U = cx * by - cy * bx;
-    float V = ax * cy - ay * cx;
-    float W = bx * ay - by * ax;
+    // `precise` (SPIR-V NoContraction): a shared edge must give the same edge function in both
+    // of its triangles, so every compiler must round each product and difference the same way.
+    // Left free, NVIDIA's compiler fuses some of them into FMAs and rays slip through edges.
+    precise float ax = a.x - r.shear.x * a.z;
+    precise float ay = a.y - r.shear.y * a.z;
+    precise float bx = b.x - r.shear.x * b.z;
+    precise float by = b.y - r.shear.y * b.z;
+    precise float cx = c.x - r.shear.x * c.z;
+    precise float cy = c.y - r.shear.y * c.z;
+    precise float U = cx * by - cy * bx;
+    precise float V = ax * cy - ay * cx;
+    precise float W = bx * ay - by * ax;
     t = 0.0;
     bary = vec2(0.0);
     if ((U < 0.0 || V < 0.0 || W < 0.0) && (U > 0.0 || V > 0.0 || W > 0.0)) return false;

@@ -356,7 +356,7 @@ struct GpuRenderPush {
 PT_CHECK_SIZE(GpuRenderPush, 48);
 
 // ---- Test kernels (shaders/tests) ----
-#define TEST_MODE_COSINE_HEMISPHERE 0u
+#define TEST_MODE_COSINE_HEMISPHERE 0u // outputs[i] = (w, pdf); inputs: optional vec4[] of (u1, u2, _, _)
 #define TEST_MODE_UNIFORM_HEMISPHERE 1u
 #define TEST_MODE_LIGHT_SAMPLE 2u
 #define TEST_MODE_LIGHT_PDF 3u
@@ -377,7 +377,7 @@ PT_CHECK_SIZE(GpuTestRay, 32);
 
 struct GpuTestPush {
     uint64_t sceneParams;
-    uint64_t inputs; // mode-dependent: GpuTestRay[] or vec4[] directions
+    uint64_t inputs; // mode-dependent: GpuTestRay[] or vec4[] directions; 0 when the host gives none
     uint64_t outputs; // mode-dependent: vec4[]
     uint mode;
     uint count;

@@ -19,6 +19,7 @@ void main() {
     Rng rng = rngCreate(uvec2(i, i >> 16u), 0u, push.seed);
     vec2 u = rng2(rng, 0u);
     if (push.mode == TEST_MODE_COSINE_HEMISPHERE || push.mode == TEST_MODE_UNIFORM_HEMISPHERE) {
+        if (push.inputs != 0ul) u = Vec4Ref(push.inputs).v[i].xy; // the host's own numbers
         vec3 w = push.mode == TEST_MODE_COSINE_HEMISPHERE ? sampleCosineHemisphere(u) : sampleUniformHemisphere(u);
         float pdf = push.mode == TEST_MODE_COSINE_HEMISPHERE ? cosineHemispherePdf(w.z) : uniformHemispherePdf(w.z);
         outputs.v[i] = vec4(w, pdf);

@@ -24,17 +24,22 @@ vec4 fetchTexel(GpuTexture tex, int x, int y) {
     return c;
 }
 
+// Non-negative remainder of i by n > 0. Vulkan leaves % undefined for negative operands (NVIDIA's
+// driver returns other values than lavapipe), so i is first shifted up by a multiple of n.
+int positiveRemainder(int i, int n) {
+    if (i < 0) i += n * ((n - 1 - i) / n);
+    return i % n;
+}
+
 // Integer texel coordinate under a wrap mode (TEXTURE_WRAP_*).
 int wrapTexel(int i, int size, uint mode) {
     if (mode == TEXTURE_WRAP_CLAMP) return clamp(i, 0, size - 1);
     if (mode == TEXTURE_WRAP_MIRROR) {
         int period = 2 * size;
-        int m = i % period;
-        if (m < 0) m += period;
+        int m = positiveRemainder(i, period);
         return m < size ? m : period - 1 - m;
     }
-    int m = i % size;
-    return m < 0 ? m + size : m;
+    return positiveRemainder(i, size);
 }
 
 // uv in texture space (0..1 across the image, v = 0 at the top row).
@@ -42,8 +47,9 @@ vec4 sampleImage(GpuTexture tex, vec2 uv) {
     uint wrapU = (tex.flags >> TEXTURE_WRAP_U_SHIFT) & 3u;
     uint wrapV = (tex.flags >> TEXTURE_WRAP_V_SHIFT) & 3u;
     ivec2 size = ivec2(tex.width, tex.height);
-    // Keep coordinates in a range where float-to-int conversion is exact and defined.
-    vec2 st = clamp(uv, vec2(-1e6), vec2(1e6)) * vec2(size);
+    // Keep texel coordinates within 2^24: float-to-int conversion is then exact and defined,
+    // and positiveRemainder cannot overflow.
+    vec2 st = clamp(uv * vec2(size), vec2(-16777216.0), vec2(16777216.0));
     if ((tex.flags & TEXTURE_FLAG_BILINEAR) == 0u) {
         ivec2 i = ivec2(floor(st));
         return fetchTexel(tex, wrapTexel(i.x, size.x, wrapU), wrapTexel(i.y, size.y, wrapV));

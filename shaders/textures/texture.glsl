@@ -9,9 +9,10 @@
 GpuTexture loadTexture(uint index) { return TextureRef(scene.textures).v[index]; }
 
 // The course checkerboard: x = int((p.x + offset) * scale) % 2 per axis, black where
-// (x xor y) != z. Truncation and a signed remainder, as the course's C++ wrote it.
+// (x xor y) != z. Truncation as the course's C++ wrote it; its signed remainder is non-zero
+// exactly for odd values, which the low bit tells (Vulkan leaves % of negatives undefined).
 vec3 checkerboard(GpuTexture tex, vec3 p) {
-    ivec3 c = ivec3((p + tex.patternOffset) * tex.patternScale) % 2;
+    ivec3 c = ivec3((p + tex.patternOffset) * tex.patternScale) & 1;
     bvec3 odd = notEqual(c, ivec3(0));
     return (odd.x != odd.y) != odd.z ? tex.colorA : tex.colorB;
 }

@@ -31,7 +31,11 @@ ProgressiveResult renderProgressively(Renderer& renderer, const ProgressiveTarge
         if (target.passSpp > 0) pass = target.passSpp;
         else if (doneHere == 0) pass = 1;
         else pass = static_cast<uint32_t>(std::clamp(0.5 / std::max(secondsPerSpp, 1e-9), 1.0, 4096.0));
-        if (target.targetError > 0 && result.lastEstimate > 0) {
+        if (target.targetError > 0 && result.lastEstimate <= 0) {
+            // No estimate yet: reach the fewest samples it needs first. A pass sized by speed
+            // alone is hundreds of spp on a GPU, and would overshoot the target many times over.
+            pass = std::min(pass, std::max(1u, kMinTargetErrorSpp - std::min(done, kMinTargetErrorSpp)));
+        } else if (target.targetError > 0) {
             // relMSE falls as 1/spp: aim at the predicted total instead of overshooting by a pass.
             const double needed = std::ceil(done * result.lastEstimate / target.targetError);
             pass = static_cast<uint32_t>(std::clamp(needed - done, 1.0, double(pass)));
