@@ -14,10 +14,9 @@ vec2 concentricDiskPolar(vec2 u) {
     return vec2(o.y, (PI / 2.0) - (PI / 4.0) * (o.x / o.y));
 }
 
-vec2 sampleConcentricDisk(vec2 u) {
-    vec2 polar = concentricDiskPolar(u);
-    return polar.x * vec2(cos(polar.y), sin(polar.y));
-}
+vec2 diskPoint(vec2 polar) { return polar.x * vec2(cos(polar.y), sin(polar.y)); }
+
+vec2 sampleConcentricDisk(vec2 u) { return diskPoint(concentricDiskPolar(u)); }
 
 // Cosine-weighted hemisphere around +z (Malley's method); pdf = cos(theta) / pi. The height
 // comes from the radius, not from 1 - |disk point|^2: GPU sin and cos are approximate, and
@@ -25,7 +24,7 @@ vec2 sampleConcentricDisk(vec2 u) {
 vec3 sampleCosineHemisphere(vec2 u) {
     vec2 polar = concentricDiskPolar(u);
     float z = sqrt(max(0.0, (1.0 - polar.x) * (1.0 + polar.x)));
-    return vec3(polar.x * vec2(cos(polar.y), sin(polar.y)), z);
+    return vec3(diskPoint(polar), z);
 }
 float cosineHemispherePdf(float cosTheta) { return max(cosTheta, 0.0) * INV_PI; }
 

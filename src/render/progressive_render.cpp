@@ -34,7 +34,7 @@ ProgressiveResult renderProgressively(Renderer& renderer, const ProgressiveTarge
         if (target.targetError > 0 && result.lastEstimate <= 0) {
             // No estimate yet: reach the fewest samples it needs first. A pass sized by speed
             // alone is hundreds of spp on a GPU, and would overshoot the target many times over.
-            pass = std::min(pass, std::max(1u, kMinTargetErrorSpp - std::min(done, kMinTargetErrorSpp)));
+            pass = std::min(pass, done < kMinTargetErrorSpp ? kMinTargetErrorSpp - done : 1u);
         } else if (target.targetError > 0) {
             // relMSE falls as 1/spp: aim at the predicted total instead of overshooting by a pass.
             const double needed = std::ceil(done * result.lastEstimate / target.targetError);
