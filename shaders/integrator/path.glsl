@@ -19,6 +19,7 @@
 #include "integrator/shadow_ray.glsl"
 #include "integrator/ray_counts.glsl"
 #include "integrator/classic.glsl"
+#include "integrator/caustic_partition.glsl"
 
 // Dielectrics (smooth or rough, and PBR transmission with a volume) absorb inside, behind
 // their geometric front face.
@@ -57,6 +58,11 @@ vec3 tracePath(Ray ray, Rng rng) {
     float etaScale = 1.0;
     bool prevDelta = true; // the camera ray counts as specular: emitters it sees are added fully
     float prevPdfBsdf = 0.0;
+    // With light tracing (integrator/caustic_partition.glsl): the path so far is one the light
+    // tracer can follow back (camera -> receiver -> receivers and delta bounces), and how many
+    // delta bounces it ended with. Emission found after one or more is the light tracer's.
+    bool lightTraceable = false;
+    uint deltaRun = 0u;
     for (uint depth = 1u;; ++depth) {
         Hit hit;
         countClosestRay();
@@ -82,7 +88,8 @@ vec3 tracePath(Ray ray, Rng rng) {
 
         // Emission found by the BSDF-sampled ray, weighted against light sampling. Emitters
         // outside the light table (pdfLight 0) can only be found this way and count fully.
-        if (HAS_EMITTERS && maxComponent(mat.emission) > 0.0) {
+        bool lightTraced = lightTraceable && deltaRun > 0u && isLightTracedEmitter(si.lightIndex);
+        if (HAS_EMITTERS && maxComponent(mat.emission) > 0.0 && !lightTraced) {
             vec3 Le = emittedRadiance(mat, si.frontFace);
             float pdfLight = si.lightIndex != NO_LIGHT ? lightPdf(si.lightIndex, ray.origin, si.p, si.ng, hit.t, ray.direction) : 0.0;
             if (!USE_NEE || prevDelta || pdfLight == 0.0) {
@@ -98,6 +105,12 @@ vec3 tracePath(Ray ray, Rng rng) {
             break;
         }
         if (depth >= scene.maxDepth) break;
+        bool receiver = false;
+        if (LIGHT_TRACING) {
+            receiver = isCausticReceiver(mat);
+            if (depth == 1u) lightTraceable = lightTracingActive() && receiver;
+            else if (!receiver && !isSpecularChainMaterial(mat)) lightTraceable = false;
+        }
 
         vec3 wo = -ray.direction;
         BsdfSample bs = invalidBsdfSample();
@@ -138,6 +151,13 @@ vec3 tracePath(Ray ray, Rng rng) {
             if (HAS_NORMAL_MAPS && dot(bs.wi, si.nSurface) <= 0.0) break;
         }
         if (!bs.valid || maxComponent(bs.weight) <= 0.0) break;
+        if (lightTraceable) {
+            // (An opaque back face seen from a double-sided receiver has ng flipped already;
+            // both tests compare sides, so the flip does not change them.)
+            bool reversible = receiver ? isReversibleOpaqueBounce(si.ng, wo, bs.wi) : isReversibleDeltaBounce(si.ng, si.ns, wo, bs.wi);
+            if (!reversible) lightTraceable = false;
+            deltaRun = receiver ? 0u : deltaRun + 1u;
+        }
         beta *= bs.weight;
         etaScale *= bs.etaScale;
         prevDelta = bs.isDelta;

@@ -12,6 +12,7 @@
 #include "integrator/path.glsl"
 #include "integrator/debug_view.glsl"
 #include "integrator/accumulate.glsl"
+#include "integrator/light_tracer.glsl"
 
 layout(local_size_x_id = SPEC_LOCAL_SIZE_X, local_size_y_id = SPEC_LOCAL_SIZE_Y) in;
 
@@ -54,6 +55,8 @@ void main() {
         } else {
             sum.w += 1.0; // dropped: counted, contributes zero
         }
+        // One light path per pixel and sample, splatted wherever it lands (atomic integer sums).
+        if (lightTracingActive()) traceLightPath(pixel, push.sampleStart + s);
     }
     accumulation.v[base + ACCUM_SUM] = sum;
     accumulation.v[base + ACCUM_SUM_LO] = vec4(sumLo, 0.0);

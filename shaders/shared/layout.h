@@ -114,7 +114,8 @@ using uint64_t = std::uint64_t;
 #define SPEC_COUNT_RAYS 28        // count traced rays per pixel (pt bench); GpuRenderPush::rayCounts
 #define SPEC_SAMPLER 29           // SAMPLER_*: how sample dimensions are filled
 #define SPEC_FORCED_RANDOM 30     // FORCED_RANDOM_*: tests only, every random number pinned to an end of [0, 1)
-#define SPEC_COUNT 31
+#define SPEC_LIGHT_TRACING 31     // caustic paths by light tracing, splatted (integrator/light_tracer.glsl)
+#define SPEC_COUNT 32
 
 // ---- Forced random numbers (SPEC_FORCED_RANDOM; tests/gpu/hard_cases_test.cpp) ----
 #define FORCED_RANDOM_OFF 0u
@@ -131,6 +132,19 @@ using uint64_t = std::uint64_t;
 #define ACCUM_SUM_LO 1u        // (sum rgb lo, 0)
 #define ACCUM_SUM_SQUARES 2u   // (sum of squares rgb hi, 0)
 #define ACCUM_SUM_SQUARES_LO 3u // (sum of squares rgb lo, 0)
+
+// ---- Light-tracing splats (SPEC_LIGHT_TRACING) ----
+// Light paths land on any pixel, so their contributions are added with atomics. Integer
+// atomics keep the image bit-identical however the work is split (float atomics would make
+// it depend on the order of arrival): each pixel holds SPLAT_WORDS_PER_PIXEL uint64 fixed-point
+// sums, placed after every pixel's ACCUM_* block in the same buffer. With one light path per
+// pixel and sample, a pixel's mean is its splat sum / SPLAT_SUM_SCALE / spp. Headroom: the
+// sums hold 2^35 (mean x spp), the sums of squares 2^39.
+#define SPLAT_WORDS_PER_PIXEL 6u
+#define SPLAT_SUM 0u          // 3 words: rgb sums of the per-path contributions
+#define SPLAT_SUM_SQUARES 3u  // 3 words: rgb sums of their squares
+#define SPLAT_SUM_SCALE 268435456.0   // 2^28: resolution 3.7e-9 per path
+#define SPLAT_SQUARE_SCALE 16777216.0 // 2^24
 
 // ---- Samplers (SPEC_SAMPLER) ----
 #define SAMPLER_INDEPENDENT 0u // a hash of (pixel, sample index, dimension, seed)

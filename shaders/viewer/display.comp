@@ -10,6 +10,7 @@ layout(local_size_x = 8, local_size_y = 8) in;
 
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer SumsRef { vec4 v[]; };
 layout(buffer_reference, std430, buffer_reference_align = 4) buffer PixelsRef { uint v[]; };
+layout(buffer_reference, std430, buffer_reference_align = 8) readonly buffer SplatsRef { uint64_t v[]; };
 
 layout(push_constant) uniform PushBlock { GpuDisplayPush push; };
 
@@ -52,6 +53,11 @@ void main() {
     uint base = ACCUMULATION_VEC4S_PER_PIXEL * (film.y * push.filmSize.x + film.x);
     SumsRef sums = SumsRef(push.accumulation);
     vec3 mean = (sums.v[base + ACCUM_SUM].rgb + sums.v[base + ACCUM_SUM_LO].rgb) / float(n);
+    if (push.splats != 0ul) {
+        uint splatBase = SPLAT_WORDS_PER_PIXEL * (film.y * push.filmSize.x + film.x) + SPLAT_SUM;
+        SplatsRef splats = SplatsRef(push.splats);
+        mean += vec3(float(splats.v[splatBase]), float(splats.v[splatBase + 1u]), float(splats.v[splatBase + 2u])) * push.splatScale;
+    }
     vec3 c;
     if (any(isnan(mean)) || any(isinf(mean))) {
         c = vec3(1.0, 0.0, 1.0); // magenta, as in the PNG

@@ -39,8 +39,11 @@ struct GpuDisplayPush {
     float invWhite2;   // photographic: 1 / L_white^2; 0 without burn-out
     float saturation;  // photographic
     float invGamma;    // without DISPLAY_FLAG_SRGB
+    uint64_t splats;   // light tracing's splat sums (uint64[SPLAT_WORDS_PER_PIXEL * film pixels]), or 0
+    float splatScale;  // 1 / (SPLAT_SUM_SCALE x samples per pixel so far): splat sum to mean
+    uint pad0;
 };
-PT_CHECK_SIZE(GpuDisplayPush, 80);
+PT_CHECK_SIZE(GpuDisplayPush, 96);
 
 #ifdef __cplusplus
 } // namespace pt::gpu

@@ -34,7 +34,7 @@ bool onOff(const std::string& v) { return v == "on"; }
 
 // Switches given as words on the command line, converted after parsing.
 struct SwitchWords {
-    std::string nee, mis, rr, sampling, integrator, sampler;
+    std::string nee, mis, rr, sampling, integrator, sampler, lightTracing;
     std::vector<float> envColour;
 };
 
@@ -66,6 +66,10 @@ void addSceneOptions(CLI::App* cmd, pt::RenderOptions& o, SwitchWords& w) {
            "What fills each sample's random dimensions: independent (hashed random numbers) or sobol "
            "(Owen-scrambled Sobol' points shuffled per pixel; lower error for the same samples); default independent")
         ->check(CLI::IsMember({"independent", "sobol"}));
+    cmd->add_option("--light-tracing", w.lightTracing,
+           "Caustics seen directly (camera, diffuse surface, mirrors or glass, area light) by light tracing, "
+           "splatted, where the scene has them: on|off (default on; off leaves them to BSDF sampling)")
+        ->check(CLI::IsMember({"on", "off"}));
     cmd->add_option("--camera", o.camera, "Camera to render: glTF: its index (default 0); course XML: its id (default: every camera)");
     cmd->add_option("--device", o.device, "Use the first Vulkan device whose name contains this (see 'pt devices')");
     cmd->add_option("--exposure", o.exposure, "Exposure in stops for the PNG");
@@ -86,6 +90,7 @@ void applySwitchWords(const SwitchWords& w, pt::RenderOptions& o) {
     if (!w.nee.empty()) o.nee = onOff(w.nee);
     if (!w.mis.empty()) o.mis = onOff(w.mis);
     if (!w.rr.empty()) o.rr = onOff(w.rr);
+    if (!w.lightTracing.empty()) o.integrator.lightTracing = onOff(w.lightTracing);
     if (!w.sampler.empty()) o.integrator.sampler = w.sampler == "sobol" ? pt::SamplerKind::Sobol : pt::SamplerKind::Independent;
     if (!w.sampling.empty()) o.sampling = w.sampling == "uniform" ? pt::DirectionSampling::Uniform : pt::DirectionSampling::Cosine;
 }
@@ -147,8 +152,8 @@ int main(int argc, char** argv) {
         ->check(CLI::Range(1u, 1u << 24));
     benchCmd->add_option("--budgets", budgetList, "Comma-separated time budgets in seconds (default 2,5,10,30,60)");
     benchCmd->add_option("--configs", bench.configs,
-        "Comma-separated configurations, each words joined by '+': nee, is, rr, nomis, sobol, or none "
-        "(default: the eight nee/is/rr combinations, nee+is+rr+nomis, nee+is+rr+sobol)");
+        "Comma-separated configurations, each words joined by '+': nee, is, rr, nomis, sobol, nolt, or none "
+        "(default: the eight nee/is/rr combinations, nee+is+rr+nomis, nee+is+rr+sobol, nee+is+rr+nolt)");
     benchCmd->add_option("-o,--output-dir", bench.outputDir, "Output folder (default out/bench)");
     benchCmd->add_flag("!--no-plot", bench.plot, "Skip the plot and contact sheets (no python3 needed)");
 

@@ -133,6 +133,7 @@ DeviceInfo describeDevice(VkPhysicalDevice device, uint32_t index) {
     else if (!features.features.shaderInt64) info.whyNotUsable = "no shaderInt64";
     else if (findComputeQueueFamily(device) < 0) info.whyNotUsable = "no compute queue";
     info.usable = info.whyNotUsable.empty();
+    info.int64Atomics = features12.shaderBufferInt64Atomics;
     return info;
 }
 
@@ -231,6 +232,7 @@ VulkanContext::VulkanContext(const ContextOptions& options) {
         queueInfo.pQueuePriorities = &priority;
         VkPhysicalDeviceVulkan12Features features12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
         features12.bufferDeviceAddress = VK_TRUE;
+        features12.shaderBufferInt64Atomics = info_.int64Atomics ? VK_TRUE : VK_FALSE;
         VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
         features.pNext = &features12;
         features.features.shaderInt64 = VK_TRUE;

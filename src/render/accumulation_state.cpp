@@ -39,6 +39,18 @@ uint64_t AccumulationState::dropped(size_t pixel) const {
     return static_cast<uint64_t>(sums[ACCUMULATION_VEC4S_PER_PIXEL * pixel + ACCUM_SUM].w);
 }
 
+glm::dvec3 AccumulationState::splatSum(size_t pixel) const {
+    if (splats.empty()) return glm::dvec3(0.0);
+    const uint64_t* w = &splats[SPLAT_WORDS_PER_PIXEL * pixel + SPLAT_SUM];
+    return glm::dvec3(double(w[0]), double(w[1]), double(w[2])) / SPLAT_SUM_SCALE;
+}
+
+glm::dvec3 AccumulationState::splatSumSquares(size_t pixel) const {
+    if (splats.empty()) return glm::dvec3(0.0);
+    const uint64_t* w = &splats[SPLAT_WORDS_PER_PIXEL * pixel + SPLAT_SUM_SQUARES];
+    return glm::dvec3(double(w[0]), double(w[1]), double(w[2])) / SPLAT_SQUARE_SCALE;
+}
+
 AccumulatedImage resolve(const AccumulationState& state) {
     AccumulatedImage r;
     const size_t pixels = state.pixels();
@@ -50,13 +62,20 @@ AccumulatedImage resolve(const AccumulationState& state) {
     for (size_t i = 0; i < pixels; ++i) {
         const glm::dvec3 s = state.sum(i);
         const glm::dvec3 s2 = state.sumSquares(i);
+        const glm::dvec3 splat = state.splatSum(i);
+        const glm::dvec3 splat2 = state.splatSumSquares(i);
         r.droppedSamples += state.dropped(i);
         for (int c = 0; c < 3; ++c) {
             const double mean = n > 0 ? s[c] / n : 0.0;
-            r.mean.rgba[4 * i + c] = static_cast<float>(mean);
             // Unbiased sample variance, divided by n for the variance of the mean.
             const double var = n > 1 ? std::max(0.0, (s2[c] / n - mean * mean) * n / (n - 1)) / n : 0.0;
-            r.varianceOfMean.rgba[4 * i + c] = static_cast<float>(var);
+            // The light paths: N = n x pixels of them, each contributing X = pixels x Y where Y
+            // is what was splatted, so the mean is sum(Y) / n and the variance of that mean
+            // (E[X^2] - mean^2) / N = sum(Y^2) / n^2 - mean^2 / N.
+            const double splatMean = n > 0 ? splat[c] / n : 0.0;
+            const double splatVar = n > 0 ? std::max(0.0, splat2[c] / (n * n) - splatMean * splatMean / (n * double(pixels))) : 0.0;
+            r.mean.rgba[4 * i + c] = static_cast<float>(mean + splatMean);
+            r.varianceOfMean.rgba[4 * i + c] = static_cast<float>(var + splatVar);
         }
         r.mean.rgba[4 * i + 3] = 1.0f;
         r.varianceOfMean.rgba[4 * i + 3] = 1.0f;
@@ -85,6 +104,9 @@ AccumulationState mergeStates(std::vector<AccumulationState> parts) {
             throw std::runtime_error("sample ranges " + parts[k - 1].samples.describe() + " and " +
                                      parts[k].samples.describe() + " overlap");
     }
+    for (const AccumulationState& p : parts)
+        if (p.hasSplats() != parts[0].hasSplats())
+            throw std::runtime_error("parts differ in light tracing (some have its splat sums, some do not)");
     AccumulationState merged;
     merged.width = parts[0].width;
     merged.height = parts[0].height;
@@ -106,6 +128,12 @@ AccumulationState mergeStates(std::vector<AccumulationState> parts) {
             split(s2[c], out[ACCUM_SUM_SQUARES][c], out[ACCUM_SUM_SQUARES_LO][c]);
         }
         out[ACCUM_SUM].w = static_cast<float>(dropped);
+    }
+    // Integer sums: exact in any order.
+    if (parts[0].hasSplats()) {
+        merged.splats.assign(pixels * SPLAT_WORDS_PER_PIXEL, 0);
+        for (const AccumulationState& p : parts)
+            for (size_t k = 0; k < merged.splats.size(); ++k) merged.splats[k] += p.splats[k];
     }
     return merged;
 }

@@ -28,12 +28,20 @@ struct AccumulationState {
     SampleRange samples; // from the first index summed to one past the last
     uint32_t spp = 0;    // samples summed per pixel: samples.count() unless merged over gaps
     std::vector<glm::vec4> sums; // ACCUMULATION_VEC4S_PER_PIXEL vec4 per pixel, row-major
+    // Light tracing's fixed-point splat sums (SPLAT_WORDS_PER_PIXEL per pixel, shared/layout.h),
+    // or empty when the render had none.
+    std::vector<uint64_t> splats;
 
     size_t pixels() const { return size_t(width) * size_t(height); }
+    bool hasSplats() const { return !splats.empty(); }
     // Per-pixel sum of radiance (hi + lo) and of its squares, and the dropped count.
     glm::dvec3 sum(size_t pixel) const;
     glm::dvec3 sumSquares(size_t pixel) const;
     uint64_t dropped(size_t pixel) const;
+    // Per-pixel splat sums of the light paths' contributions (each already divided by the
+    // pixel count) and of their squares; zero without splats.
+    glm::dvec3 splatSum(size_t pixel) const;
+    glm::dvec3 splatSumSquares(size_t pixel) const;
 };
 
 // What an image file shows: the mean, the variance of that mean, the dropped sample count.
@@ -44,6 +52,7 @@ struct AccumulatedImage {
 };
 
 // Mean = (hi + lo) / n in double, rounded once to float; the unbiased variance of the mean.
+// With splats, the light tracer's estimate (its N = n x pixels paths) and its variance are added.
 AccumulatedImage resolve(const AccumulationState& state);
 
 // The state of the union of `parts`: same size, pairwise disjoint ranges (else throws), summed

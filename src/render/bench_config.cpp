@@ -11,6 +11,7 @@ IntegratorSettings BenchConfig::apply(IntegratorSettings base) const {
     base.rr = rr;
     base.sampling = importanceSampling ? DirectionSampling::Cosine : DirectionSampling::Uniform;
     base.sampler = sampler;
+    base.lightTracing = lightTracing;
     return base;
 }
 
@@ -28,9 +29,10 @@ BenchConfig parseBenchConfig(const std::string& text) {
         else if (word == "rr") c.rr = true;
         else if (word == "nomis") noMis = true;
         else if (word == "sobol") c.sampler = SamplerKind::Sobol;
+        else if (word == "nolt") c.lightTracing = false;
         else
             throw std::invalid_argument("configuration '" + text + "': unknown word '" + word +
-                                        "' (words: nee, is, rr, nomis, sobol, or none)");
+                                        "' (words: nee, is, rr, nomis, sobol, nolt, or none)");
     }
     if (noMis && !c.nee) throw std::invalid_argument("configuration '" + text + "': nomis needs nee");
     c.mis = c.nee && !noMis;
@@ -52,7 +54,7 @@ std::vector<BenchConfig> parseBenchConfigs(const std::string& list) {
 
 std::vector<BenchConfig> defaultBenchConfigs() {
     return parseBenchConfigs(
-        "nee+is+rr,nee+is,nee+rr,nee,is+rr,is,rr,none,nee+is+rr+nomis,nee+is+rr+sobol");
+        "nee+is+rr,nee+is,nee+rr,nee,is+rr,is,rr,none,nee+is+rr+nomis,nee+is+rr+sobol,nee+is+rr+nolt");
 }
 
 } // namespace pt

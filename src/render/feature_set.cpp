@@ -12,7 +12,8 @@ std::string IntegratorSettings::describe() const {
     s << "nee=" << (nee ? "on" : "off") << " mis=" << (mis ? "on" : "off") << " rr=" << (rr ? "on" : "off")
       << " sampling=" << (sampling == DirectionSampling::Cosine ? "cosine" : "uniform")
       << " sampler=" << (sampler == SamplerKind::Sobol ? "sobol" : "independent") << " max-depth=" << maxDepth
-      << " rr-start=" << rrStartDepth << " rr-threshold=" << rrThreshold << " seed=" << seed;
+      << " rr-start=" << rrStartDepth << " rr-threshold=" << rrThreshold
+      << " light-tracing=" << (lightTracing ? "on" : "off") << " seed=" << seed;
     return s.str();
 }
 
@@ -24,6 +25,7 @@ FeatureSet FeatureSet::all(const IntegratorSettings& settings) {
     f.cosineSampling = settings.sampling == DirectionSampling::Cosine;
     f.classic = settings.classic;
     f.sampler = settings.sampler == SamplerKind::Sobol ? SAMPLER_SOBOL : SAMPLER_INDEPENDENT;
+    f.lightTracing = settings.lightTracing && !settings.classic;
     return f;
 }
 
@@ -79,6 +81,13 @@ FeatureSet computeFeatures(const FlatScene& scene, const IntegratorSettings& set
         f.nee = !scene.lights.lights.empty();
         f.mis = f.rr = false;
     }
+    // Light tracing pays only where caustics can be seen directly: a specular surface, a
+    // receiver and an area emitter. Left to the path tracer: absorbing interiors, cut-outs
+    // and moving objects (the light path does not model them).
+    bool areaEmitters = false;
+    for (const auto& l : scene.lights.lights) areaEmitters |= l.type == LIGHT_TRIANGLE || l.type == LIGHT_SPHERE;
+    f.lightTracing = settings.lightTracing && !f.classic && areaEmitters && (f.mirror || f.dielectric || f.conductor) &&
+                     (f.diffuse || f.glossy || f.microfacet) && !f.absorption && !f.alpha && !f.motion;
     return f;
 }
 
@@ -115,6 +124,7 @@ std::vector<SpecializationConstant> FeatureSet::constants(uint32_t localSizeX, u
         {SPEC_COUNT_RAYS, countRays},
         {SPEC_SAMPLER, sampler},
         {SPEC_FORCED_RANDOM, forcedRandom},
+        {SPEC_LIGHT_TRACING, lightTracing},
     };
 }
 
@@ -149,6 +159,7 @@ std::string FeatureSet::describe() const {
     add(nee, "nee");
     add(mis, "mis");
     add(rr, "rr");
+    add(lightTracing, "light-tracing");
     s += cosineSampling ? " cosine-sampling" : " uniform-sampling";
     if (sampler == SAMPLER_SOBOL) s += " sobol";
     if (countRays) s += " ray-counts";

@@ -40,6 +40,7 @@ struct FeatureSet {
     bool countRays = false; // per-pixel ray counts for pt bench (Renderer::enableRayCounts)
     uint32_t sampler = 0;   // SAMPLER_*
     uint32_t forcedRandom = 0; // FORCED_RANDOM_*: tests only (random numbers pinned to 0 or 1 - 2^-24)
+    bool lightTracing = false; // caustic paths by light tracing, splatted (needs the splat sums)
 
     // Every feature on: the unspecialised kernel, for comparison and for tests.
     static FeatureSet all(const IntegratorSettings& settings);

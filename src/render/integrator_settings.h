@@ -27,6 +27,10 @@ struct IntegratorSettings {
     // The CENG795 course's classic ray tracer instead of path tracing: ambient + direct light
     // with its Blinn-Phong shading at the first non-specular surface, specular chains followed.
     bool classic = false;
+    // Caustics seen directly (camera -> diffuse -> specular chain -> area light) by light
+    // tracing, splatted, instead of by BSDF sampling; used where the scene has such paths
+    // (computeFeatures). The image is the same in expectation, with far less noise there.
+    bool lightTracing = true;
 
     std::string describe() const;
 };

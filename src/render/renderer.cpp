@@ -11,6 +11,15 @@
 namespace pt {
 
 constexpr VkDeviceSize kAccumulationBytesPerPixel = ACCUMULATION_VEC4S_PER_PIXEL * sizeof(glm::vec4);
+constexpr VkDeviceSize kSplatBytesPerPixel = SPLAT_WORDS_PER_PIXEL * sizeof(uint64_t);
+
+namespace {
+// Light tracing splats with 64-bit integer atomics; a device without them renders without it.
+FeatureSet supportedFeatures(const VulkanContext& context, FeatureSet features) {
+    if (features.lightTracing && !context.info().int64Atomics) features.lightTracing = false;
+    return features;
+}
+} // namespace
 
 void validateImageSize(int width, int height) {
     if (width < 1 || height < 1 || width > kMaxImageSide || height > kMaxImageSide ||
@@ -41,7 +50,7 @@ gpu::GpuCamera toGpuCamera(const Camera& camera, int width, int height) {
 
 Renderer::Renderer(VulkanContext& context, const FlatScene& scene, const FeatureSet& features,
     const IntegratorSettings& settings, const Camera& camera, const FilmSettings& film)
-    : context_(context), film_(film), camera_(camera), features_(features) {
+    : context_(context), film_(film), camera_(camera), features_(supportedFeatures(context, features)) {
     validateImageSize(film.width, film.height);
     gpu::GpuSceneParams params{};
     params.camera = toGpuCamera(camera, film.width, film.height);
@@ -52,15 +61,19 @@ Renderer::Renderer(VulkanContext& context, const FlatScene& scene, const Feature
     params.rrThreshold = settings.rrThreshold;
     params.seed = settings.seed;
     const size_t pixels = size_t(film.width) * film.height;
-    gpuScene_ = std::make_unique<GpuScene>(context, scene, params, pixels * kAccumulationBytesPerPixel);
+    gpuScene_ = std::make_unique<GpuScene>(context, scene, params, pixels * bytesPerPixel());
     paramsAddress_ = gpuScene_->paramsAddress();
 
     pipeline_ = std::make_unique<ComputePipeline>(context, std::span<const uint32_t>(pt_render_spv),
-        static_cast<uint32_t>(sizeof(gpu::GpuRenderPush)), features.constants(localSize_, localSize_), "render");
-    if (features.countRays) {
+        static_cast<uint32_t>(sizeof(gpu::GpuRenderPush)), features_.constants(localSize_, localSize_), "render");
+    if (features_.countRays) {
         rayCounts_ = std::make_unique<GpuBuffer>(context, pixels * sizeof(glm::uvec4), "ray counts");
         rayCounts_->fillZero();
     }
+}
+
+VkDeviceSize Renderer::bytesPerPixel() const {
+    return kAccumulationBytesPerPixel + (features_.lightTracing ? kSplatBytesPerPixel : 0);
 }
 
 void Renderer::addSamples(uint32_t count, uint32_t tileSize) {
@@ -95,7 +108,7 @@ void Renderer::recordTiles(VkCommandBuffer cmd, uint32_t count, uint32_t tileSiz
     endTile = std::min(endTile, tileCount(tileSize));
     if (count == 0 || firstTile >= endTile) return;
     if (clearPending_) {
-        const VkDeviceSize bytes = VkDeviceSize(w) * h * kAccumulationBytesPerPixel;
+        const VkDeviceSize bytes = VkDeviceSize(w) * h * bytesPerPixel();
         vkCmdFillBuffer(cmd, accumulation().handle(), 0, bytes, 0);
         clearPending_ = false;
     }
@@ -171,18 +184,20 @@ void Renderer::setCamera(const Camera& camera) {
     reset();
 }
 
+void Renderer::ensureAccumulationBytes(VkDeviceSize bytes) {
+    if (bytes <= accumulation().size()) return;
+    vkDeviceWaitIdle(context_.device());
+    ownAccumulation_.reset();
+    ownAccumulation_ = std::make_unique<GpuBuffer>(context_, bytes, "accumulation");
+    params_.accumulation = accumulation().address();
+}
+
 void Renderer::setFilmSize(int width, int height) {
     validateImageSize(width, height);
     makeParamsEditable();
-    const VkDeviceSize bytes = VkDeviceSize(width) * height * kAccumulationBytesPerPixel;
-    if (bytes > accumulation().size()) {
-        vkDeviceWaitIdle(context_.device());
-        ownAccumulation_.reset();
-        ownAccumulation_ = std::make_unique<GpuBuffer>(context_, bytes, "accumulation");
-    }
+    ensureAccumulationBytes(VkDeviceSize(width) * height * bytesPerPixel());
     film_.width = width;
     film_.height = height;
-    params_.accumulation = accumulation().address();
     params_.imageSize = glm::uvec2(width, height);
     params_.camera = toGpuCamera(camera_, width, height);
     uploadParams();
@@ -195,8 +210,8 @@ void Renderer::setIntegrator(const IntegratorSettings& settings, const FeatureSe
     params_.rrStartDepth = settings.rrStartDepth;
     params_.rrThreshold = settings.rrThreshold;
     params_.seed = settings.seed;
-    uploadParams();
-    const auto constants = features.constants(localSize_, localSize_);
+    const FeatureSet wanted = supportedFeatures(context_, features);
+    const auto constants = wanted.constants(localSize_, localSize_);
     const auto current = features_.constants(localSize_, localSize_);
     const bool same = std::equal(constants.begin(), constants.end(), current.begin(), current.end(),
         [](const SpecializationConstant& a, const SpecializationConstant& b) { return a.id == b.id && a.value == b.value; });
@@ -205,8 +220,11 @@ void Renderer::setIntegrator(const IntegratorSettings& settings, const FeatureSe
             static_cast<uint32_t>(sizeof(gpu::GpuRenderPush)), constants, "render");
         vkDeviceWaitIdle(context_.device());
         pipeline_ = std::move(fresh);
-        features_ = features;
+        features_ = wanted;
+        // Turning light tracing on needs room for the splat sums.
+        ensureAccumulationBytes(VkDeviceSize(film_.width) * film_.height * bytesPerPixel());
     }
+    uploadParams();
     reset();
 }
 
@@ -224,7 +242,13 @@ AccumulationState Renderer::readState() const {
     state.samples = {firstSample_, firstSample_ + samples_};
     state.spp = samples_;
     state.sums.resize(state.pixels() * ACCUMULATION_VEC4S_PER_PIXEL);
-    if (samples_ > 0) accumulation().download(state.sums.data(), state.sums.size() * sizeof(glm::vec4));
+    if (features_.lightTracing) state.splats.assign(state.pixels() * SPLAT_WORDS_PER_PIXEL, 0);
+    if (samples_ > 0) {
+        accumulation().download(state.sums.data(), state.sums.size() * sizeof(glm::vec4));
+        if (!state.splats.empty())
+            accumulation().download(state.splats.data(), state.splats.size() * sizeof(uint64_t),
+                state.pixels() * kAccumulationBytesPerPixel);
+    }
     return state; // zeros before the first pass, even if a reset left the buffer uncleared
 }
 
@@ -236,7 +260,13 @@ void Renderer::loadState(const AccumulationState& state) {
     if (state.spp != state.samples.count())
         throw std::runtime_error("saved state has gaps in its sample range " + state.samples.describe() +
                                  " and cannot be continued");
+    if (state.hasSplats() != features_.lightTracing)
+        throw std::runtime_error(std::string("saved state was rendered with light tracing ") +
+                                 (state.hasSplats() ? "on" : "off") + " but this render has it " +
+                                 (features_.lightTracing ? "on" : "off") + " (--light-tracing)");
     accumulation().upload(state.sums.data(), state.sums.size() * sizeof(glm::vec4));
+    if (state.hasSplats())
+        accumulation().upload(state.splats.data(), state.splats.size() * sizeof(uint64_t), state.pixels() * kAccumulationBytesPerPixel);
     firstSample_ = state.samples.begin;
     samples_ = state.spp;
     clearPending_ = false;

@@ -60,8 +60,10 @@ public:
     void recordTiles(VkCommandBuffer cmd, uint32_t count, uint32_t tileSize, uint32_t firstTile, uint32_t endTile);
     void completePass(uint32_t count);
     // The sums: vec4[ACCUMULATION_VEC4S_PER_PIXEL * width * height], laid out as
-    // GpuSceneParams::accumulation says.
+    // GpuSceneParams::accumulation says, then (with light tracing) the splat sums,
+    // uint64[SPLAT_WORDS_PER_PIXEL * width * height].
     VkDeviceAddress accumulationAddress() const { return accumulation().address(); }
+    bool hasSplats() const { return features_.lightTracing; }
     const Camera& camera() const { return camera_; }
     const FeatureSet& features() const { return features_; }
 
@@ -95,6 +97,9 @@ private:
     GpuBuffer& accumulation() { return ownAccumulation_ ? *ownAccumulation_ : gpuScene_->accumulation(); }
     void makeParamsEditable();
     void uploadParams();
+    VkDeviceSize bytesPerPixel() const;
+    // Interactive use: grows the accumulation buffer (our own) to at least `bytes`.
+    void ensureAccumulationBytes(VkDeviceSize bytes);
 
     VulkanContext& context_;
     FilmSettings film_;

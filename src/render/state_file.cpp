@@ -3,6 +3,7 @@
 #include "shared/layout.h"
 
 #include <charconv>
+#include <cmath>
 #include <stdexcept>
 
 namespace pt {
@@ -22,6 +23,13 @@ constexpr StateChannel kChannels[] = {
     {"state.sum_sq_lo.G", ACCUM_SUM_SQUARES_LO, 1}, {"state.sum_sq_lo.B", ACCUM_SUM_SQUARES_LO, 2},
     {"state.dropped", ACCUM_SUM, 3},
 };
+
+// The splat words' channels: word k of SPLAT_WORDS_PER_PIXEL, piece j (bits 22j and up).
+constexpr int kSplatPieces = 3;
+constexpr int kSplatPieceBits = 22;
+std::string splatChannelName(uint32_t word, int piece) {
+    return "state.splat." + std::to_string(word) + "." + std::to_string(piece);
+}
 
 uint32_t readIndex(const std::filesystem::path& path, const ImageMetadata& metadata, const char* key) {
     const auto it = metadata.find(key);
@@ -44,6 +52,18 @@ void writeStateExr(const std::filesystem::path& path, const AccumulationState& s
         ExrChannel out{c.name, std::vector<float>(pixels)};
         for (size_t i = 0; i < pixels; ++i) out.values[i] = state.sums[ACCUMULATION_VEC4S_PER_PIXEL * i + c.slot][c.component];
         channels.push_back(std::move(out));
+    }
+    if (state.hasSplats()) {
+        for (uint32_t word = 0; word < SPLAT_WORDS_PER_PIXEL; ++word)
+            for (int piece = 0; piece < kSplatPieces; ++piece) {
+                ExrChannel out{splatChannelName(word, piece), std::vector<float>(pixels)};
+                for (size_t i = 0; i < pixels; ++i) {
+                    const uint64_t bits = state.splats[SPLAT_WORDS_PER_PIXEL * i + word] >> (kSplatPieceBits * piece);
+                    out.values[i] = static_cast<float>(bits & ((uint64_t(1) << kSplatPieceBits) - 1));
+                }
+                channels.push_back(std::move(out));
+            }
+        metadata["splats"] = "1";
     }
     metadata["state"] = kStateFormat;
     metadata["sample_begin"] = std::to_string(state.samples.begin);
@@ -72,6 +92,24 @@ AccumulationState readStateExr(const std::filesystem::path& path, ImageMetadata&
     for (size_t k = 0; k < std::size(kChannels); ++k)
         for (size_t i = 0; i < pixels; ++i)
             state.sums[ACCUMULATION_VEC4S_PER_PIXEL * i + kChannels[k].slot][kChannels[k].component] = file.channels[k].values[i];
+    if (metadata.count("splats") && metadata["splats"] == "1") {
+        std::vector<std::string> splatNames;
+        for (uint32_t word = 0; word < SPLAT_WORDS_PER_PIXEL; ++word)
+            for (int piece = 0; piece < kSplatPieces; ++piece) splatNames.push_back(splatChannelName(word, piece));
+        ExrChannels splatFile = readExrChannels(path, splatNames);
+        state.splats.assign(pixels * SPLAT_WORDS_PER_PIXEL, 0);
+        for (uint32_t word = 0; word < SPLAT_WORDS_PER_PIXEL; ++word)
+            for (int piece = 0; piece < kSplatPieces; ++piece) {
+                const std::vector<float>& values = splatFile.channels[word * kSplatPieces + piece].values;
+                for (size_t i = 0; i < pixels; ++i) {
+                    const float v = values[i];
+                    if (!(v >= 0.0f && v < float(uint64_t(1) << kSplatPieceBits)) || v != std::floor(v))
+                        throw std::runtime_error(path.string() + ": channel " + splatChannelName(word, piece) +
+                                                 " holds a value that is not a 22-bit integer");
+                    state.splats[SPLAT_WORDS_PER_PIXEL * i + word] |= uint64_t(v) << (kSplatPieceBits * piece);
+                }
+            }
+    }
     return state;
 }
 

@@ -3,7 +3,9 @@
 // and float32 channels `state.sum.{R,G,B}`, `state.sum_lo.*`, `state.sum_sq.*`,
 // `state.sum_sq_lo.*` and `state.dropped` hold the raw double-float sums bit for bit, so the
 // file can be merged (pt merge) or continued (pt render --resume) exactly. Metadata adds
-// `state` (format version), `sample_begin`, `sample_end` and `spp`. Written atomically.
+// `state` (format version), `sample_begin`, `sample_end` and `spp`. A light-traced render adds
+// metadata `splats` = 1 and its uint64 splat sums, each as three float channels of 22 bits
+// (`state.splat.<word>.<piece>`: floats hold integers below 2^24 exactly). Written atomically.
 #include "render/accumulation_state.h"
 #include "render/image_io.h"
 

@@ -90,6 +90,36 @@ TEST_F(Partition, MergeOfAPartitionEqualsTheSingleRenderUpToOneUlp) {
     EXPECT_EQ(gapMeta["spp"], "8");
 }
 
+// Light tracing's splat sums are integers: parts of a light-traced render (the glass box, whose
+// caustics are light traced) merge to the single render, and resuming needs the same setting.
+TEST_F(Partition, LightTracedPartsMergeToTheSingleRender) {
+    const std::string glass = std::string(PT_TEST_DATA_DIR) + "/references/cbox-glass-mirror/scene.gltf";
+    const std::vector<std::string> scene = {"render", glass, "--width", "24", "--height", "24", "--max-depth", "8", "-q"};
+    auto renderGlass = [&](const std::vector<std::string>& more) {
+        const PtRun r = runPt(dir_, with(scene, more));
+        ASSERT_EQ(r.status, 0) << r.describe();
+    };
+    renderGlass({"--spp", "6", "-o", "single.exr"});
+    renderGlass({"--samples", "0:4", "-o", "a.exr"});
+    renderGlass({"--samples", "4:6", "-o", "b.exr"});
+    renderGlass({"--samples", "4:6", "--light-tracing", "off", "-o", "b-off.exr"});
+    ASSERT_EQ(merge({"b.exr", "a.exr", "-o", "merged.exr"}).status, 0);
+    ImageMetadata meta;
+    const Image merged = readExr(dir_ / "merged.exr", &meta);
+    const Image single = readExr(dir_ / "single.exr");
+    EXPECT_EQ(meta["spp"], "6");
+    ASSERT_EQ(merged.rgba.size(), single.rgba.size());
+    for (size_t i = 0; i < merged.rgba.size(); ++i) ASSERT_LE(ulpDistance(merged.rgba[i], single.rgba[i]), 1) << i;
+    // A checkpoint carries the splat sums too: resuming it is bit-identical.
+    renderGlass({"--spp", "4", "--checkpoint", "ck.exr", "-o", "first.exr"});
+    renderGlass({"--spp", "6", "--resume", (dir_ / "ck.exr").string(), "-o", "resumed.exr"});
+    EXPECT_EQ(readExr(dir_ / "resumed.exr").rgba, single.rgba);
+    const PtRun mixed = merge({"a.exr", "b-off.exr", "-o", "bad.exr"});
+    EXPECT_EQ(mixed.status, 1) << mixed.describe();
+    EXPECT_NE(mixed.err.find("light-tracing"), std::string::npos) << mixed.err;
+    EXPECT_FALSE(fs::exists(dir_ / "bad.exr"));
+}
+
 TEST_F(Partition, MergeRefusesOverlapsOtherRendersAndPlainImages) {
     render({"--samples", "0:5", "--seed", "5", "-o", "a.exr"});
     render({"--samples", "4:9", "--seed", "5", "-o", "overlapping.exr"});

@@ -77,6 +77,60 @@ TEST(StateFile, RoundTripsBitForBit) {
     EXPECT_EQ(std::memcmp(back.sums.data(), s.sums.data(), s.sums.size() * sizeof(glm::vec4)), 0);
 }
 
+// Light tracing's splat sums: word k of pixel p set to `value` (scaled to fixed point).
+void setSplats(AccumulationState& s, double sum, double sumSquares) {
+    s.splats.assign(s.pixels() * SPLAT_WORDS_PER_PIXEL, 0);
+    for (size_t p = 0; p < s.pixels(); ++p)
+        for (uint32_t c = 0; c < 3; ++c) {
+            s.splats[SPLAT_WORDS_PER_PIXEL * p + SPLAT_SUM + c] = uint64_t(std::llround(sum * SPLAT_SUM_SCALE));
+            s.splats[SPLAT_WORDS_PER_PIXEL * p + SPLAT_SUM_SQUARES + c] = uint64_t(std::llround(sumSquares * SPLAT_SQUARE_SCALE));
+        }
+}
+
+TEST(Splats, ResolveAddsTheLightTracersMeanAndVariance) {
+    // 2 pixels, 4 spp: N = 8 light paths. Pixel values X = 2 Y; Y splatted = 0.5 by one path
+    // and 0.25 by another: mean sum(Y) / n = 0.75 / 4; variance of that mean
+    // sum(Y^2) / n^2 - mean^2 / N = 0.3125 / 16 - 0.1875^2 / 8.
+    AccumulationState s = state({0, 4}, 0.0f, 0.0f);
+    for (auto& v : s.sums) v = glm::vec4(0.0f); // no camera contribution
+    setSplats(s, 0.75, 0.3125);
+    const AccumulatedImage image = resolve(s);
+    EXPECT_NEAR(image.mean.rgba[0], 0.1875, 1e-7);
+    EXPECT_NEAR(image.varianceOfMean.rgba[0], 0.3125 / 16 - 0.1875 * 0.1875 / 8, 1e-8);
+    // Brute force: the 8 per-path pixel estimates X (two of them 1.0 and 0.5, the rest 0).
+    const double xs[8] = {1.0, 0.5, 0, 0, 0, 0, 0, 0};
+    double mean = 0, second = 0;
+    for (double x : xs) mean += x / 8, second += x * x / 8;
+    EXPECT_NEAR(image.mean.rgba[0], mean, 1e-7);
+    EXPECT_NEAR(image.varianceOfMean.rgba[0], (second - mean * mean) / 8, 1e-8);
+}
+
+TEST(Splats, MergeAddsThemAndRefusesAMix) {
+    AccumulationState a = state({0, 4}, 1.0f, 0.0f), b = state({4, 8}, 1.0f, 0.0f);
+    setSplats(a, 0.5, 0.25);
+    setSplats(b, 1.0, 2.0);
+    const AccumulationState merged = mergeStates({b, a});
+    ASSERT_TRUE(merged.hasSplats());
+    EXPECT_EQ(merged.splatSum(1).z, 1.5);
+    EXPECT_EQ(merged.splatSumSquares(0).x, 2.25);
+    EXPECT_THROW(mergeStates({a, state({4, 8}, 1.0f, 0.0f)}), std::runtime_error);
+}
+
+TEST(Splats, StateFileRoundTripsThemBitForBit) {
+    const auto path = std::filesystem::temp_directory_path() / ("pt_splats_" + std::to_string(::getpid()) + ".exr");
+    AccumulationState s = state({0, 6}, 1.0f, 0.0f);
+    setSplats(s, 0.0, 0.0);
+    // Every bit of the 64-bit words, including the top ones.
+    s.splats[0] = ~uint64_t(0);
+    s.splats[1] = uint64_t(1) << 63;
+    s.splats[5] = 0x0123456789abcdefull;
+    writeStateExr(path, s, resolve(s).mean, {});
+    ImageMetadata meta;
+    const AccumulationState back = readStateExr(path, meta);
+    std::filesystem::remove(path);
+    EXPECT_EQ(back.splats, s.splats);
+}
+
 TEST(StateFile, ReadingAPlainImageNamesTheMissingChannel) {
     const auto path = std::filesystem::temp_directory_path() / ("pt_plain_" + std::to_string(::getpid()) + ".exr");
     Image plain;

@@ -1,0 +1,274 @@
+// Light tracing of caustics (see integrator/caustic_partition.glsl for which paths, and why): a
+// path starts on an area light, must meet a specular surface first, follows delta bounces and
+// BSDF samples at receivers, and at every receiver is connected to the pinhole camera and added
+// to the pixel it projects to. One light path per pixel and sample: N = spp x pixels in all.
+//
+// Light paths carry importance, not radiance, so two things differ from the path tracer
+// (Veach 1997, ch. 5): refraction does not scale by 1/eta^2, and shading normals get the
+// adjoint correction |wL.ns| |wC.ng| / (|wL.ng| |wC.ns|) at each vertex (wL towards the light,
+// wC towards the camera).
+#ifndef PT_INTEGRATOR_LIGHT_TRACER_GLSL
+#define PT_INTEGRATOR_LIGHT_TRACER_GLSL
+#extension GL_EXT_shader_atomic_int64 : require
+#include "common/math.glsl"
+#include "common/rng.glsl"
+#include "common/sampling.glsl"
+#include "common/ray_offset.glsl"
+#include "geometry/interaction.glsl"
+#include "geometry/sphere.glsl"
+#include "lights/light_common.glsl"
+#include "lights/sphere_light.glsl"
+#include "bsdf/surface_bsdf.glsl"
+#include "bsdf/mirror.glsl"
+#include "bsdf/conductor.glsl"
+#include "bsdf/dielectric.glsl"
+#include "textures/texture.glsl"
+#include "textures/material_textures.glsl"
+#include "integrator/caustic_partition.glsl"
+#include "integrator/shadow_ray.glsl"
+#include "integrator/ray_counts.glsl"
+
+layout(buffer_reference, std430, buffer_reference_align = 8) buffer SplatRef { uint64_t v[]; };
+
+// Light paths draw from their own block of dimensions, far from the camera path's, so adding
+// them leaves the camera samples (and every image without light tracing) unchanged.
+const uint DIM_LIGHT_PATH = 0x40000000u;
+const uint DIM_LT_SELECT = 0u;    // 1D: which light
+const uint DIM_LT_POINT = 1u;     // 2D: point on it
+const uint DIM_LT_EMIT = 3u;      // 2D: emitted direction
+const uint DIM_LT_SIDE = 5u;      // 1D: side of a double-sided emitter
+const uint DIM_LT_FIRST_BOUNCE = 6u;
+const uint DIM_LT_LOBE = 0u;      // per bounce, 1D: lobe (reflect or refract)
+const uint DIM_LT_DIRECTION = 1u; // 2D: direction at a receiver
+const uint DIM_LT_ROULETTE = 3u;
+const uint DIMS_PER_LT_BOUNCE = 4u;
+
+uint lightPathDimension(uint offset) { return DIM_LIGHT_PATH + offset; }
+uint lightBounceDimension(uint bounce, uint offset) {
+    return DIM_LIGHT_PATH + DIM_LT_FIRST_BOUNCE + bounce * DIMS_PER_LT_BOUNCE + offset;
+}
+
+// Adds one path's contribution, already divided by the number of pixels, to a pixel's sums.
+void splatAdd(uvec2 pixel, vec3 value) {
+    if (!allFinite(value)) return;
+    uint pixels = scene.imageSize.x * scene.imageSize.y;
+    SplatRef splats = SplatRef(scene.accumulation + uint64_t(pixels) * uint64_t(ACCUMULATION_VEC4S_PER_PIXEL * 16u));
+    uint base = SPLAT_WORDS_PER_PIXEL * (pixel.y * scene.imageSize.x + pixel.x);
+    // Clamped far below the sums' headroom: a single path never overflows them.
+    const float maxScaled = 4.0e18;
+    for (int c = 0; c < 3; ++c) {
+        float v = max(value[c], 0.0);
+        if (v <= 0.0) continue;
+        atomicAdd(splats.v[base + SPLAT_SUM + uint(c)], uint64_t(min(v * float(SPLAT_SUM_SCALE), maxScaled) + 0.5));
+        atomicAdd(splats.v[base + SPLAT_SUM_SQUARES + uint(c)], uint64_t(min(v * v * float(SPLAT_SQUARE_SCALE), maxScaled) + 0.5));
+    }
+}
+
+// A point emitting light, with its area density (selection included).
+struct EmitterPoint {
+    vec3 p;
+    vec3 ng;      // geometric normal: the front (emitting) side
+    vec3 Le;
+    float magnitude;
+    uint materialIndex;
+    float pdf;    // per unit area, times the light's selection probability
+    bool valid;
+};
+
+EmitterPoint sampleEmitterPoint(uint lightIndex, vec2 u) {
+    EmitterPoint e;
+    e.valid = false;
+    GpuLight light = sceneLights.v[lightIndex];
+    if (!isLightTracedEmitter(lightIndex) || light.pmf <= 0.0) return e;
+    if (light.type == LIGHT_TRIANGLE) {
+        GpuTriangle tri = sceneTriangles.v[light.primitive];
+        vec2 b = sampleUniformTriangle(u);
+        e.p = (1.0 - b.x - b.y) * tri.p0 + b.x * tri.p1 + b.y * tri.p2;
+        e.ng = normalize(cross(tri.p1 - tri.p0, tri.p2 - tri.p0));
+        e.magnitude = maxComponent(max(max(abs(tri.p0), abs(tri.p1)), abs(tri.p2)));
+        e.materialIndex = tri.materialIndex;
+        e.pdf = light.pmf / light.area;
+        e.Le = sceneMaterials.v[tri.materialIndex].emission;
+        // Textured emission, as a ray hitting this point would see it (triangle_light.glsl).
+        GpuMaterial mat = sceneMaterials.v[tri.materialIndex];
+        if ((HAS_TEXTURES || HAS_PROCEDURAL) && mat.emissiveTexture != NO_TEXTURE) {
+            GpuTriangleShading sh = sceneShading.v[light.primitive];
+            vec2 uv = (1.0 - b.x - b.y) * vec2(sh.u0, sh.v.x) + b.x * vec2(sh.u1, sh.v.y) + b.y * vec2(sh.u2, sh.v.z);
+            e.Le *= evalTexture(mat.emissiveTexture, uv, e.p).rgb;
+        }
+    } else {
+        // A uniform point on the unit sphere mapped to world space: density 1 / (4 pi J).
+        GpuSphere sphere = SphereRef(scene.spheres).v[light.primitive];
+        float z = 1.0 - 2.0 * u.x;
+        float r = sqrt(max(0.0, 1.0 - z * z));
+        float phi = TWO_PI * u.y;
+        vec3 po = vec3(r * cos(phi), r * sin(phi), z);
+        e.p = transformPoint(sphere.objectToWorld, po);
+        float J = sphereAreaScale(sphere, light, po, e.ng);
+        vec3 centre = vec3(sphere.objectToWorld[0].w, sphere.objectToWorld[1].w, sphere.objectToWorld[2].w);
+        vec3 axes = vec3(length(sphere.objectToWorld[0].xyz), length(sphere.objectToWorld[1].xyz), length(sphere.objectToWorld[2].xyz));
+        e.magnitude = maxComponent(abs(centre)) + maxComponent(axes);
+        e.materialIndex = sphere.materialIndex;
+        e.pdf = light.pmf / (4.0 * PI * J);
+        e.Le = sceneMaterials.v[sphere.materialIndex].emission;
+    }
+    e.valid = e.pdf > 0.0 && maxComponent(e.Le) > 0.0 && allFinite(e.p) && allFinite(e.ng);
+    return e;
+}
+
+// Connects a light path arriving at receiver si (from direction wLight) to the camera and
+// splats it. beta: the path's weight (emitted radiance over the density of the path so far).
+void connectToCamera(SurfaceInteraction si, GpuMaterial mat, vec3 wLight, vec3 beta) {
+    GpuCamera cam = scene.camera;
+    vec3 toCamera = cam.origin - si.p;
+    float dist2 = dot(toCamera, toCamera);
+    if (!(dist2 > 0.0)) return;
+    float dist = sqrt(dist2);
+    vec3 wCamera = toCamera / dist;
+    // The receiver as the camera ray would find it: one-sided surfaces are black from behind.
+    bool frontFace = dot(wCamera, si.ng) > 0.0;
+    if (!frontFace && (mat.flags & MATERIAL_FLAG_DOUBLE_SIDED) == 0u) return;
+    if (!frontFace) {
+        si.ng = -si.ng;
+        si.nSurface = -si.nSurface;
+        si.pSmooth = si.p;
+    }
+    // The path tracer ends a path whose BSDF sample leaves below the surface's own normal.
+    if (HAS_NORMAL_MAPS && dot(wLight, si.nSurface) <= 0.0) return;
+    Frame frame = makeFrame(frontFace ? si.ns : -si.ns);
+    vec3 fCos = surfaceEval(mat, toLocal(frame, wCamera), toLocal(frame, wLight)); // f |wL.ns|
+    float cosLightGeometric = abs(dot(wLight, si.ng));
+    if (maxComponent(fCos) <= 0.0 || cosLightGeometric < 1e-7) return;
+
+    // Where the camera sees si: the inverse of cameraRay (integrator/camera.glsl).
+    vec3 v = si.p - cam.origin;
+    float z = dot(v, cam.forward);
+    if (!(z > 0.0)) return;
+    vec2 plane = vec2(dot(v, cam.right), dot(v, cam.up)) / z;
+    vec2 f = vec2((plane.x - cam.window.x) / (cam.window.y - cam.window.x), (cam.window.w - plane.y) / (cam.window.w - cam.window.z));
+    if (!(f.x >= 0.0 && f.x < 1.0 && f.y >= 0.0 && f.y < 1.0)) return;
+    uvec2 pixel = min(uvec2(f * vec2(scene.imageSize)), scene.imageSize - 1u);
+
+    countShadowRay();
+    Ray shadow;
+    shadow.origin = spawnOrigin(dot(wCamera, si.nSurface) > 0.0 ? si.pSmooth : si.p, si.ng, wCamera, si.magnitude);
+    shadow.direction = cam.origin - shadow.origin;
+    if (traceAny(shadow, SHADOW_RAY_FAR)) return;
+
+    // The pixel's estimate is (1 / A_pixel) times the radiance over its image-plane area at unit
+    // distance; per unit area of the receiver that plane area is |wC.ng| / (d^2 cos^3 theta_c).
+    // Divided by the pixel count, A_pixel becomes the whole window's area.
+    float cosCamera = z / dist;
+    float windowArea = (cam.window.y - cam.window.x) * (cam.window.w - cam.window.z);
+    float geometry = abs(dot(wCamera, si.ng)) / (cosLightGeometric * windowArea * dist2 * cosCamera * cosCamera * cosCamera);
+    splatAdd(pixel, beta * fCos * geometry);
+}
+
+// Traces light path number `sampleIndex` of `pixel` (the pixel only names the path; it lands
+// wherever it lands).
+void traceLightPath(uvec2 pixel, uint sampleIndex) {
+    if (scene.numLights == 0u || scene.maxDepth < 3u) return; // camera, one bounce, light: 3 segments
+    Rng rng = rngCreate(pixel, sampleIndex, scene.seed);
+    uint lightIndex = selectLight(rng1(rng, lightPathDimension(DIM_LT_SELECT)));
+    EmitterPoint e = sampleEmitterPoint(lightIndex, rng2(rng, lightPathDimension(DIM_LT_POINT)));
+    if (!e.valid) return;
+    // Cosine-weighted emission from the front side (or either side of a double-sided emitter):
+    // beta = Le cos / (pdf_area pdf_direction) = Le pi / pdf_area.
+    vec3 n = e.ng;
+    float sides = 1.0;
+    if ((sceneMaterials.v[e.materialIndex].flags & MATERIAL_FLAG_DOUBLE_SIDED) != 0u) {
+        sides = 2.0;
+        if (rng1(rng, lightPathDimension(DIM_LT_SIDE)) < 0.5) n = -n;
+    }
+    vec3 local = sampleCosineHemisphere(rng2(rng, lightPathDimension(DIM_LT_EMIT)));
+    if (local.z <= 0.0) return;
+    vec3 beta = e.Le * (PI * sides / e.pdf);
+    vec3 throughput = vec3(1.0); // product of the bounce weights, for Russian roulette
+    Ray ray;
+    ray.origin = offsetRayOrigin(e.p, n, e.magnitude);
+    ray.direction = toWorld(makeFrame(n), local);
+
+    // Segments of the light path so far; the camera segment makes one more.
+    for (uint segments = 1u;; ++segments) {
+        Hit hit;
+        countClosestRay();
+        if (!traceClosest(ray, FLOAT_MAX, hit)) return;
+        SurfaceInteraction si = makeInteraction(ray, hit);
+        GpuMaterial mat = sceneMaterials.v[si.materialIndex];
+        applyTextures(mat, si);
+        vec3 wLight = -ray.direction;
+        uint bounce = segments - 1u; // vertices behind this one
+        bool receiver = isCausticReceiver(mat);
+        // Light reaching a receiver straight from the emitter is the path tracer's (direct
+        // light); so is everything from a material the light path does not follow.
+        if ((receiver && bounce == 0u) || (!receiver && !isSpecularChainMaterial(mat))) return;
+        if (receiver && segments + 1u <= scene.maxDepth) connectToCamera(si, mat, wLight, beta);
+        // Another bounce needs one more segment before the camera's.
+        if (segments + 2u > scene.maxDepth) return;
+
+        vec3 weight;
+        vec3 wCamera;
+        if (receiver) {
+            // Onwards from a receiver by BSDF sampling, with the adjoint BSDF f(wC, wL).
+            bool frontFace = si.frontFace;
+            if (!frontFace && (mat.flags & MATERIAL_FLAG_DOUBLE_SIDED) == 0u) return;
+            if (!frontFace) {
+                si.ng = -si.ng;
+                si.nSurface = -si.nSurface;
+            }
+            if (HAS_NORMAL_MAPS && dot(wLight, si.nSurface) <= 0.0) return;
+            Frame frame = makeFrame(frontFace ? si.ns : -si.ns);
+            vec3 wLightLocal = toLocal(frame, wLight);
+            BsdfSample bs = surfaceSample(mat, frame, wLightLocal, rng1(rng, lightBounceDimension(bounce, DIM_LT_LOBE)),
+                rng2(rng, lightBounceDimension(bounce, DIM_LT_DIRECTION)));
+            if (!bs.valid || bs.isDelta || !(bs.pdf > 0.0)) return;
+            wCamera = bs.wi;
+            if (!isReversibleOpaqueBounce(si.ng, wLight, wCamera)) return;
+            float cosLightGeometric = abs(dot(wLight, si.ng));
+            if (cosLightGeometric < 1e-7) return;
+            weight = surfaceEval(mat, toLocal(frame, wCamera), wLightLocal) * (abs(dot(wCamera, si.ng)) / (cosLightGeometric * bs.pdf));
+        } else {
+            BsdfSample bs;
+            if (HAS_DIELECTRIC && mat.type == MATERIAL_DIELECTRIC) {
+                Frame frame = makeFrame(dot(si.ns, wLight) < 0.0 ? -si.ns : si.ns);
+                bs = dielectricSample(mat.baseColor, mat.ior, si.frontFace, frame, toLocal(frame, wLight),
+                    rng1(rng, lightBounceDimension(bounce, DIM_LT_LOBE)));
+                bs.weight *= bs.etaScale; // importance is not compressed by refraction
+            } else {
+                bool doubleSided = (mat.flags & MATERIAL_FLAG_DOUBLE_SIDED) != 0u;
+                if (!si.frontFace && !doubleSided) return;
+                if (!si.frontFace) {
+                    si.ng = -si.ng;
+                    si.nSurface = -si.nSurface;
+                }
+                if (HAS_NORMAL_MAPS && dot(wLight, si.nSurface) <= 0.0) return;
+                Frame frame = makeFrame(si.frontFace ? si.ns : -si.ns);
+                vec3 woLocal = toLocal(frame, wLight);
+                if (HAS_MIRROR && mat.type == MATERIAL_MIRROR) bs = mirrorSample(mat.baseColor, frame, woLocal);
+                else bs = conductorSample(mat.baseColor, mat.conductorEta, mat.conductorK, frame, woLocal);
+            }
+            if (!bs.valid) return;
+            wCamera = bs.wi;
+            if (!isReversibleDeltaBounce(si.ng, si.ns, wLight, wCamera)) return;
+            float denominator = abs(dot(wLight, si.ng)) * abs(dot(wCamera, si.ns));
+            if (denominator < 1e-7) return;
+            weight = bs.weight * (abs(dot(wLight, si.ns)) * abs(dot(wCamera, si.ng)) / denominator);
+        }
+        if (!allFinite(weight) || maxComponent(weight) <= 0.0) return;
+        beta *= weight;
+        throughput *= weight;
+
+        if (USE_RR && segments + 1u >= scene.rrStartDepth) {
+            float m = maxComponent(throughput) / scene.rrThreshold;
+            if (m < 1.0) {
+                if (rng1(rng, lightBounceDimension(bounce, DIM_LT_ROULETTE)) >= m) return;
+                beta /= m;
+                throughput /= m;
+            }
+        }
+        ray.origin = spawnOrigin(si.p, si.ng, wCamera, si.magnitude);
+        ray.direction = wCamera;
+    }
+}
+
+#endif
