@@ -13,14 +13,6 @@ namespace pt {
 constexpr VkDeviceSize kAccumulationBytesPerPixel = ACCUMULATION_VEC4S_PER_PIXEL * sizeof(glm::vec4);
 constexpr VkDeviceSize kSplatBytesPerPixel = SPLAT_WORDS_PER_PIXEL * sizeof(uint64_t);
 
-namespace {
-// Light tracing splats with 64-bit integer atomics; a device without them renders without it.
-FeatureSet supportedFeatures(const VulkanContext& context, FeatureSet features) {
-    if (features.lightTracing && !context.info().int64Atomics) features.lightTracing = false;
-    return features;
-}
-} // namespace
-
 void validateImageSize(int width, int height) {
     if (width < 1 || height < 1 || width > kMaxImageSide || height > kMaxImageSide ||
         int64_t(width) * height > kMaxImagePixels)
@@ -50,7 +42,7 @@ gpu::GpuCamera toGpuCamera(const Camera& camera, int width, int height) {
 
 Renderer::Renderer(VulkanContext& context, const FlatScene& scene, const FeatureSet& features,
     const IntegratorSettings& settings, const Camera& camera, const FilmSettings& film)
-    : context_(context), film_(film), camera_(camera), features_(supportedFeatures(context, features)) {
+    : context_(context), film_(film), camera_(camera), features_(features) {
     validateImageSize(film.width, film.height);
     gpu::GpuSceneParams params{};
     params.camera = toGpuCamera(camera, film.width, film.height);
@@ -210,7 +202,7 @@ void Renderer::setIntegrator(const IntegratorSettings& settings, const FeatureSe
     params_.rrStartDepth = settings.rrStartDepth;
     params_.rrThreshold = settings.rrThreshold;
     params_.seed = settings.seed;
-    const FeatureSet wanted = supportedFeatures(context_, features);
+    const FeatureSet& wanted = features;
     const auto constants = wanted.constants(localSize_, localSize_);
     const auto current = features_.constants(localSize_, localSize_);
     const bool same = std::equal(constants.begin(), constants.end(), current.begin(), current.end(),
