@@ -116,6 +116,10 @@ constexpr uint32_t kUnitPrims = 16384;
 // Nodes with at most this many primitives use an exact SAH sweep instead of binning (see
 // sweepSplit). At most 255 (sort indices are bytes).
 constexpr int kSweepPrims = 16;
+// Nodes with at most this many primitives are binned with kFewBins bins: the per-node cost of
+// resetting and sweeping bins dominates there, and fewer bins lose little.
+constexpr int kFewBinsPrims = 64;
+constexpr int kFewBins = 8;
 // Node indices are uint32_t and a tree over N prims has up to 2N-1 nodes.
 constexpr size_t kMaxPrims = (size_t(1) << 31) - 1;
 
@@ -428,7 +432,7 @@ private:
                 if (binnable[k]) {
                     bins = unitBins[firstUnit[k]];
                     for (size_t u = firstUnit[k] + 1; u < firstUnit[k + 1]; ++u) bins.merge(unitBins[u], bins_);
-                    split = findSplit(bins);
+                    split = findSplit(bins, bins_);
                 }
                 const float nodeArea = boxArea(nodes[w.slot].lo, nodes[w.slot].hi);
                 if (split.axis >= 0)
@@ -564,7 +568,7 @@ private:
         return traversalCost_ + intersectCost_ * (nodeArea > 0.0f ? cost / nodeArea : 0.0f);
     }
 
-    Split findSplit(const Bins& bins) const
+    Split findSplit(const Bins& bins, int binCount) const
     {
         Split best;
         std::array<float, kMaxBins> rightArea;
@@ -574,7 +578,7 @@ private:
             Box4 acc;
             uint32_t cnt = 0;
             float area = 0.0f;
-            for (int i = bins_ - 1; i >= 1; --i) {
+            for (int i = binCount - 1; i >= 1; --i) {
                 if (bc[i] != 0) {
                     acc.grow(bins.lo[a][i], bins.hi[a][i]);
                     cnt += bc[i];
@@ -585,7 +589,7 @@ private:
             }
             acc = Box4{};
             cnt = 0;
-            for (int i = 1; i < bins_; ++i) {
+            for (int i = 1; i < binCount; ++i) {
                 // An empty bin i-1 gives the same partition as the split before it: skip it.
                 if (bc[i - 1] == 0) continue;
                 if (rightCount[i] == 0) break;
@@ -709,17 +713,18 @@ private:
     bool binnedSplit(const WorkItem& item, float nodeArea, Box4& lb, Box4& rb, Box4& lc, Box4& rc, uint32_t& mid)
     {
         const uint32_t n = item.end - item.begin;
+        const int binCount = n <= uint32_t(kFewBinsPrims) ? std::min(bins_, kFewBins) : bins_;
         V4 origin, scale;
-        if (binTransform(item.centroids, bins_, origin, scale)) {
+        if (binTransform(item.centroids, binCount, origin, scale)) {
             Bins bins;
-            binRange(refs_.get(), item.begin, item.end, origin, scale, bins_, bins);
-            const Split split = findSplit(bins);
+            binRange(refs_.get(), item.begin, item.end, origin, scale, binCount, bins);
+            const Split split = findSplit(bins, binCount);
             if (split.axis >= 0) {
                 if (n <= maxLeaf_ && intersectCost_ * float(n) <= splitCost(split.cost, nodeArea)) return false;
                 mid = partition(item.begin, item.end, split.axis, split.bin, lc, rc);
                 // The children's boxes are the unions of their bins: every primitive's whole box
                 // went into the bin its cached key names, so these are exact and tight.
-                for (int i = 0; i < bins_; ++i)
+                for (int i = 0; i < binCount; ++i)
                     if (bins.count[split.axis][i] != 0)
                         (i < split.bin ? lb : rb).grow(bins.lo[split.axis][i], bins.hi[split.axis][i]);
                 return true; // both sides are non-empty: findSplit only offers such splits
