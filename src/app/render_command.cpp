@@ -48,8 +48,15 @@ std::vector<ExrChannel> varianceChannels(const Image& varianceOfMean) {
 
 int renderJob(VulkanContext& context, const Scene& scene, const FlatScene& flat, const Job& job, const RenderOptions& o,
     const std::optional<Image>& reference, std::ostream* errorLog) {
-    // --all-features: the unspecialised kernel, for measuring what specialisation saves.
-    const FeatureSet features = o.allFeatures ? FeatureSet::all(job.settings) : computeFeatures(flat, job.settings);
+    // --all-features: the unspecialised kernel, for measuring what specialisation saves. Light
+    // tracing is an estimator, not a feature: the scene decides it either way (it is only
+    // correct where computeFeatures allows it), so both kernels render the same image.
+    FeatureSet features = computeFeatures(flat, job.settings);
+    if (o.allFeatures) {
+        const bool lightTracing = features.lightTracing;
+        features = FeatureSet::all(job.settings);
+        features.lightTracing = lightTracing;
+    }
     Renderer renderer(context, flat, features, job.settings, job.camera, FilmSettings{job.width, job.height, scene.background});
     if (!o.quiet) {
         std::fprintf(stderr, "pt: %s: %dx%d, kernel features: %s; pipeline %.3f s\n", job.camera.name.c_str(), job.width,

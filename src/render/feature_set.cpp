@@ -25,7 +25,7 @@ FeatureSet FeatureSet::all(const IntegratorSettings& settings) {
     f.cosineSampling = settings.sampling == DirectionSampling::Cosine;
     f.classic = settings.classic;
     f.sampler = settings.sampler == SamplerKind::Sobol ? SAMPLER_SOBOL : SAMPLER_INDEPENDENT;
-    f.lightTracing = settings.lightTracing && !settings.classic;
+    f.lightTracing = false; // an estimator the scene decides (computeFeatures), not a compiled-in feature
     return f;
 }
 
