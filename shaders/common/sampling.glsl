@@ -37,6 +37,14 @@ vec3 sampleUniformHemisphere(vec2 u) {
 }
 float uniformHemispherePdf(float cosTheta) { return cosTheta > 0.0 ? 0.5 * INV_PI : 0.0; }
 
+// A uniform point on the unit sphere.
+vec3 sampleUniformSphere(vec2 u) {
+    float z = 1.0 - 2.0 * u.x;
+    float r = sqrt(max(0.0, 1.0 - z * z));
+    float phi = TWO_PI * u.y;
+    return vec3(r * cos(phi), r * sin(phi), z);
+}
+
 // Uniform barycentrics on a triangle (the square-root warp); returns (b1, b2).
 vec2 sampleUniformTriangle(vec2 u) {
     float su0 = sqrt(u.x);

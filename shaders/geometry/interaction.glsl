@@ -48,9 +48,7 @@ SurfaceInteraction makeSphereInteraction(Ray ray, Hit hit) {
     si.ng = normalize(sphere.worldToObject[0].xyz * po.x + sphere.worldToObject[1].xyz * po.y + sphere.worldToObject[2].xyz * po.z);
     si.ns = si.nSurface = si.ng;
     si.pSmooth = si.p;
-    vec3 centre = vec3(sphere.objectToWorld[0].w, sphere.objectToWorld[1].w, sphere.objectToWorld[2].w) + offset;
-    vec3 axisLengths = vec3(length(sphere.objectToWorld[0].xyz), length(sphere.objectToWorld[1].xyz), length(sphere.objectToWorld[2].xyz));
-    si.magnitude = maxComponent(abs(centre)) + maxComponent(axisLengths);
+    si.magnitude = sphereMagnitude(sphere, offset);
     si.frontFace = dot(ray.direction, si.ng) < 0.0;
     si.materialIndex = sphere.materialIndex;
     si.lightIndex = sphere.lightIndex;

@@ -5,6 +5,7 @@
 #ifndef PT_GEOMETRY_SPHERE_GLSL
 #define PT_GEOMETRY_SPHERE_GLSL
 #include "common/buffers.glsl"
+#include "common/math.glsl"
 #include "geometry/ray.glsl"
 
 vec3 transformPoint(vec4 rows[3], vec3 p) {
@@ -13,6 +14,13 @@ vec3 transformPoint(vec4 rows[3], vec3 p) {
 vec3 transformVector(vec4 rows[3], vec3 v) { return vec3(dot(rows[0].xyz, v), dot(rows[1].xyz, v), dot(rows[2].xyz, v)); }
 
 vec3 sphereCentre(GpuSphere sphere) { return vec3(sphere.objectToWorld[0].w, sphere.objectToWorld[1].w, sphere.objectToWorld[2].w); }
+
+// Largest coordinate magnitude a point of the sphere (moved by `offset`) can have: scales the
+// ray offset (common/ray_offset.glsl).
+float sphereMagnitude(GpuSphere sphere, vec3 offset) {
+    vec3 axisLengths = vec3(length(sphere.objectToWorld[0].xyz), length(sphere.objectToWorld[1].xyz), length(sphere.objectToWorld[2].xyz));
+    return maxComponent(abs(sphereCentre(sphere) + offset)) + maxComponent(axisLengths);
+}
 
 // A world point in the sphere's object space, taken relative to the centre first and mapped by
 // the linear part only, so that origin and direction share one rounded matrix (the inverse's

@@ -18,6 +18,7 @@
 #include "geometry/sphere.glsl"
 #include "lights/light_common.glsl"
 #include "lights/sphere_light.glsl"
+#include "lights/triangle_light.glsl"
 #include "bsdf/surface_bsdf.glsl"
 #include "bsdf/mirror.glsl"
 #include "bsdf/conductor.glsl"
@@ -88,26 +89,14 @@ EmitterPoint sampleEmitterPoint(uint lightIndex, vec2 u) {
         e.magnitude = maxComponent(max(max(abs(tri.p0), abs(tri.p1)), abs(tri.p2)));
         e.materialIndex = tri.materialIndex;
         e.pdf = light.pmf / light.area;
-        e.Le = sceneMaterials.v[tri.materialIndex].emission;
-        // Textured emission, as a ray hitting this point would see it (triangle_light.glsl).
-        GpuMaterial mat = sceneMaterials.v[tri.materialIndex];
-        if ((HAS_TEXTURES || HAS_PROCEDURAL) && mat.emissiveTexture != NO_TEXTURE) {
-            GpuTriangleShading sh = sceneShading.v[light.primitive];
-            vec2 uv = (1.0 - b.x - b.y) * vec2(sh.u0, sh.v.x) + b.x * vec2(sh.u1, sh.v.y) + b.y * vec2(sh.u2, sh.v.z);
-            e.Le *= evalTexture(mat.emissiveTexture, uv, e.p).rgb;
-        }
+        e.Le = triangleEmission(light.primitive, sceneMaterials.v[tri.materialIndex], b, e.p, true);
     } else {
         // A uniform point on the unit sphere mapped to world space: density 1 / (4 pi J).
         GpuSphere sphere = SphereRef(scene.spheres).v[light.primitive];
-        float z = 1.0 - 2.0 * u.x;
-        float r = sqrt(max(0.0, 1.0 - z * z));
-        float phi = TWO_PI * u.y;
-        vec3 po = vec3(r * cos(phi), r * sin(phi), z);
+        vec3 po = sampleUniformSphere(u);
         e.p = transformPoint(sphere.objectToWorld, po);
         float J = sphereAreaScale(sphere, light, po, e.ng);
-        vec3 centre = vec3(sphere.objectToWorld[0].w, sphere.objectToWorld[1].w, sphere.objectToWorld[2].w);
-        vec3 axes = vec3(length(sphere.objectToWorld[0].xyz), length(sphere.objectToWorld[1].xyz), length(sphere.objectToWorld[2].xyz));
-        e.magnitude = maxComponent(abs(centre)) + maxComponent(axes);
+        e.magnitude = sphereMagnitude(sphere, vec3(0.0));
         e.materialIndex = sphere.materialIndex;
         e.pdf = light.pmf / (4.0 * PI * J);
         e.Le = sceneMaterials.v[sphere.materialIndex].emission;

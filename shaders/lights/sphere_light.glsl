@@ -64,10 +64,7 @@ LightSample sampleSphereLight(GpuLight light, vec3 x, vec2 u) {
         s.pdf = light.pmf / (TWO_PI * oneMinusCosMax);
         return s;
     }
-    float z = 1.0 - 2.0 * u.x;
-    float r = sqrt(max(0.0, 1.0 - z * z));
-    float phi = TWO_PI * u.y;
-    vec3 po = vec3(r * cos(phi), r * sin(phi), z);
+    vec3 po = sampleUniformSphere(u);
     s.point = transformPoint(sphere.objectToWorld, po);
     float J = sphereAreaScale(sphere, light, po, s.normal);
     vec3 d = s.point - x;

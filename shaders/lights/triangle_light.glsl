@@ -12,6 +12,19 @@ float triangleLightPdf(GpuLight light, float dist, float cosLight) {
     return c > 0.0 ? light.pmf * dist * dist / (light.area * c) : 0.0;
 }
 
+// The radiance a triangle emitter sends from barycentrics b (point p) to its side `frontFace`:
+// the emission factor times its texture, the texel a ray hitting that point would see. (The
+// light table's power uses the factor alone, which only changes how often the light is picked.)
+vec3 triangleEmission(uint triangle, GpuMaterial mat, vec2 b, vec3 p, bool frontFace) {
+    vec3 Le = emittedRadiance(mat, frontFace);
+    if ((HAS_TEXTURES || HAS_PROCEDURAL) && mat.emissiveTexture != NO_TEXTURE) {
+        GpuTriangleShading sh = sceneShading.v[triangle];
+        vec2 uv = (1.0 - b.x - b.y) * vec2(sh.u0, sh.v.x) + b.x * vec2(sh.u1, sh.v.y) + b.y * vec2(sh.u2, sh.v.z);
+        Le *= evalTexture(mat.emissiveTexture, uv, p).rgb;
+    }
+    return Le;
+}
+
 LightSample sampleTriangleLight(GpuLight light, vec3 x, vec2 u) {
     LightSample s = noLightSample();
     GpuTriangle tri = sceneTriangles.v[light.primitive];
@@ -24,14 +37,7 @@ LightSample sampleTriangleLight(GpuLight light, vec3 x, vec2 u) {
     s.wi = toLight / s.distance;
     float cosLight = dot(s.normal, -s.wi);
     GpuMaterial mat = sceneMaterials.v[tri.materialIndex];
-    s.radiance = emittedRadiance(mat, cosLight > 0.0);
-    // Textured emission: the same texel a ray hitting this point would see. (The light table's
-    // power uses the emission factor alone, which only changes how often the light is picked.)
-    if ((HAS_TEXTURES || HAS_PROCEDURAL) && mat.emissiveTexture != NO_TEXTURE) {
-        GpuTriangleShading sh = sceneShading.v[light.primitive];
-        vec2 uv = (1.0 - b.x - b.y) * vec2(sh.u0, sh.v.x) + b.x * vec2(sh.u1, sh.v.y) + b.y * vec2(sh.u2, sh.v.z);
-        s.radiance *= evalTexture(mat.emissiveTexture, uv, s.point).rgb;
-    }
+    s.radiance = triangleEmission(light.primitive, mat, b, s.point, cosLight > 0.0);
     s.pdf = dist2 > 0.0 ? triangleLightPdf(light, s.distance, cosLight) : 0.0;
     return s;
 }
