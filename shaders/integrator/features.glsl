@@ -32,6 +32,12 @@ layout(constant_id = SPEC_DEBUG_VIEW) const uint DEBUG_VIEW = DEBUG_VIEW_NONE;
 layout(constant_id = SPEC_CLASSIC) const bool CLASSIC = false;
 layout(constant_id = SPEC_HAS_MOTION) const bool HAS_MOTION = true;
 layout(constant_id = SPEC_COUNT_RAYS) const bool COUNT_RAYS = false;
+// Light tracing lives in its own SPIR-V module (CMakeLists.txt: PT_LIGHT_TRACING); the other
+// module has none of its code.
+#ifdef PT_LIGHT_TRACING
 layout(constant_id = SPEC_LIGHT_TRACING) const bool LIGHT_TRACING = false;
+#else
+const bool LIGHT_TRACING = false;
+#endif
 
 #endif

@@ -12,7 +12,9 @@
 #include "integrator/path.glsl"
 #include "integrator/debug_view.glsl"
 #include "integrator/accumulate.glsl"
+#ifdef PT_LIGHT_TRACING
 #include "integrator/light_tracer.glsl"
+#endif
 
 layout(local_size_x_id = SPEC_LOCAL_SIZE_X, local_size_y_id = SPEC_LOCAL_SIZE_Y) in;
 
@@ -56,7 +58,9 @@ void main() {
             sum.w += 1.0; // dropped: counted, contributes zero
         }
         // One light path per pixel and sample, splatted wherever it lands (atomic integer sums).
+#ifdef PT_LIGHT_TRACING
         if (lightTracingActive()) traceLightPath(pixel, push.sampleStart + s);
+#endif
     }
     accumulation.v[base + ACCUM_SUM] = sum;
     accumulation.v[base + ACCUM_SUM_LO] = vec4(sumLo, 0.0);

@@ -131,10 +131,9 @@ DeviceInfo describeDevice(VkPhysicalDevice device, uint32_t index) {
     if (props.properties.apiVersion < VK_API_VERSION_1_2) info.whyNotUsable = "needs Vulkan 1.2";
     else if (!features12.bufferDeviceAddress) info.whyNotUsable = "no bufferDeviceAddress";
     else if (!features.features.shaderInt64) info.whyNotUsable = "no shaderInt64";
-    // The kernel declares 64-bit atomics (light tracing's splats) whether or not a scene uses them.
-    else if (!features12.shaderBufferInt64Atomics) info.whyNotUsable = "no shaderBufferInt64Atomics";
     else if (findComputeQueueFamily(device) < 0) info.whyNotUsable = "no compute queue";
     info.usable = info.whyNotUsable.empty();
+    info.int64Atomics = features12.shaderBufferInt64Atomics;
     return info;
 }
 
@@ -233,7 +232,7 @@ VulkanContext::VulkanContext(const ContextOptions& options) {
         queueInfo.pQueuePriorities = &priority;
         VkPhysicalDeviceVulkan12Features features12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
         features12.bufferDeviceAddress = VK_TRUE;
-        features12.shaderBufferInt64Atomics = VK_TRUE;
+        features12.shaderBufferInt64Atomics = info_.int64Atomics ? VK_TRUE : VK_FALSE;
         VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
         features.pNext = &features12;
         features.features.shaderInt64 = VK_TRUE;

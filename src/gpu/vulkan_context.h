@@ -16,6 +16,7 @@ struct DeviceInfo {
     uint32_t apiVersion = 0;
     bool usable = false;
     std::string whyNotUsable; // empty when usable
+    bool int64Atomics = false; // shaderBufferInt64Atomics: light tracing's splats need it
 };
 
 struct ContextOptions {

@@ -1,6 +1,7 @@
 #include "render/renderer.h"
 
 #include "pt_copy_words_spv.h" // generated: shaders/viewer/copy_words.comp
+#include "pt_render_light_tracing_spv.h" // generated: the same with -DPT_LIGHT_TRACING
 #include "pt_render_spv.h" // generated: the SPIR-V of shaders/integrator/render.comp
 
 #include <algorithm>
@@ -12,6 +13,21 @@ namespace pt {
 
 constexpr VkDeviceSize kAccumulationBytesPerPixel = ACCUMULATION_VEC4S_PER_PIXEL * sizeof(glm::vec4);
 constexpr VkDeviceSize kSplatBytesPerPixel = SPLAT_WORDS_PER_PIXEL * sizeof(uint64_t);
+
+namespace {
+// Light tracing splats with 64-bit atomics; a device without them renders caustics by BSDF
+// sampling alone (the same image, noisier).
+FeatureSet supportedFeatures(const VulkanContext& context, FeatureSet features) {
+    if (!context.info().int64Atomics) features.lightTracing = false;
+    return features;
+}
+
+// The kernel's SPIR-V: the module with light tracing only when it is used.
+std::span<const uint32_t> renderKernel(const FeatureSet& features) {
+    if (features.lightTracing) return std::span<const uint32_t>(pt_render_light_tracing_spv);
+    return std::span<const uint32_t>(pt_render_spv);
+}
+} // namespace
 
 void validateImageSize(int width, int height) {
     if (width < 1 || height < 1 || width > kMaxImageSide || height > kMaxImageSide ||
@@ -42,7 +58,7 @@ gpu::GpuCamera toGpuCamera(const Camera& camera, int width, int height) {
 
 Renderer::Renderer(VulkanContext& context, const FlatScene& scene, const FeatureSet& features,
     const IntegratorSettings& settings, const Camera& camera, const FilmSettings& film)
-    : context_(context), film_(film), camera_(camera), features_(features) {
+    : context_(context), film_(film), camera_(camera), features_(supportedFeatures(context, features)) {
     validateImageSize(film.width, film.height);
     gpu::GpuSceneParams params{};
     params.camera = toGpuCamera(camera, film.width, film.height);
@@ -56,7 +72,7 @@ Renderer::Renderer(VulkanContext& context, const FlatScene& scene, const Feature
     gpuScene_ = std::make_unique<GpuScene>(context, scene, params, pixels * bytesPerPixel());
     paramsAddress_ = gpuScene_->paramsAddress();
 
-    pipeline_ = std::make_unique<ComputePipeline>(context, std::span<const uint32_t>(pt_render_spv),
+    pipeline_ = std::make_unique<ComputePipeline>(context, renderKernel(features_),
         static_cast<uint32_t>(sizeof(gpu::GpuRenderPush)), features_.constants(localSize_, localSize_), "render");
     if (features_.countRays) {
         rayCounts_ = std::make_unique<GpuBuffer>(context, pixels * sizeof(glm::uvec4), "ray counts");
@@ -202,13 +218,13 @@ void Renderer::setIntegrator(const IntegratorSettings& settings, const FeatureSe
     params_.rrStartDepth = settings.rrStartDepth;
     params_.rrThreshold = settings.rrThreshold;
     params_.seed = settings.seed;
-    const FeatureSet& wanted = features;
+    const FeatureSet wanted = supportedFeatures(context_, features);
     const auto constants = wanted.constants(localSize_, localSize_);
     const auto current = features_.constants(localSize_, localSize_);
     const bool same = std::equal(constants.begin(), constants.end(), current.begin(), current.end(),
         [](const SpecializationConstant& a, const SpecializationConstant& b) { return a.id == b.id && a.value == b.value; });
     if (!same) {
-        auto fresh = std::make_unique<ComputePipeline>(context_, std::span<const uint32_t>(pt_render_spv),
+        auto fresh = std::make_unique<ComputePipeline>(context_, renderKernel(wanted),
             static_cast<uint32_t>(sizeof(gpu::GpuRenderPush)), constants, "render");
         vkDeviceWaitIdle(context_.device());
         pipeline_ = std::move(fresh);

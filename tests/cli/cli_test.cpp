@@ -591,7 +591,10 @@ TEST_F(CliTest, UnsupportedFeaturesAreListedInOneWarning) {
 // --camera picks one camera by its id.
 TEST_F(CliTest, CourseSceneRendersEveryCameraToItsImageName) {
     const std::string scene = (kTests / "data" / "ceng795" / "cornellbox_jaroslav_path_glass.xml").string();
-    const RunResult all = run({"render", scene, "--spp", "1", "--width", "16", "--height", "16", "-o", (dir_ / "all").string()});
+    // Eight cameras with different switches: eight pipelines of about 2 s each on lavapipe, more
+    // with another test beside it.
+    const RunResult all =
+        run({"render", scene, "--spp", "1", "--width", "16", "--height", "16", "-o", (dir_ / "all").string()}, {}, 120);
     EXPECT_EXIT_STATUS(all, 0);
     for (const char* name : {"glass", "glass_next", "glass_next_importance_russian", "glass_russian"}) {
         EXPECT_TRUE(fs::exists(dir_ / "all" / (std::string(name) + ".exr"))) << name << "\n" << all;
