@@ -22,6 +22,14 @@ struct SurfaceInteraction {
     vec3 dpdv;
 };
 
+// A double-sided opaque surface seen from behind: its normals turn to the viewer's side, and the
+// smooth surface (Hanika's offset), which bulges towards the front, no longer applies.
+void turnToBackSide(inout SurfaceInteraction si) {
+    si.ng = -si.ng;
+    si.nSurface = -si.nSurface;
+    si.pSmooth = si.p;
+}
+
 bool needsSurfaceCoordinates() { return HAS_TEXTURES || HAS_PROCEDURAL || HAS_NORMAL_MAPS; }
 
 // A tangent basis for surfaces whose uvs are degenerate (absent or collapsed): any frame works

@@ -105,6 +105,18 @@ EmitterPoint sampleEmitterPoint(uint lightIndex, vec2 u) {
     return e;
 }
 
+// An opaque surface as seen from the side `front` says (the camera's, or the light path's own),
+// with the light arriving from wLight: false where the path tracer would find nothing (a
+// one-sided surface from behind, or wLight below the surface's own normal); otherwise si is
+// turned to that side and `frame` is its shading frame there, as the path tracer builds it.
+bool opaqueFrame(inout SurfaceInteraction si, GpuMaterial mat, bool front, vec3 wLight, out Frame frame) {
+    if (!front && (mat.flags & MATERIAL_FLAG_DOUBLE_SIDED) == 0u) return false;
+    if (!front) turnToBackSide(si);
+    if (HAS_NORMAL_MAPS && dot(wLight, si.nSurface) <= 0.0) return false;
+    frame = makeFrame(front ? si.ns : -si.ns);
+    return true;
+}
+
 // Connects a light path arriving at receiver si (from direction wLight) to the camera and
 // splats it. beta: the path's weight (emitted radiance over the density of the path so far).
 void connectToCamera(SurfaceInteraction si, GpuMaterial mat, vec3 wLight, vec3 beta) {
@@ -114,17 +126,9 @@ void connectToCamera(SurfaceInteraction si, GpuMaterial mat, vec3 wLight, vec3 b
     if (!(dist2 > 0.0)) return;
     float dist = sqrt(dist2);
     vec3 wCamera = toCamera / dist;
-    // The receiver as the camera ray would find it: one-sided surfaces are black from behind.
-    bool frontFace = dot(wCamera, si.ng) > 0.0;
-    if (!frontFace && (mat.flags & MATERIAL_FLAG_DOUBLE_SIDED) == 0u) return;
-    if (!frontFace) {
-        si.ng = -si.ng;
-        si.nSurface = -si.nSurface;
-        si.pSmooth = si.p;
-    }
-    // The path tracer ends a path whose BSDF sample leaves below the surface's own normal.
-    if (HAS_NORMAL_MAPS && dot(wLight, si.nSurface) <= 0.0) return;
-    Frame frame = makeFrame(frontFace ? si.ns : -si.ns);
+    // The receiver as the camera ray would find it.
+    Frame frame;
+    if (!opaqueFrame(si, mat, dot(wCamera, si.ng) > 0.0, wLight, frame)) return;
     vec3 fCos = surfaceEval(mat, toLocal(frame, wCamera), toLocal(frame, wLight)); // f |wL.ns|
     float cosLightGeometric = abs(dot(wLight, si.ng));
     if (maxComponent(fCos) <= 0.0 || cosLightGeometric < 1e-7) return;
@@ -199,14 +203,8 @@ void traceLightPath(uvec2 pixel, uint sampleIndex) {
         vec3 wCamera;
         if (receiver) {
             // Onwards from a receiver by BSDF sampling, with the adjoint BSDF f(wC, wL).
-            bool frontFace = si.frontFace;
-            if (!frontFace && (mat.flags & MATERIAL_FLAG_DOUBLE_SIDED) == 0u) return;
-            if (!frontFace) {
-                si.ng = -si.ng;
-                si.nSurface = -si.nSurface;
-            }
-            if (HAS_NORMAL_MAPS && dot(wLight, si.nSurface) <= 0.0) return;
-            Frame frame = makeFrame(frontFace ? si.ns : -si.ns);
+            Frame frame;
+            if (!opaqueFrame(si, mat, si.frontFace, wLight, frame)) return;
             vec3 wLightLocal = toLocal(frame, wLight);
             BsdfSample bs = surfaceSample(mat, frame, wLightLocal, rng1(rng, lightBounceDimension(bounce, DIM_LT_LOBE)),
                 rng2(rng, lightBounceDimension(bounce, DIM_LT_DIRECTION)));
@@ -224,14 +222,8 @@ void traceLightPath(uvec2 pixel, uint sampleIndex) {
                     rng1(rng, lightBounceDimension(bounce, DIM_LT_LOBE)));
                 bs.weight *= bs.etaScale; // importance is not compressed by refraction
             } else {
-                bool doubleSided = (mat.flags & MATERIAL_FLAG_DOUBLE_SIDED) != 0u;
-                if (!si.frontFace && !doubleSided) return;
-                if (!si.frontFace) {
-                    si.ng = -si.ng;
-                    si.nSurface = -si.nSurface;
-                }
-                if (HAS_NORMAL_MAPS && dot(wLight, si.nSurface) <= 0.0) return;
-                Frame frame = makeFrame(si.frontFace ? si.ns : -si.ns);
+                Frame frame;
+                if (!opaqueFrame(si, mat, si.frontFace, wLight, frame)) return;
                 vec3 woLocal = toLocal(frame, wLight);
                 if (HAS_MIRROR && mat.type == MATERIAL_MIRROR) bs = mirrorSample(mat.baseColor, frame, woLocal);
                 else bs = conductorSample(mat.baseColor, mat.conductorEta, mat.conductorK, frame, woLocal);

@@ -130,11 +130,7 @@ vec3 tracePath(Ray ray, Rng rng) {
             // Opaque surfaces: one-sided ones are black from behind; double-sided ones flip.
             if (!si.frontFace && !doubleSided) break;
             Frame frame = makeFrame(si.frontFace ? si.ns : -si.ns);
-            if (!si.frontFace) {
-                si.ng = -si.ng;
-                si.nSurface = -si.nSurface;
-                si.pSmooth = si.p; // the smooth surface bulges towards the front
-            }
+            if (!si.frontFace) turnToBackSide(si);
             vec3 woLocal = toLocal(frame, wo);
             if (HAS_MIRROR && mat.type == MATERIAL_MIRROR) {
                 bs = mirrorSample(mat.baseColor, frame, woLocal);

@@ -84,6 +84,8 @@ VkDeviceSize Renderer::bytesPerPixel() const {
     return kAccumulationBytesPerPixel + (features_.lightTracing ? kSplatBytesPerPixel : 0);
 }
 
+VkDeviceSize Renderer::splatOffset() const { return VkDeviceSize(film_.width) * film_.height * kAccumulationBytesPerPixel; }
+
 void Renderer::addSamples(uint32_t count, uint32_t tileSize) {
     if (count == 0) return;
     if (uint64_t(firstSample_) + samples_ + count > UINT32_MAX) throw std::runtime_error("sample index exceeds 2^32");
@@ -254,8 +256,7 @@ AccumulationState Renderer::readState() const {
     if (samples_ > 0) {
         accumulation().download(state.sums.data(), state.sums.size() * sizeof(glm::vec4));
         if (!state.splats.empty())
-            accumulation().download(state.splats.data(), state.splats.size() * sizeof(uint64_t),
-                state.pixels() * kAccumulationBytesPerPixel);
+            accumulation().download(state.splats.data(), state.splats.size() * sizeof(uint64_t), splatOffset());
     }
     return state; // zeros before the first pass, even if a reset left the buffer uncleared
 }
@@ -274,7 +275,7 @@ void Renderer::loadState(const AccumulationState& state) {
                                  (features_.lightTracing ? "on" : "off") + " (--light-tracing)");
     accumulation().upload(state.sums.data(), state.sums.size() * sizeof(glm::vec4));
     if (state.hasSplats())
-        accumulation().upload(state.splats.data(), state.splats.size() * sizeof(uint64_t), state.pixels() * kAccumulationBytesPerPixel);
+        accumulation().upload(state.splats.data(), state.splats.size() * sizeof(uint64_t), splatOffset());
     firstSample_ = state.samples.begin;
     samples_ = state.spp;
     clearPending_ = false;

@@ -64,6 +64,8 @@ public:
     // uint64[SPLAT_WORDS_PER_PIXEL * width * height].
     VkDeviceAddress accumulationAddress() const { return accumulation().address(); }
     bool hasSplats() const { return features_.lightTracing; }
+    // Where the splat sums start (after every pixel's ACCUM_* block), or 0 without them.
+    VkDeviceAddress splatsAddress() const { return hasSplats() ? accumulation().address() + splatOffset() : 0; }
     const Camera& camera() const { return camera_; }
     const FeatureSet& features() const { return features_; }
 
@@ -98,6 +100,7 @@ private:
     void makeParamsEditable();
     void uploadParams();
     VkDeviceSize bytesPerPixel() const;
+    VkDeviceSize splatOffset() const; // bytes before the splat sums in the accumulation buffer
     // Interactive use: grows the accumulation buffer (our own) to at least `bytes`.
     void ensureAccumulationBytes(VkDeviceSize bytes);
 

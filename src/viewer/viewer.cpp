@@ -278,8 +278,7 @@ void Session::recordDisplay(uint32_t image, uint32_t endTile) {
         // progress counted by the share of its tiles done.
         const uint32_t tiles = std::max(1u, renderer_->tileCount(passTileSize_));
         const double spp = push.spp + double(push.passSamples) * std::min(push.passTiles, tiles) / tiles;
-        const size_t pixels = size_t(push.filmSize.x) * push.filmSize.y;
-        push.splats = renderer_->accumulationAddress() + pixels * ACCUMULATION_VEC4S_PER_PIXEL * sizeof(glm::vec4);
+        push.splats = renderer_->splatsAddress();
         push.splatScale = spp > 0 ? static_cast<float>(1.0 / (SPLAT_SUM_SCALE * spp)) : 0.0f;
     }
     display_->record(cmd_, push, swapchain_->image(image));
