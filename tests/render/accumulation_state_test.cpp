@@ -131,6 +131,32 @@ TEST(Splats, StateFileRoundTripsThemBitForBit) {
     EXPECT_EQ(back.splats, s.splats);
 }
 
+TEST(Splats, ACorruptSplatChannelIsRefusedByName) {
+    const auto path = std::filesystem::temp_directory_path() / ("pt_bad_splats_" + std::to_string(::getpid()) + ".exr");
+    AccumulationState s = state({0, 6}, 1.0f, 0.0f);
+    setSplats(s, 0.5, 0.25);
+    const AccumulatedImage image = resolve(s);
+    writeStateExr(path, s, image.mean, {});
+    // Rewrite the file with one splat piece that is not a 22-bit integer.
+    std::vector<std::string> names = {"state.sum.R", "state.sum.G", "state.sum.B", "state.sum_lo.R", "state.sum_lo.G",
+        "state.sum_lo.B", "state.sum_sq.R", "state.sum_sq.G", "state.sum_sq.B", "state.sum_sq_lo.R",
+        "state.sum_sq_lo.G", "state.sum_sq_lo.B", "state.dropped"};
+    for (int word = 0; word < int(SPLAT_WORDS_PER_PIXEL); ++word)
+        for (int piece = 0; piece < 3; ++piece) names.push_back("state.splat." + std::to_string(word) + "." + std::to_string(piece));
+    ImageMetadata meta;
+    ExrChannels channels = readExrChannels(path, names, &meta);
+    channels.channels[13 + 4].values[1] = 0.5f; // state.splat.1.1
+    writeExr(path, image.mean, meta, channels.channels);
+    try {
+        readStateExr(path, meta);
+        ADD_FAILURE() << "a corrupt splat channel was accepted";
+    } catch (const std::runtime_error& e) {
+        EXPECT_NE(std::string(e.what()).find("state.splat.1.1"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find(path.string()), std::string::npos) << e.what();
+    }
+    std::filesystem::remove(path);
+}
+
 TEST(StateFile, ReadingAPlainImageNamesTheMissingChannel) {
     const auto path = std::filesystem::temp_directory_path() / ("pt_plain_" + std::to_string(::getpid()) + ".exr");
     Image plain;
