@@ -1,5 +1,5 @@
 // What this pipeline was specialised for. The host sets these from the scene and the switches
-// (src/render/feature_set.cpp); code behind a false constant is removed when the pipeline is
+// (src/flatten/feature_set.cpp); code behind a false constant is removed when the pipeline is
 // created, so a scene pays nothing for features it does not use.
 #ifndef PT_INTEGRATOR_FEATURES_GLSL
 #define PT_INTEGRATOR_FEATURES_GLSL

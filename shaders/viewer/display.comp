@@ -16,7 +16,7 @@ layout(push_constant) uniform PushBlock { GpuDisplayPush push; };
 
 const vec3 LUMINANCE = vec3(0.2126, 0.7152, 0.0722);
 
-// The piecewise sRGB curve (IEC 61966-2-1), as src/render/tonemap.cpp writes it.
+// The piecewise sRGB curve (IEC 61966-2-1), as src/film/tonemap.cpp writes it.
 float srgbOetf(float v) { return v <= 0.0031308 ? 12.92 * v : 1.055 * pow(v, 1.0 / 2.4) - 0.055; }
 
 vec3 encode(vec3 c) {

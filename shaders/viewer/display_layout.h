@@ -11,7 +11,7 @@ namespace pt::gpu {
 
 // ---- Tone mapping operators (GpuDisplayPush::op) ----
 #define DISPLAY_TONEMAP_CLAMP 0u        // clamp to [0, 1], then the transfer curve
-#define DISPLAY_TONEMAP_PHOTOGRAPHIC 1u // the course's global Reinhard (src/render/tonemap.cpp)
+#define DISPLAY_TONEMAP_PHOTOGRAPHIC 1u // the course's global Reinhard (src/film/tonemap.cpp)
 #define DISPLAY_TONEMAP_ACES 2u         // Narkowicz's 2015 fit of the ACES filmic curve
 
 // ---- Flags ----

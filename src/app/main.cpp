@@ -1,5 +1,5 @@
 // pt: a path tracer on Vulkan compute. Subcommands: render, view, devices.
-#include "app/bench_command.h"
+#include "app/bench/bench_command.h"
 #include "app/options.h"
 #include "app/merge_command.h"
 #include "app/render_command.h"

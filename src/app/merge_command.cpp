@@ -1,9 +1,9 @@
 #include "app/merge_command.h"
 
-#include "render/accumulation_state.h"
-#include "render/state_file.h"
-#include "render/tonemap.h"
-#include "render/metrics.h"
+#include "film/accumulation_state.h"
+#include "film/state_file.h"
+#include "film/tonemap.h"
+#include "film/metrics.h"
 
 #include <CLI/CLI.hpp>
 

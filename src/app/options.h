@@ -1,6 +1,6 @@
 #pragma once
 // Parsed command lines of `pt render` and `pt view`.
-#include "render/integrator_settings.h"
+#include "flatten/integrator_settings.h"
 
 #include <glm/glm.hpp>
 

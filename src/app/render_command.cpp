@@ -4,14 +4,14 @@
 #include "app/scene_setup.h"
 
 #include "gpu/vulkan_context.h"
-#include "render/feature_set.h"
-#include "render/flat_scene.h"
-#include "render/image_io.h"
-#include "render/metrics.h"
+#include "flatten/feature_set.h"
+#include "flatten/flat_scene.h"
+#include "image/image_io.h"
+#include "film/metrics.h"
 #include "render/progressive_render.h"
 #include "render/renderer.h"
-#include "render/state_file.h"
-#include "render/tonemap.h"
+#include "film/state_file.h"
+#include "film/tonemap.h"
 #include "scene/scene_loader.h"
 
 #include <chrono>

@@ -6,7 +6,7 @@
 // are not hashed: keep them unchanged between the parts of one render.
 #include "app/options.h"
 #include "app/scene_setup.h"
-#include "render/image_io.h"
+#include "image/image_io.h"
 #include "scene/scene.h"
 
 #include <string>

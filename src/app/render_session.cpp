@@ -1,7 +1,7 @@
 #include "app/render_session.h"
 
 #include "gpu/vulkan_error.h"
-#include "render/state_file.h"
+#include "film/state_file.h"
 
 #include <cstdio>
 #include <sstream>

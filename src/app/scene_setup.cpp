@@ -1,9 +1,9 @@
 #include "app/scene_setup.h"
 
-#include "render/image_io.h"
+#include "image/image_io.h"
 #include "render/renderer.h"
 #include "scene/scene_loader.h"
-#include "scene/texture_image.h"
+#include "image/texture_image.h"
 
 #include <cmath>
 #include <cstdio>
@@ -166,13 +166,6 @@ Job makeJob(const Scene& scene, const Camera& camera, const RenderOptions& o, bo
         job.output = fs::path("out") / name;
     }
     return job;
-}
-
-void prepareOutputDirectory(const fs::path& output) {
-    if (output.parent_path().empty()) return;
-    std::error_code ec;
-    fs::create_directories(output.parent_path(), ec);
-    if (ec) throw std::runtime_error(output.parent_path().string() + ": cannot create directory (" + ec.message() + ")");
 }
 
 } // namespace pt

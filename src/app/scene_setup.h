@@ -3,8 +3,9 @@
 // flattening it with the usual notes, and turning a camera plus options into an image job
 // (size, integrator settings, sample target, tone mapping, output file).
 #include "app/options.h"
-#include "render/flat_scene.h"
-#include "render/progressive_render.h"
+#include "flatten/flat_scene.h"
+#include "image/atomic_file.h" // prepareOutputDirectory
+#include "render/job.h"
 #include "scene/scene.h"
 
 #include <filesystem>
@@ -20,16 +21,6 @@ constexpr int kUncappedDepth = 256;
 std::string sceneStem(const std::string& scene);
 bool isCourseScene(const std::string& scene);
 
-// One image to render: which camera, at what size, with which settings, to which file.
-struct Job {
-    Camera camera;
-    int width = 0, height = 0;
-    IntegratorSettings settings;
-    ProgressiveTarget target;
-    std::filesystem::path output; // .exr; the PNG goes beside it
-    TonemapSettings tonemap;
-};
-
 // Loads the scene (none: the built-in Cornell box), applies --env / --env-colour and their
 // scale and rotation, and warns once about anything rendered approximately.
 Scene loadSceneWithOptions(const RenderOptions& o);
@@ -40,6 +31,5 @@ FlatScene flattenWithNotes(const Scene& scene);
 // its first camera by default, a course scene every camera (one image each, as the course does).
 std::vector<Camera> chooseCameras(const Scene& scene, const RenderOptions& o, bool course);
 Job makeJob(const Scene& scene, const Camera& camera, const RenderOptions& o, bool severalImages, bool course);
-void prepareOutputDirectory(const std::filesystem::path& output);
 
 } // namespace pt

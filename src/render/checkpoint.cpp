@@ -1,6 +1,6 @@
 #include "render/checkpoint.h"
 
-#include "render/state_file.h"
+#include "film/state_file.h"
 
 #include <cstdio>
 #include <sstream>

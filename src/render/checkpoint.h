@@ -1,11 +1,11 @@
 #pragma once
 // Saving a long render's progress: every `interval` seconds of rendering the renderer's exact
 // state is snapshotted and, when a checkpoint file is given, written as a state EXR
-// (render/state_file.h) by write-then-rename, so a killed, interrupted or failed render resumes
+// (film/state_file.h) by write-then-rename, so a killed, interrupted or failed render resumes
 // bit-identically (pt render --resume). The in-memory snapshot outlives the device: after a
 // device loss the device's memory cannot be trusted, the snapshot can.
-#include "render/accumulation_state.h"
-#include "render/image_io.h"
+#include "film/accumulation_state.h"
+#include "image/image_io.h"
 #include "render/renderer.h"
 
 #include <filesystem>

@@ -2,7 +2,7 @@
 // A flattened scene in device memory, plus the GpuSceneParams block that points at it.
 // Shared by the renderer and the GLSL test kernels.
 #include "gpu/gpu_buffer.h"
-#include "render/flat_scene.h"
+#include "flatten/flat_scene.h"
 #include "shared/layout.h"
 
 namespace pt {

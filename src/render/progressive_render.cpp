@@ -1,6 +1,6 @@
 #include "render/progressive_render.h"
 
-#include "render/metrics.h"
+#include "film/metrics.h"
 #include "render/progress.h"
 
 #include <algorithm>

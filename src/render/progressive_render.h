@@ -1,7 +1,7 @@
 #pragma once
 // The progressive loop: passes of samples until a sample count or a time budget is reached,
 // with progress, and relMSE against a reference after every pass when one is given.
-#include "render/image.h"
+#include "image/image.h"
 #include "render/renderer.h"
 
 #include <cstdint>

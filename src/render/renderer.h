@@ -5,11 +5,11 @@
 #include "gpu/gpu_buffer.h"
 #include "render/gpu_scene.h"
 #include "gpu/vulkan_context.h"
-#include "render/accumulation_state.h"
-#include "render/feature_set.h"
-#include "render/flat_scene.h"
-#include "render/image.h"
-#include "render/integrator_settings.h"
+#include "film/accumulation_state.h"
+#include "flatten/feature_set.h"
+#include "flatten/flat_scene.h"
+#include "image/image.h"
+#include "flatten/integrator_settings.h"
 #include "scene/scene.h"
 
 #include <cstdint>

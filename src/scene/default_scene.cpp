@@ -1,6 +1,6 @@
 #include "scene/default_scene.h"
 
-#include "scene/gltf_loader.h"
+#include "scene/gltf/gltf_loader.h"
 
 namespace pt {
 

@@ -1,7 +1,8 @@
 #pragma once
 // The renderer's scene model: what every loader (glTF, course XML) produces and everything
 // downstream (BVH, light table, GPU upload) consumes. World space, no hierarchy left.
-#include "render/image.h"
+#include "image/image.h"
+#include "image/texture_image.h"
 
 #include <glm/glm.hpp>
 
@@ -74,14 +75,6 @@ struct Material {
     float opacity = 1.0f; // baseColor alpha factor
 
     bool emissive() const { return emission.x > 0 || emission.y > 0 || emission.z > 0 || (unlit && baseColorTexture); }
-};
-
-// An image a texture reads: 8-bit RGBA (packed, as in the file) or float RGBA.
-struct TextureImage {
-    int width = 0, height = 0;
-    std::vector<uint32_t> rgba8;   // row 0 at the top; R in the low byte
-    std::vector<glm::vec4> rgbaF;  // used instead when the file is HDR
-    std::string source;            // file name, for messages
 };
 
 enum class TextureWrap { Repeat, Clamp, Mirror };

@@ -1,8 +1,8 @@
 #include "scene/scene_loader.h"
 
-#include "scene/ceng795_loader.h"
+#include "scene/ceng795/loader.h"
 #include "scene/default_scene.h"
-#include "scene/gltf_loader.h"
+#include "scene/gltf/gltf_loader.h"
 #include "scene/scene_error.h"
 
 #include <algorithm>

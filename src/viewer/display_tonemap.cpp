@@ -1,6 +1,6 @@
 #include "viewer/display_tonemap.h"
 
-#include "render/tonemap.h"
+#include "film/tonemap.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,7 +1,7 @@
 #pragma once
 // Host side of the viewer's tone mapping: the operators it cycles through, the image
 // statistics the photographic operator needs on the GPU, and the PNG of what is shown.
-#include "render/image.h"
+#include "image/image.h"
 #include "scene/scene.h"
 
 #include <filesystem>
@@ -12,7 +12,7 @@ enum class DisplayOperator { Srgb, Photographic, Aces };
 const char* operatorName(DisplayOperator op);
 
 // The photographic operator's global terms for `mean` at `exposureStops`, computed as
-// src/render/tonemap.cpp does: key / L_avg (log-average of the exposed luminance over finite
+// src/film/tonemap.cpp does: key / L_avg (log-average of the exposed luminance over finite
 // pixels) and 1 / L_white^2 from the burn-out percentile (0 without burn-out).
 struct PhotographicTerms {
     float toL = 1.0f;

@@ -1,7 +1,7 @@
 #include "viewer/viewer.h"
 
 #include "gpu/vulkan_error.h"
-#include "render/feature_set.h"
+#include "flatten/feature_set.h"
 #include "viewer/viewer_session.h"
 
 #include <algorithm>

@@ -1,9 +1,9 @@
 #pragma once
 // `pt view`'s interactive loop: progressive rendering into a window, camera controls, live
 // switches, saving, and the scripted mode used by the tests and bench/bench_viewer.sh.
-#include "app/scene_setup.h"
+#include "render/job.h"
 #include "gpu/vulkan_context.h"
-#include "render/flat_scene.h"
+#include "flatten/flat_scene.h"
 #include "viewer/script.h"
 #include "viewer/window.h"
 

@@ -1,7 +1,8 @@
 // `pt view`: keys, mouse, the script, saving and printing.
 #include "gpu/vulkan_error.h"
-#include "render/image_io.h"
-#include "render/tonemap.h"
+#include "image/atomic_file.h"
+#include "image/image_io.h"
+#include "film/tonemap.h"
 #include "viewer/viewer_session.h"
 
 #define GLFW_INCLUDE_NONE

@@ -2,7 +2,7 @@
 // partial image and exit 143/130; --resume continues to an image bit-identical to an
 // uninterrupted render; a lost device or exhausted device memory (PT_FAULT test hook) gives
 // one error line and a non-zero exit after saving the progress so far.
-#include "render/image_io.h"
+#include "image/image_io.h"
 #include "support/pt_process.h"
 
 #include <gtest/gtest.h>

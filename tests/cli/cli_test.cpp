@@ -4,8 +4,8 @@
 // Every test runs pt in its own temporary directory (its working directory too, so a default
 // output path could not litter the source tree), with stdout and stderr captured to files.
 #include "support/malformed_corpus.h"
-#include "render/image_io.h"
-#include "render/metrics.h"
+#include "image/image_io.h"
+#include "film/metrics.h"
 
 #include <gtest/gtest.h>
 

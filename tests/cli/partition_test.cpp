@@ -1,7 +1,7 @@
 // pt render --samples A:B and pt merge: the merge of a partition of 0:N is the single --spp N
 // render up to the last float rounding (measured here: at most one ulp, most values identical),
 // and merge refuses parts that cannot belong together.
-#include "render/image_io.h"
+#include "image/image_io.h"
 #include "support/pt_process.h"
 
 #include <gtest/gtest.h>

@@ -2,7 +2,7 @@
 // local worker CPUs): a 4-chunk render equals the single render, a re-run skips the parts
 // already there, and killing a Ray worker mid-chunk still gives the full image (Ray resubmits
 // the lost task). Skipped when the venv of scripts/setup.sh (PT_RAY_PYTHON) is missing.
-#include "render/image_io.h"
+#include "image/image_io.h"
 #include "support/pt_process.h"
 
 #include <gtest/gtest.h>

@@ -5,9 +5,9 @@
 // averaging. An independent reference: another renderer's output, not ours.
 #include "support/gpu_test_support.h"
 
-#include "render/tonemap.h"
+#include "film/tonemap.h"
 #include "scene/scene_loader.h"
-#include "scene/texture_image.h"
+#include "image/texture_image.h"
 
 #include <cmath>
 

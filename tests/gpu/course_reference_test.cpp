@@ -2,9 +2,9 @@
 // the HW6 Cornell boxes rendered the way the official images were (no light sampling; max depth
 // = MaxRecursionDepth + 1) must agree in total flux and in 64x64-pixel block means. (The course's
 // NEE and Russian-roulette images follow other conventions; see bench/RESULTS.md.)
-#include "render/image_io.h"
-#include "render/metrics.h"
-#include "scene/ceng795_loader.h"
+#include "image/image_io.h"
+#include "film/metrics.h"
+#include "scene/ceng795/loader.h"
 #include "support/gpu_test_support.h"
 
 #include <cmath>

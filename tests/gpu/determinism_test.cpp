@@ -1,6 +1,6 @@
 // Reproducibility: the image is a function of (scene, seed, sample count) only, not of how the
 // samples were split into dispatches or tiles.
-#include "scene/gltf_loader.h"
+#include "scene/gltf/gltf_loader.h"
 #include "support/gpu_test_support.h"
 
 namespace pt::test {

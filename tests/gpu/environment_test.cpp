@@ -1,7 +1,7 @@
 // The environment light: furnace cases (a diffuse and a glass sphere under a uniform sky), and
 // light sampling, BSDF sampling and MIS agreeing under a map whose bright texels sit on a pole
 // and on the seam.
-#include "render/metrics.h"
+#include "film/metrics.h"
 #include "support/gpu_test_support.h"
 
 #include <glm/gtc/matrix_transform.hpp>

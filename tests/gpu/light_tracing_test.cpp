@@ -3,10 +3,10 @@
 // Cornell box (triangle light, meshes with shading normals) is in switch_agreement_test.cpp;
 // this covers analytic spheres: an ellipsoidal sphere light, glass, a mirror, a gold conductor,
 // and a receiver whose BRDF is not reciprocal (the course's Original Phong).
-#include "render/feature_set.h"
-#include "render/flat_scene.h"
-#include "render/metrics.h"
-#include "scene/gltf_loader.h"
+#include "flatten/feature_set.h"
+#include "flatten/flat_scene.h"
+#include "film/metrics.h"
+#include "scene/gltf/gltf_loader.h"
 #include "scene/scene_loader.h"
 #include "support/gpu_test_support.h"
 

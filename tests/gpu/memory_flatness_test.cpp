@@ -3,7 +3,7 @@
 // after warm-up. (The first seed's leak grew to 29 GB over a long render.) The full curve of a
 // 10,000-spp render is bench/bench_memory.sh's, recorded in bench/RESULTS.md.
 #include "render/checkpoint.h"
-#include "scene/gltf_loader.h"
+#include "scene/gltf/gltf_loader.h"
 #include "support/gpu_test_support.h"
 
 #include <unistd.h>

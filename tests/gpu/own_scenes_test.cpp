@@ -9,8 +9,8 @@
 // makes NEE on and off disagree (or both disagree with the reference).
 #include "support/gpu_test_support.h"
 
-#include "render/image_io.h"
-#include "render/metrics.h"
+#include "image/image_io.h"
+#include "film/metrics.h"
 
 #include <cmath>
 

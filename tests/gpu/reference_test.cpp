@@ -1,9 +1,9 @@
 // Against an independent renderer: Mitsuba 3 references (mean and variance of the mean) of the
 // glTF Cornell boxes in tests/references/. Two checks: block means agree within their combined
 // noise (bias), and the relMSE is what the two images' variances predict (nothing extra).
-#include "render/image_io.h"
-#include "render/metrics.h"
-#include "scene/gltf_loader.h"
+#include "image/image_io.h"
+#include "film/metrics.h"
+#include "scene/gltf/gltf_loader.h"
 #include "support/gpu_test_support.h"
 
 #include <cmath>

@@ -2,8 +2,8 @@
 // NEE on/off, MIS on/off, Russian roulette on/off, cosine or uniform direction sampling, the
 // Sobol' sampler, and light tracing of caustics on/off.
 // Each is compared with the all-on render block by block, against their combined noise.
-#include "render/metrics.h"
-#include "scene/gltf_loader.h"
+#include "film/metrics.h"
+#include "scene/gltf/gltf_loader.h"
 #include "support/gpu_test_support.h"
 
 #include <string>

@@ -1,7 +1,7 @@
 // The accumulation state on the host: sample-range parsing, merging (exact double-float sums,
 // overlap refused, gaps found) and the state EXR round trip (bit for bit).
-#include "render/accumulation_state.h"
-#include "render/state_file.h"
+#include "film/accumulation_state.h"
+#include "film/state_file.h"
 #include "shared/layout.h"
 
 #include <gtest/gtest.h>

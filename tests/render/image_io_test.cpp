@@ -1,4 +1,5 @@
-#include "render/image_io.h"
+#include "image/image_io.h"
+#include "film/tonemap.h" // writePng
 
 #include <ImfChannelList.h>
 #include <ImfFrameBuffer.h>

@@ -1,4 +1,4 @@
-#include "render/metrics.h"
+#include "film/metrics.h"
 
 #include <gtest/gtest.h>
 

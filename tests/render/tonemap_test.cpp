@@ -1,4 +1,4 @@
-#include "render/tonemap.h"
+#include "film/tonemap.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>

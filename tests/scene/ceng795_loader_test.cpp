@@ -1,8 +1,8 @@
 // The CENG795 course XML loader: one test per element family and per quirk of the format
 // (/work/shared/ceng795/FORMAT.md), hostile input, and three official course scenes copied into
 // tests/data/ceng795/ (provenance in its README.md).
-#include "render/image_io.h"
-#include "scene/ceng795_loader.h"
+#include "image/image_io.h"
+#include "scene/ceng795/loader.h"
 #include "scene/scene_error.h"
 
 #include <gtest/gtest.h>

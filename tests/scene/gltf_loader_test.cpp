@@ -2,7 +2,7 @@
 // hierarchies) and on the malformed corpus (tests/data/malformed_gltf/README.md).
 #include "support/malformed_corpus.h"
 #include "scene/default_scene.h"
-#include "scene/gltf_loader.h"
+#include "scene/gltf/gltf_loader.h"
 #include "scene/scene_error.h"
 #include "scene/scene_loader.h"
 

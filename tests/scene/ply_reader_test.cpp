@@ -1,7 +1,7 @@
 // The PLY reader on real sample files (tests/data/ply/README.md), on synthesized files in all three
 // formats, and on hostile input: every malformed file must give one SceneError line that starts
 // with the file name, never a crash, a hang or a huge allocation.
-#include "scene/ply_reader.h"
+#include "scene/ceng795/ply_reader.h"
 #include "scene/scene_error.h"
 
 #include <gtest/gtest.h>

@@ -1,6 +1,6 @@
-// Image decoding for textures and environment maps (src/scene/texture_image.cpp): formats,
+// Image decoding for textures and environment maps (src/image/texture_image.cpp): formats,
 // the packing the kernel expects, and hostile headers.
-#include "scene/texture_image.h"
+#include "image/texture_image.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -117,7 +117,7 @@ pt::TextureImage decodeString(const std::string& bytes, const std::string& sourc
 
 } // namespace
 
-// The checks run before stb_image (src/scene/stb_input_checks.cpp) walk JPEG markers and PNG
+// The checks run before stb_image (src/image/stb_input_checks.cpp) walk JPEG markers and PNG
 // chunks; they must pass every well-formed file: baseline and progressive JPEG (Huffman tables
 // between scans), PNG with several chunks.
 TEST(TextureImage, WellFormedJpegAndPngPassTheInputChecks) {

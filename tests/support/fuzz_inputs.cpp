@@ -1,10 +1,10 @@
 #include "support/fuzz_inputs.h"
 
-#include "scene/ceng795_loader.h"
-#include "scene/gltf_loader.h"
-#include "scene/ply_reader.h"
+#include "scene/ceng795/loader.h"
+#include "scene/gltf/gltf_loader.h"
+#include "scene/ceng795/ply_reader.h"
 #include "scene/scene_error.h"
-#include "scene/texture_image.h"
+#include "image/texture_image.h"
 #include "support/load_contract.h"
 
 #include <cmath>

@@ -2,7 +2,7 @@
 
 #include "gpu/compute_pipeline.h"
 #include "pt_test_kernels_spv.h"
-#include "render/feature_set.h"
+#include "flatten/feature_set.h"
 
 #include <algorithm>
 #include <cmath>

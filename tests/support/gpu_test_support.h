@@ -3,9 +3,9 @@
 // the validation layer on, the GLSL test kernel runner, small procedural scenes, and a
 // one-call render.
 #include "gpu/vulkan_context.h"
-#include "render/flat_scene.h"
+#include "flatten/flat_scene.h"
 #include "render/gpu_scene.h"
-#include "render/integrator_settings.h"
+#include "flatten/integrator_settings.h"
 #include "render/renderer.h"
 #include "scene/scene.h"
 

@@ -3,8 +3,8 @@
 // swapchain's recreation on resize, all with the validation layer on; the image of the
 // untouched default camera is compared with `pt render`; without a display pt view must fail
 // with one line. The Xvfb tests skip only when xvfb-run is not installed (.ci/run installs it).
-#include "render/image_io.h"
-#include "render/metrics.h"
+#include "image/image_io.h"
+#include "film/metrics.h"
 
 #include <gtest/gtest.h>
 

@@ -1,0 +1,53 @@
+#pragma once
+// The scene flattened into the arrays the kernel reads: BVH-ordered triangles with their
+// shading data, BVH nodes, materials and the light table. Built once per scene on the CPU.
+#include "accel/bvh.h"
+#include "lights/light_table.h"
+#include "scene/scene.h"
+#include "shared/layout.h"
+
+#include <vector>
+
+namespace pt {
+
+// The environment as the kernel samples it (shaders/lights/environment_light.glsl).
+struct FlatEnvironment {
+    uint32_t width = 0, height = 0; // 0: none
+    std::vector<glm::vec4> texels;  // radiance with the scale applied, row 0 at the top
+    std::vector<float> marginal;    // height + 1: CDF over rows
+    std::vector<float> conditional; // height x (width + 1): CDF over columns, per row
+    float rotationCos = 1.0f, rotationSin = 0.0f;
+    double averageRadiance = 0;     // luminance averaged over the sphere (for its power)
+};
+
+struct FlatScene {
+    std::vector<gpu::GpuTriangle> triangles;
+    std::vector<gpu::GpuTriangleShading> shading;
+    std::vector<gpu::GpuTriangleTangents> tangents; // per triangle when any mesh has tangents, else empty
+    std::vector<gpu::GpuBvhNode> nodes;
+    std::vector<gpu::GpuSphere> spheres;         // BVH-ordered
+    std::vector<gpu::GpuBvhNode> sphereNodes;    // a second BVH, over the spheres
+    std::vector<gpu::GpuMaterial> materials;
+    std::vector<gpu::GpuTexture> textures;
+    std::vector<uint32_t> texels; // every image texture's texels, packed (see GpuTexture)
+    uint32_t backgroundTexture = NO_TEXTURE;
+    glm::vec3 ambientLight{0.0f}; // classic integrator
+    std::vector<glm::vec4> motions; // motion blur: xyz = translation over the shutter interval
+    FlatEnvironment environment;
+    LightTable lights;
+    size_t degenerateTriangles = 0; // zero-area or non-finite triangles dropped
+    size_t degenerateSpheres = 0;   // singular or non-finite sphere transforms dropped
+    double bvhSeconds = 0;
+    double sahCost = 0;
+    int bvhDepth = 0;
+};
+
+FlatScene flattenScene(const Scene& scene, const BvhBuildOptions& bvhOptions = {});
+
+// The scene's textures and their images as the kernel reads them (src/flatten/flat_textures.cpp).
+void flattenTextures(const Scene& scene, FlatScene& flat);
+
+// Deepest BVH the kernel's traversal stack (shaders/geometry/traverse.glsl) can hold.
+constexpr int kMaxTraversalDepth = 64;
+
+} // namespace pt
