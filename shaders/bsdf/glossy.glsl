@@ -15,7 +15,7 @@
 #include "common/sampling.glsl"
 #include "bsdf/bsdf_sample.glsl"
 #include "bsdf/fresnel.glsl"
-#include "integrator/features.glsl"
+#include "shared/features.glsl"
 
 bool glossyIsPhong(GpuMaterial m) { return m.glossyModel == GLOSSY_ORIGINAL_PHONG || m.glossyModel == GLOSSY_MODIFIED_PHONG; }
 

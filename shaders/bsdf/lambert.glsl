@@ -3,7 +3,7 @@
 #define PT_BSDF_LAMBERT_GLSL
 #include "common/sampling.glsl"
 #include "bsdf/bsdf_sample.glsl"
-#include "integrator/features.glsl"
+#include "shared/features.glsl"
 
 // f * cos(theta_i) for local directions.
 vec3 lambertEval(vec3 albedo, vec3 woLocal, vec3 wiLocal) {

@@ -11,7 +11,7 @@
 #include "bsdf/rough_conductor.glsl"
 #include "bsdf/rough_dielectric.glsl"
 #include "bsdf/gltf_pbr.glsl"
-#include "integrator/features.glsl"
+#include "shared/features.glsl"
 
 // GGX-rough conductor or dielectric (alpha 0 keeps the smooth delta models).
 bool isRough(GpuMaterial m) { return HAS_MICROFACET && m.alpha > 0.0; }

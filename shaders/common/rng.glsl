@@ -4,11 +4,11 @@
 #ifndef PT_COMMON_RNG_GLSL
 #define PT_COMMON_RNG_GLSL
 #include "shared/layout.h"
+#include "shared/features.glsl"
 #include "common/sobol.glsl"
 
-// Which points fill the dimensions (SPEC_SAMPLER, `--sampler`): independent hashes, or
+// Which points fill the dimensions (SAMPLER, `--sampler`): independent hashes, or
 // Owen-scrambled Sobol' (common/sobol.glsl) addressed by the same (pixel, sample, dimension).
-layout(constant_id = SPEC_SAMPLER) const uint SAMPLER = SAMPLER_INDEPENDENT;
 
 uvec4 pcg4d(uvec4 v) {
     v = v * 1664525u + 1013904223u;
@@ -35,8 +35,8 @@ Rng rngCreate(uvec2 pixel, uint sampleIndex, uint seed) {
 }
 
 // Tests only: pin every random number to an end of its range (0 or 1 - 2^-24), so that the
-// hard-case tests can show no sampling routine divides by zero or takes a NaN there.
-layout(constant_id = SPEC_FORCED_RANDOM) const uint FORCED_RANDOM = FORCED_RANDOM_OFF;
+// hard-case tests can show no sampling routine divides by zero or takes a NaN there
+// (FORCED_RANDOM, shared/features.h).
 
 // A float in [0, 1 - 2^-24]: the top 24 bits, so 1.0 is never returned.
 float uintToUnitFloat(uint x) {

@@ -4,7 +4,7 @@
 #include "common/buffers.glsl"
 #include "geometry/traverse.glsl"
 #include "geometry/motion.glsl"
-#include "integrator/features.glsl"
+#include "shared/features.glsl"
 
 struct SurfaceInteraction {
     vec3 p;          // hit point from barycentrics (more accurate than origin + t * direction)

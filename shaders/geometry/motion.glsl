@@ -4,7 +4,7 @@
 #ifndef PT_GEOMETRY_MOTION_GLSL
 #define PT_GEOMETRY_MOTION_GLSL
 #include "common/buffers.glsl"
-#include "integrator/features.glsl"
+#include "shared/features.glsl"
 
 float pathTime = 0.0;
 

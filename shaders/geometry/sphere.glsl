@@ -6,7 +6,7 @@
 #define PT_GEOMETRY_SPHERE_GLSL
 #include "common/buffers.glsl"
 #include "common/math.glsl"
-#include "geometry/ray.glsl"
+#include "common/ray.glsl"
 
 vec3 transformPoint(vec4 rows[3], vec3 p) {
     return vec3(dot(rows[0].xyz, p) + rows[0].w, dot(rows[1].xyz, p) + rows[1].w, dot(rows[2].xyz, p) + rows[2].w);

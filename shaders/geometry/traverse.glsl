@@ -6,12 +6,13 @@
 #include "common/math.glsl"
 #include "geometry/triangle.glsl"
 #include "geometry/sphere.glsl"
-#include "integrator/features.glsl"
+#include "shared/features.glsl"
 #include "textures/alpha.glsl"
 #include "geometry/motion.glsl"
 
-// Depth of the traversal stack. The builder caps tree depth below this (src/accel/bvh.cpp).
-const int TRAVERSAL_STACK_SIZE = 64;
+// Depth of the traversal stack (shared/layout.h). The builder caps tree depth below this
+// (src/accel/bvh.cpp).
+const int TRAVERSAL_STACK_SIZE = MAX_TRAVERSAL_DEPTH;
 
 // Slab tests round in both directions; growing the far distance by 1 + 2 gamma(3) makes them
 // conservative (Ize, "Robust BVH Ray Traversal", JCGT 2013), so a triangle lying on a box face

@@ -5,7 +5,7 @@
 // it only one of two neighbours reports such a hit, without it both do, and neither leaves a gap.
 #ifndef PT_GEOMETRY_TRIANGLE_GLSL
 #define PT_GEOMETRY_TRIANGLE_GLSL
-#include "geometry/ray.glsl"
+#include "common/ray.glsl"
 
 // Per-ray constants of the shear transform, computed once per traversal.
 struct WatertightRay {

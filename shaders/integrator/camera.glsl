@@ -2,7 +2,7 @@
 #define PT_INTEGRATOR_CAMERA_GLSL
 #include "common/buffers.glsl"
 #include "common/sampling.glsl"
-#include "geometry/ray.glsl"
+#include "common/ray.glsl"
 
 // Camera ray through image position (x, y) in pixels, y down from the top row. The image
 // plane window (l, r, b, t) at unit distance allows off-centre frusta (the course's NearPlane);

@@ -11,7 +11,7 @@
 // exactly one of the two (a partition, so no MIS weights are needed).
 #ifndef PT_INTEGRATOR_CAUSTIC_PARTITION_GLSL
 #define PT_INTEGRATOR_CAUSTIC_PARTITION_GLSL
-#include "integrator/features.glsl"
+#include "shared/features.glsl"
 #include "bsdf/surface_bsdf.glsl"
 #include "common/buffers.glsl"
 

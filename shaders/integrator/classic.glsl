@@ -17,11 +17,11 @@
 #include "bsdf/surface_bsdf.glsl"
 #include "bsdf/conductor.glsl"
 #include "bsdf/dielectric.glsl"
-#include "integrator/features.glsl"
+#include "shared/features.glsl"
 #include "integrator/background.glsl"
 #include "integrator/ray_counts.glsl"
 #include "integrator/shadow_ray.glsl"
-#include "textures/material_textures.glsl"
+#include "material/material_textures.glsl"
 
 // Shading of one light's contribution, f cos(theta_i) in the path tracer's terms.
 vec3 classicShade(GpuMaterial m, vec3 wo, vec3 wi) {

@@ -1,4 +1,4 @@
-// The viewer's diagnostic images (SPEC_DEBUG_VIEW): what the camera ray finds, instead of
+// The viewer's diagnostic images (DEBUG_VIEW): what the camera ray finds, instead of
 // radiance (or, for the NaN mask, a mark on radiance samples that are not finite). They
 // accumulate like radiance, so edges are antialiased by the pixel jitter.
 #ifndef PT_INTEGRATOR_DEBUG_VIEW_GLSL
@@ -6,8 +6,8 @@
 #include "common/math.glsl"
 #include "geometry/interaction.glsl"
 #include "geometry/traverse.glsl"
-#include "integrator/features.glsl"
-#include "textures/material_textures.glsl"
+#include "shared/features.glsl"
+#include "material/material_textures.glsl"
 
 // BVH cost: node visits of the camera ray's closest-hit query (both trees), shown on a
 // blue-green-red ramp from 0 to this many visits (red saturates above it).

@@ -24,7 +24,7 @@
 #include "bsdf/conductor.glsl"
 #include "bsdf/dielectric.glsl"
 #include "textures/texture.glsl"
-#include "textures/material_textures.glsl"
+#include "material/material_textures.glsl"
 #include "integrator/caustic_partition.glsl"
 #include "integrator/shadow_ray.glsl"
 #include "integrator/ray_counts.glsl"

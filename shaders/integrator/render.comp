@@ -7,7 +7,7 @@
 #extension GL_EXT_buffer_reference : require
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
 #include "shared/layout.h"
-#include "integrator/features.glsl"
+#include "shared/features.glsl"
 #include "integrator/camera.glsl"
 #include "integrator/path.glsl"
 #include "integrator/debug_view.glsl"

@@ -2,7 +2,7 @@
 // BSDF-sampled ray hits an emitter.
 #ifndef PT_LIGHTS_LIGHT_SAMPLING_GLSL
 #define PT_LIGHTS_LIGHT_SAMPLING_GLSL
-#include "integrator/features.glsl"
+#include "shared/features.glsl"
 #include "lights/light_common.glsl"
 #include "lights/triangle_light.glsl"
 #include "lights/sphere_light.glsl"

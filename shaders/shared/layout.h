@@ -78,46 +78,21 @@ using uint64_t = std::uint64_t;
 #define TRIANGLE_MOTION_SHIFT 8u
 #define NO_MOTION 0xffffffffu
 
+// ---- BVH traversal ----
+// Deepest BVH the kernel's traversal stack can hold (shaders/geometry/traverse.glsl); the
+// builder keeps trees shallower and flattenScene refuses deeper ones (src/flatten/flat_scene.cpp).
+#define MAX_TRAVERSAL_DEPTH 64
+
 #define NO_LIGHT 0xffffffffu
 // Hit::primitive: triangles are plain indices, spheres carry this bit.
 #define SPHERE_BIT 0x80000000u
 
-// ---- Specialization constants: what the scene (and the switches) need ----
+// ---- Specialization constants ----
+// The workgroup size; every other constant is a kernel feature, one row of shared/features.h.
 #define SPEC_LOCAL_SIZE_X 0
 #define SPEC_LOCAL_SIZE_Y 1
-#define SPEC_HAS_DIFFUSE 2
-#define SPEC_HAS_MIRROR 3
-#define SPEC_HAS_DIELECTRIC 4
-#define SPEC_HAS_ABSORPTION 5
-#define SPEC_HAS_SHADING_NORMALS 6
-#define SPEC_HAS_EMITTERS 7
-#define SPEC_USE_NEE 8
-#define SPEC_USE_MIS 9
-#define SPEC_USE_RR 10
-#define SPEC_COSINE_SAMPLING 11
-#define SPEC_HAS_SPHERES 12
-#define SPEC_HAS_TRIANGLES 13
-#define SPEC_HAS_CONDUCTOR 14
-#define SPEC_HAS_PUNCTUAL_LIGHTS 15
-#define SPEC_HAS_GLOSSY 16
-#define SPEC_HAS_ENVIRONMENT 17
-#define SPEC_HAS_TEXTURES 18      // image textures on any material slot
-#define SPEC_HAS_NORMAL_MAPS 19   // normal or bump maps
-#define SPEC_HAS_ALPHA 20         // alpha-tested triangles
-#define SPEC_HAS_PROCEDURAL 21    // checkerboard or Perlin textures
-#define SPEC_HAS_UNLIT 22         // course replace_all surfaces
-#define SPEC_HAS_MICROFACET 23    // GGX-rough conductors or dielectrics
-#define SPEC_HAS_PBR 24           // glTF metallic-roughness materials
-#define SPEC_DEBUG_VIEW 25        // DEBUG_VIEW_*: the viewer's diagnostic images instead of radiance
-#define SPEC_CLASSIC 26           // the CENG795 course's classic (Whitted / direct lighting) ray tracer
-#define SPEC_HAS_MOTION 27        // moving objects (motion blur)
-#define SPEC_COUNT_RAYS 28        // count traced rays per pixel (pt bench); GpuRenderPush::rayCounts
-#define SPEC_SAMPLER 29           // SAMPLER_*: how sample dimensions are filled
-#define SPEC_FORCED_RANDOM 30     // FORCED_RANDOM_*: tests only, every random number pinned to an end of [0, 1)
-#define SPEC_LIGHT_TRACING 31     // caustic paths by light tracing, splatted (integrator/light_tracer.glsl)
-#define SPEC_COUNT 32
 
-// ---- Forced random numbers (SPEC_FORCED_RANDOM; tests/gpu/hard_cases_test.cpp) ----
+// ---- Forced random numbers (FORCED_RANDOM in shared/features.h) ----
 #define FORCED_RANDOM_OFF 0u
 #define FORCED_RANDOM_ZERO 1u     // every sample dimension is 0
 #define FORCED_RANDOM_ONE 2u      // every sample dimension is 1 - 2^-24, the largest value returned
@@ -133,7 +108,7 @@ using uint64_t = std::uint64_t;
 #define ACCUM_SUM_SQUARES 2u   // (sum of squares rgb hi, 0)
 #define ACCUM_SUM_SQUARES_LO 3u // (sum of squares rgb lo, 0)
 
-// ---- Light-tracing splats (SPEC_LIGHT_TRACING) ----
+// ---- Light-tracing splats (LIGHT_TRACING in shared/features.h) ----
 // Light paths land on any pixel, so their contributions are added with atomics. Integer
 // atomics keep the image bit-identical however the work is split (float atomics would make
 // it depend on the order of arrival): each pixel holds SPLAT_WORDS_PER_PIXEL uint64 fixed-point
@@ -146,11 +121,11 @@ using uint64_t = std::uint64_t;
 #define SPLAT_SUM_SCALE 268435456.0   // 2^28: resolution 3.7e-9 per path
 #define SPLAT_SQUARE_SCALE 16777216.0 // 2^24
 
-// ---- Samplers (SPEC_SAMPLER) ----
+// ---- Samplers (SAMPLER in shared/features.h) ----
 #define SAMPLER_INDEPENDENT 0u // a hash of (pixel, sample index, dimension, seed)
 #define SAMPLER_SOBOL 1u       // Owen-scrambled Sobol' points, shuffled per pixel
 
-// ---- Debug views (SPEC_DEBUG_VIEW) ----
+// ---- Debug views (DEBUG_VIEW in shared/features.h) ----
 #define DEBUG_VIEW_NONE 0u
 #define DEBUG_VIEW_ALBEDO 1u
 #define DEBUG_VIEW_NORMAL 2u
@@ -228,7 +203,7 @@ struct GpuMaterial {
     float alphaCutoff;     // MATERIAL_FLAG_ALPHA_MASK threshold
     float opacity;         // baseColor alpha factor
     uint pad0;
-    // The course's classic shading (SPEC_CLASSIC): ka * Ia + sum over lights of
+    // The course's classic shading (CLASSIC): ka * Ia + sum over lights of
     // (kd cos(theta) + ks cos^p(alpha_h)) E, added on every surface type, mirrors included.
     vec3 ambient;          // ka
     float classicExponent; // Blinn-Phong p
@@ -362,7 +337,7 @@ struct GpuRenderPush {
     uint sampleStart; // global index of the first sample added to each pixel
     uint sampleCount;
     float sampleClamp; // > 0: clamp each sample's largest component to this (biased; off by default)
-    // With SPEC_COUNT_RAYS: device address of uvec4[pixels] per-pixel ray counts (continuation
+    // With COUNT_RAYS: device address of uvec4[pixels] per-pixel ray counts (continuation
     // rays, shadow rays, 0, 0), added to by the pixel's own invocation (no atomics). Camera
     // rays are one per sample and not counted.
     uint64_t rayCounts;

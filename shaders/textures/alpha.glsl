@@ -5,7 +5,7 @@
 #ifndef PT_TEXTURES_ALPHA_GLSL
 #define PT_TEXTURES_ALPHA_GLSL
 #include "common/buffers.glsl"
-#include "geometry/ray.glsl"
+#include "common/ray.glsl"
 #include "textures/texture.glsl"
 
 uint alphaHash(uint x) {

@@ -2,7 +2,7 @@
 #ifndef PT_TEXTURES_TEXTURE_GLSL
 #define PT_TEXTURES_TEXTURE_GLSL
 #include "common/buffers.glsl"
-#include "integrator/features.glsl"
+#include "shared/features.glsl"
 #include "textures/image_texture.glsl"
 #include "textures/perlin.glsl"
 

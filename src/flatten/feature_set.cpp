@@ -2,6 +2,7 @@
 
 #include "shared/layout.h"
 
+#include <initializer_list>
 #include <sstream>
 
 namespace pt {
@@ -17,153 +18,140 @@ std::string IntegratorSettings::describe() const {
     return s.str();
 }
 
-FeatureSet FeatureSet::all(const IntegratorSettings& settings) {
+namespace {
+
+// ---- The predicates the table's `decide` column uses ----
+
+bool usesMaterialType(const FlatScene& scene, uint32_t type) {
+    for (const auto& m : scene.materials)
+        if (m.type == type) return true;
+    return false;
+}
+
+bool usesMaterialFlag(const FlatScene& scene, uint32_t flag) {
+    for (const auto& m : scene.materials)
+        if ((m.flags & flag) != 0u) return true;
+    return false;
+}
+
+// Conductors and dielectrics with alpha > 0 are GGX-rough (shared/layout.h: MIN_ROUGH_ALPHA).
+bool usesRoughConductorOrDielectric(const FlatScene& scene) {
+    for (const auto& m : scene.materials)
+        if ((m.type == MATERIAL_CONDUCTOR || m.type == MATERIAL_DIELECTRIC) && m.alpha > 0.0f) return true;
+    return false;
+}
+
+bool usesEmission(const FlatScene& scene) {
+    for (const auto& m : scene.materials) {
+        if (m.emissiveTexture != NO_TEXTURE || (m.flags & MATERIAL_FLAG_UNLIT) != 0u) return true;
+        if (m.emission.x > 0 || m.emission.y > 0 || m.emission.z > 0) return true;
+    }
+    return false;
+}
+
+// Any material slot (or the course's background texture) reading an image texture
+// (image = true) or a procedural one (image = false).
+bool usesTextureKind(const FlatScene& scene, bool image) {
+    auto matches = [&](uint32_t slot) {
+        return slot != NO_TEXTURE && (scene.textures[slot].type == TEXTURE_IMAGE) == image;
+    };
+    for (const auto& m : scene.materials)
+        for (uint32_t slot : {m.baseColorTexture, m.specularTexture, m.metallicRoughnessTexture, m.normalTexture, m.emissiveTexture})
+            if (matches(slot)) return true;
+    return matches(scene.backgroundTexture);
+}
+
+bool usesNormalMaps(const FlatScene& scene) {
+    for (const auto& m : scene.materials)
+        if (m.normalTexture != NO_TEXTURE) return true;
+    return false;
+}
+
+bool usesTriangleFlag(const FlatScene& scene, uint32_t flag) {
+    for (const auto& t : scene.triangles)
+        if ((t.flags & flag) != 0u) return true;
+    return false;
+}
+
+bool hasLightOfType(const FlatScene& scene, std::initializer_list<uint32_t> types) {
+    for (const auto& l : scene.lights.lights)
+        for (uint32_t type : types)
+            if (l.type == type) return true;
+    return false;
+}
+
+bool hasPunctualLights(const FlatScene& scene) {
+    return hasLightOfType(scene, {LIGHT_POINT, LIGHT_DIRECTIONAL, LIGHT_SPOT, LIGHT_SQUARE});
+}
+
+bool neeUseful(const FlatScene& scene, const IntegratorSettings& s, const FeatureSet& f) {
+    const bool lights = !scene.lights.lights.empty();
+    if (f.classic) return lights;
+    return s.nee && lights && (f.diffuse || f.glossy || f.pbr || f.microfacet);
+}
+
+// Light tracing pays only where caustics can be seen directly: a specular surface, a receiver
+// and an area emitter. Left to the path tracer: absorbing interiors, cut-outs and moving
+// objects (the light path does not model them).
+bool lightTracingPays(const FlatScene& scene, const IntegratorSettings& s, const FeatureSet& f) {
+    return s.lightTracing && !f.classic && hasLightOfType(scene, {LIGHT_TRIANGLE, LIGHT_SPHERE}) &&
+           (f.mirror || f.dielectric || f.conductor) && (f.diffuse || f.glossy || f.microfacet) && !f.absorption &&
+           !f.alpha && !f.motion;
+}
+
+uint32_t samplerOf(const IntegratorSettings& s) {
+    return s.sampler == SamplerKind::Sobol ? SAMPLER_SOBOL : SAMPLER_INDEPENDENT;
+}
+
+constexpr FeatureInfo kFeatureTable[] = {
+#define PT_FEATURE_INFO(field, kind, NAME, id, unspecialised, all, decide, log, description) {#field, #NAME, id, description},
+    PT_FEATURES(PT_FEATURE_INFO)
+#undef PT_FEATURE_INFO
+};
+
+} // namespace
+
+std::span<const FeatureInfo> featureTable() { return kFeatureTable; }
+
+FeatureSet FeatureSet::all(const IntegratorSettings& s) {
     FeatureSet f;
-    f.nee = settings.nee;
-    f.mis = settings.nee && settings.mis;
-    f.rr = settings.rr;
-    f.cosineSampling = settings.sampling == DirectionSampling::Cosine;
-    f.classic = settings.classic;
-    f.sampler = settings.sampler == SamplerKind::Sobol ? SAMPLER_SOBOL : SAMPLER_INDEPENDENT;
-    f.lightTracing = false; // an estimator the scene decides (computeFeatures), not a compiled-in feature
+#define PT_FEATURE_ALL(field, kind, NAME, id, unspecialised, all, decide, log, description) f.field = all;
+    PT_FEATURES(PT_FEATURE_ALL)
+#undef PT_FEATURE_ALL
     return f;
 }
 
-FeatureSet computeFeatures(const FlatScene& scene, const IntegratorSettings& settings) {
+FeatureSet computeFeatures(const FlatScene& scene, const IntegratorSettings& s) {
     FeatureSet f;
-    f.diffuse = f.mirror = f.dielectric = f.conductor = f.glossy = f.absorption = f.shadingNormals = f.emitters = false;
-    f.textures = f.normalMaps = f.alpha = f.procedural = f.unlit = f.microfacet = f.pbr = false;
-    auto usesTexture = [&](uint32_t slot) {
-        if (slot == NO_TEXTURE) return;
-        const uint32_t type = scene.textures[slot].type;
-        f.textures |= type == TEXTURE_IMAGE;
-        f.procedural |= type != TEXTURE_IMAGE;
-    };
-    for (const auto& m : scene.materials) {
-        for (uint32_t slot : {m.baseColorTexture, m.specularTexture, m.metallicRoughnessTexture, m.normalTexture, m.emissiveTexture})
-            usesTexture(slot);
-        f.normalMaps |= m.normalTexture != NO_TEXTURE;
-        f.unlit |= (m.flags & MATERIAL_FLAG_UNLIT) != 0u;
-        f.pbr |= m.type == MATERIAL_PBR;
-        f.microfacet |= (m.type == MATERIAL_CONDUCTOR || m.type == MATERIAL_DIELECTRIC) && m.alpha > 0.0f;
-        f.emitters |= m.emissiveTexture != NO_TEXTURE || (m.flags & MATERIAL_FLAG_UNLIT) != 0u;
-        f.diffuse |= m.type == MATERIAL_DIFFUSE;
-        f.mirror |= m.type == MATERIAL_MIRROR;
-        f.dielectric |= m.type == MATERIAL_DIELECTRIC;
-        f.conductor |= m.type == MATERIAL_CONDUCTOR;
-        f.glossy |= m.type == MATERIAL_GLOSSY;
-        f.absorption |= (m.flags & MATERIAL_FLAG_ABSORBING) != 0u; // dielectrics and PBR volumes
-        f.emitters |= m.emission.x > 0 || m.emission.y > 0 || m.emission.z > 0;
-    }
-    usesTexture(scene.backgroundTexture);
-    for (const auto& t : scene.triangles) {
-        f.shadingNormals |= (t.flags & TRIANGLE_FLAG_SHADING_NORMALS) != 0u;
-        f.alpha |= (t.flags & TRIANGLE_FLAG_ALPHA_TESTED) != 0u;
-    }
-    f.triangles = !scene.triangles.empty();
-    f.spheres = !scene.spheres.empty();
-    f.punctualLights = false;
-    for (const auto& l : scene.lights.lights)
-        f.punctualLights |= l.type == LIGHT_POINT || l.type == LIGHT_DIRECTIONAL || l.type == LIGHT_SPOT || l.type == LIGHT_SQUARE;
-    f.environment = scene.environment.width > 0;
-    // Light sampling needs something to sample and a non-delta surface that can use it.
-    // (The environment is in the table too.)
-    f.nee = settings.nee && !scene.lights.lights.empty() && (f.diffuse || f.glossy || f.pbr || f.microfacet);
-    f.mis = f.nee && settings.mis;
-    f.rr = settings.rr;
-    f.cosineSampling = settings.sampling == DirectionSampling::Cosine;
-    // The classic ray tracer always samples lights (on every surface: its Blinn-Phong terms
-    // apply to mirrors and glass too), never continues diffuse paths, so no MIS or roulette.
-    f.motion = !scene.motions.empty();
-    f.classic = settings.classic;
-    f.sampler = settings.sampler == SamplerKind::Sobol ? SAMPLER_SOBOL : SAMPLER_INDEPENDENT;
-    if (f.classic) {
-        f.nee = !scene.lights.lights.empty();
-        f.mis = f.rr = false;
-    }
-    // Light tracing pays only where caustics can be seen directly: a specular surface, a
-    // receiver and an area emitter. Left to the path tracer: absorbing interiors, cut-outs
-    // and moving objects (the light path does not model them).
-    bool areaEmitters = false;
-    for (const auto& l : scene.lights.lights) areaEmitters |= l.type == LIGHT_TRIANGLE || l.type == LIGHT_SPHERE;
-    f.lightTracing = settings.lightTracing && !f.classic && areaEmitters && (f.mirror || f.dielectric || f.conductor) &&
-                     (f.diffuse || f.glossy || f.microfacet) && !f.absorption && !f.alpha && !f.motion;
+#define PT_FEATURE_DECIDE(field, kind, NAME, id, unspecialised, all, decide, log, description) f.field = decide;
+    PT_FEATURES(PT_FEATURE_DECIDE)
+#undef PT_FEATURE_DECIDE
     return f;
 }
 
 std::vector<SpecializationConstant> FeatureSet::constants(uint32_t localSizeX, uint32_t localSizeY) const {
-    return {
-        {SPEC_LOCAL_SIZE_X, localSizeX},
-        {SPEC_LOCAL_SIZE_Y, localSizeY},
-        {SPEC_HAS_DIFFUSE, diffuse},
-        {SPEC_HAS_MIRROR, mirror},
-        {SPEC_HAS_DIELECTRIC, dielectric},
-        {SPEC_HAS_ABSORPTION, absorption},
-        {SPEC_HAS_SHADING_NORMALS, shadingNormals},
-        {SPEC_HAS_EMITTERS, emitters},
-        {SPEC_USE_NEE, nee},
-        {SPEC_USE_MIS, mis},
-        {SPEC_USE_RR, rr},
-        {SPEC_COSINE_SAMPLING, cosineSampling},
-        {SPEC_HAS_SPHERES, spheres},
-        {SPEC_HAS_TRIANGLES, triangles},
-        {SPEC_HAS_CONDUCTOR, conductor},
-        {SPEC_HAS_PUNCTUAL_LIGHTS, punctualLights},
-        {SPEC_HAS_GLOSSY, glossy},
-        {SPEC_HAS_ENVIRONMENT, environment},
-        {SPEC_HAS_TEXTURES, textures},
-        {SPEC_HAS_NORMAL_MAPS, normalMaps},
-        {SPEC_HAS_ALPHA, alpha},
-        {SPEC_HAS_PROCEDURAL, procedural},
-        {SPEC_HAS_UNLIT, unlit},
-        {SPEC_HAS_MICROFACET, microfacet},
-        {SPEC_HAS_PBR, pbr},
-        {SPEC_DEBUG_VIEW, debugView},
-        {SPEC_CLASSIC, classic},
-        {SPEC_HAS_MOTION, motion},
-        {SPEC_COUNT_RAYS, countRays},
-        {SPEC_SAMPLER, sampler},
-        {SPEC_FORCED_RANDOM, forcedRandom},
-        {SPEC_LIGHT_TRACING, lightTracing},
-    };
+    std::vector<SpecializationConstant> c{{SPEC_LOCAL_SIZE_X, localSizeX}, {SPEC_LOCAL_SIZE_Y, localSizeY}};
+#define PT_FEATURE_CONSTANT(field, kind, NAME, id, unspecialised, all, decide, log, description) \
+    c.push_back({id, static_cast<uint32_t>(field)});
+    PT_FEATURES(PT_FEATURE_CONSTANT)
+#undef PT_FEATURE_CONSTANT
+    return c;
 }
 
 std::string FeatureSet::describe() const {
     std::string s;
-    auto add = [&](bool on, const char* name) {
-        if (!on) return;
+    auto add = [&](const char* word) {
+        if (word == nullptr) return;
         if (!s.empty()) s += ' ';
-        s += name;
+        s += word;
     };
-    add(classic, "classic");
-    add(triangles, "triangles");
-    add(spheres, "spheres");
-    add(diffuse, "diffuse");
-    add(mirror, "mirror");
-    add(dielectric, "dielectric");
-    add(conductor, "conductor");
-    add(glossy, "glossy");
-    add(pbr, "pbr");
-    add(microfacet, "microfacet");
-    add(absorption, "absorption");
-    add(shadingNormals, "shading-normals");
-    add(emitters, "emitters");
-    add(punctualLights, "punctual-lights");
-    add(environment, "environment");
-    add(textures, "textures");
-    add(procedural, "procedural-textures");
-    add(normalMaps, "normal-maps");
-    add(alpha, "alpha");
-    add(unlit, "unlit");
-    add(motion, "motion-blur");
-    add(nee, "nee");
-    add(mis, "mis");
-    add(rr, "rr");
-    add(lightTracing, "light-tracing");
-    s += cosineSampling ? " cosine-sampling" : " uniform-sampling";
-    if (sampler == SAMPLER_SOBOL) s += " sobol";
-    if (countRays) s += " ray-counts";
-    if (forcedRandom != FORCED_RANDOM_OFF) s += forcedRandom == FORCED_RANDOM_ZERO ? " forced-random-0" : " forced-random-1";
+#define PT_FEATURE_LOG(field, kind, NAME, id, unspecialised, all, decide, log, description) \
+    {                                                                                      \
+        const auto v = field;                                                              \
+        add(log);                                                                          \
+    }
+    PT_FEATURES(PT_FEATURE_LOG)
+#undef PT_FEATURE_LOG
     return s;
 }
 

@@ -1,52 +1,44 @@
 #pragma once
 // Which parts of the megakernel a scene and its switches need. Everything else is removed by
-// specialization constants when the pipeline is created (shaders/integrator/features.glsl).
-#include "gpu/compute_pipeline.h"
+// specialization constants when the pipeline is created. The features are the rows of
+// shaders/shared/features.h; this struct, all(), constants() and describe() are derived from it.
 #include "flatten/flat_scene.h"
 #include "flatten/integrator_settings.h"
+#include "gpu/compute_pipeline.h"
+#include "shared/features.h"
 
+#include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
 namespace pt {
 
-struct FeatureSet {
-    bool diffuse = true;
-    bool mirror = true;
-    bool dielectric = true;
-    bool conductor = true;
-    bool glossy = true;
-    bool triangles = true;
-    bool spheres = true;
-    bool absorption = true;
-    bool shadingNormals = true;
-    bool emitters = true;
-    bool punctualLights = true;
-    bool environment = true;
-    bool textures = true;      // image textures
-    bool normalMaps = true;    // normal or bump maps
-    bool alpha = true;         // alpha-tested triangles
-    bool procedural = true;    // checkerboard / Perlin textures
-    bool unlit = true;         // course replace_all
-    bool microfacet = true;    // GGX-rough conductors / dielectrics
-    bool pbr = true;           // glTF metallic-roughness
-    bool nee = true;
-    bool mis = true;
-    bool rr = true;
-    bool cosineSampling = true;
-    uint32_t debugView = 0; // DEBUG_VIEW_*
-    bool classic = false;   // the course's classic ray tracer
-    bool motion = true;     // moving objects (motion blur)
-    bool countRays = false; // per-pixel ray counts for pt bench (Renderer::enableRayCounts)
-    uint32_t sampler = 0;   // SAMPLER_*
-    uint32_t forcedRandom = 0; // FORCED_RANDOM_*: tests only (random numbers pinned to 0 or 1 - 2^-24)
-    bool lightTracing = false; // caustic paths by light tracing, splatted (needs the splat sums)
+#define PT_FEATURE_CPP_TYPE_flag bool
+#define PT_FEATURE_CPP_TYPE_module bool
+#define PT_FEATURE_CPP_TYPE_choice uint32_t
 
-    // Every feature on: the unspecialised kernel, for comparison and for tests.
+struct FeatureSet {
+#define PT_FEATURE_MEMBER(field, kind, NAME, id, unspecialised, all, decide, log, description) \
+    PT_FEATURE_CPP_TYPE_##kind field = unspecialised;
+    PT_FEATURES(PT_FEATURE_MEMBER)
+#undef PT_FEATURE_MEMBER
+
+    // Every scene feature on, the switches as given: the unspecialised kernel, for comparison
+    // (--all-features) and for tests.
     static FeatureSet all(const IntegratorSettings& settings);
     std::vector<SpecializationConstant> constants(uint32_t localSizeX, uint32_t localSizeY) const;
-    std::string describe() const; // e.g. "diffuse mirror nee mis rr cosine"
+    std::string describe() const; // e.g. "triangles diffuse emitters nee mis rr cosine-sampling"
 };
+
+// One row of the table, for listings and checks.
+struct FeatureInfo {
+    const char* field;     // FeatureSet's member
+    const char* constant;  // the GLSL constant
+    uint32_t id;           // its constant_id
+    const char* description;
+};
+std::span<const FeatureInfo> featureTable();
 
 FeatureSet computeFeatures(const FlatScene& scene, const IntegratorSettings& settings);
 

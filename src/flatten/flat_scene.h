@@ -48,6 +48,6 @@ FlatScene flattenScene(const Scene& scene, const BvhBuildOptions& bvhOptions = {
 void flattenTextures(const Scene& scene, FlatScene& flat);
 
 // Deepest BVH the kernel's traversal stack (shaders/geometry/traverse.glsl) can hold.
-constexpr int kMaxTraversalDepth = 64;
+constexpr int kMaxTraversalDepth = MAX_TRAVERSAL_DEPTH;
 
 } // namespace pt

@@ -147,7 +147,7 @@ void makeRough(Material& m, float courseRoughness) {
     }
 }
 
-// The terms the course's classic ray tracer adds on every surface (SPEC_CLASSIC), kept as the
+// The terms the course's classic ray tracer adds on every surface (the CLASSIC kernel feature), kept as the
 // file gives them: ka, and, unless a BRDF replaces it, Blinn-Phong kd cos + ks cos^p(alpha_h)
 // (kd without 1/pi, and on mirrors, conductors and dielectrics too).
 void readClassicShading(const Context& ctx, pugi::xml_node e, const ColourReader& colour,

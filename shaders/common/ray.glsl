@@ -1,5 +1,5 @@
-#ifndef PT_GEOMETRY_RAY_GLSL
-#define PT_GEOMETRY_RAY_GLSL
+#ifndef PT_COMMON_RAY_GLSL
+#define PT_COMMON_RAY_GLSL
 
 struct Ray {
     vec3 origin;

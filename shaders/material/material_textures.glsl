@@ -1,8 +1,8 @@
 // A material's textures applied at a hit: colour slots scale (or, for the course's blend_kd,
 // average with) the material's factors, and normal or bump maps tilt the shading normal. The
 // BSDFs then see a plain GpuMaterial and know nothing about textures.
-#ifndef PT_TEXTURES_MATERIAL_TEXTURES_GLSL
-#define PT_TEXTURES_MATERIAL_TEXTURES_GLSL
+#ifndef PT_MATERIAL_MATERIAL_TEXTURES_GLSL
+#define PT_MATERIAL_MATERIAL_TEXTURES_GLSL
 #include "geometry/interaction.glsl"
 #include "textures/texture.glsl"
 
