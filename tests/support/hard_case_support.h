@@ -1,14 +1,15 @@
 #pragma once
-// Helpers for the hard-case suite (tests/gpu/hard_cases_*test.cpp): the scene files of
-// scenes/hard/, renders with the kernel's random numbers pinned to the ends of their range,
-// image statistics with their Monte Carlo error, and scenes moved to another scale or place.
+// Helpers for the hard-case suite (hard_cases_*test.cpp in tests/shaders/geometry/ and
+// tests/shaders/integrator/): the scene files of scenes/hard/, renders with the kernel's random
+// numbers pinned to the ends of their range, image statistics with their Monte Carlo error, and
+// scenes moved to another scale or place.
 #include "support/gpu_test_support.h"
 
 #include <functional>
 
 namespace pt::test {
 
-// The fixture of every hard-case test (tests/gpu/hard_cases_*test.cpp).
+// The fixture of every hard-case test, whichever folder it is in.
 class HardCases : public GpuTest {};
 
 // Every hard-case render runs three times: with the normal sampler, and with every random

@@ -171,7 +171,7 @@ TEST_F(OwnScenes, DISABLED_MakeReferences) {
     std::filesystem::create_directories(referencePath("x").parent_path());
     for (auto [name, scene] : {std::pair{std::string("textured"), texturedScene()}, std::pair{std::string("rough-glass"), roughGlassScene()}}) {
         const Renderer::Readback r = render(scene, true, 32768);
-        writeExr(referencePath(name), r.mean, {{"spp", "32768"}, {"made-by", "tests/gpu/own_scenes_test.cpp DISABLED_MakeReferences"}});
+        writeExr(referencePath(name), r.mean, {{"spp", "32768"}, {"made-by", "tests/shaders/integrator/own_scenes_test.cpp DISABLED_MakeReferences"}});
     }
 }
 
