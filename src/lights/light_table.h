@@ -1,7 +1,8 @@
 #pragma once
-// The light-selection table: every emitter (emissive triangles and spheres, point and
-// directional lights) in one list, chosen with probability proportional to its emitted power
-// through a CDF the kernel binary-searches.
+// The light-selection table: every emitter (emissive triangles and spheres, punctual lights, the
+// environment) in one list, chosen with probability proportional to its emitted power through a
+// CDF the kernel binary-searches. Each light type's entry and power: lights/light_entry.h.
+#include "lights/light_entry.h" // luminance, selectionWeight
 #include "scene/scene.h"
 #include "shared/layout.h"
 
@@ -25,12 +26,6 @@ struct LightTable {
 LightTable buildLightTable(std::span<gpu::GpuTriangle> triangles, std::span<gpu::GpuSphere> spheres,
     std::span<const PunctualLight> punctual, std::span<const Material> materials, float sceneRadius,
     double environmentRadiance = -1.0);
-
-// Luminance (Rec. 709) of a linear RGB colour.
-float luminance(const glm::vec3& c);
-// Weight of a colour in light selection and environment sampling: its luminance, with a floor so
-// that a colour outside the luminance weights (pure blue emission, say) still gets a share.
-double selectionWeight(const glm::vec3& c);
 
 // Triangles only.
 LightTable buildLightTable(std::span<gpu::GpuTriangle> triangles, std::span<const Material> materials);

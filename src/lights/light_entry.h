@@ -1,0 +1,43 @@
+#pragma once
+// One entry of the light-selection table: what the kernel samples (GpuLight) and the power that
+// light selection weighs it by. Each light type makes its entries in a file of its own, beside
+// the shader that samples it (as pbrt-v4's Light::Phi sits with each light's sampling):
+//   triangle_light.cpp    shaders/lights/triangle_light.glsl
+//   sphere_light.cpp      shaders/lights/sphere_light.glsl
+//   punctual_light.cpp    shaders/lights/punctual_light.glsl
+//   environment_light.cpp shaders/lights/environment_light.glsl
+#include "scene/scene.h"
+#include "shared/layout.h"
+
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <optional>
+
+namespace pt {
+
+inline constexpr double kLightPi = 3.14159265358979323846;
+
+struct LightEntry {
+    gpu::GpuLight light;
+    double power = 0; // luminance-weighted watts (selectionWeight of the emitted colour)
+};
+
+// Luminance (Rec. 709) of a linear RGB colour.
+float luminance(const glm::vec3& c);
+// Weight of a colour in light selection and environment sampling: its luminance, with a floor so
+// that a colour outside the luminance weights (pure blue emission, say) still gets a share.
+double selectionWeight(const glm::vec3& c);
+
+// An emissive triangle (index: its position in the BVH-ordered array), or nothing for a
+// triangle that does not emit or has no area (it cannot be hit).
+std::optional<LightEntry> triangleLight(const gpu::GpuTriangle& triangle, uint32_t index, const Material& material);
+// An emissive sphere or ellipsoid, or nothing for one that does not emit or is singular.
+std::optional<LightEntry> sphereLight(const gpu::GpuSphere& sphere, uint32_t index, const Material& material);
+// A point, spot, square or directional light, or nothing for one that emits nothing.
+// `sceneRadius` sizes a directional light's power.
+std::optional<LightEntry> punctualLight(const PunctualLight& light, float sceneRadius);
+// The environment, from its radiance averaged over the sphere (luminance).
+LightEntry environmentLight(double averageRadiance, float sceneRadius);
+
+} // namespace pt
