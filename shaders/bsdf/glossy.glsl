@@ -1,5 +1,5 @@
 // The CENG795 course's BRDFs: a Lambertian term kd / pi plus one specular lobe of exponent p
-// (FORMAT.md section 5). Local frame: z is the shading normal on the side of wo.
+// (docs/ceng795-format.md section 5). Local frame: z is the shading normal on the side of wo.
 //   Original Phong         ks cos^p(alpha_r) / cos(theta_i)
 //   Original Blinn-Phong   ks cos^p(alpha_h) / cos(theta_i)
 //   Modified Phong         ks cos^p(alpha_r)  [x (p + 2) / (2 pi) when normalised]

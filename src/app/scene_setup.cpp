@@ -135,7 +135,7 @@ Job makeJob(const Scene& scene, const Camera& camera, const RenderOptions& o, bo
     s.rr = o.rr.value_or(cs.russianRoulette.value_or(true));
     s.sampling = o.sampling.value_or(cs.importanceSampling.value_or(true) ? DirectionSampling::Cosine : DirectionSampling::Uniform);
     // The course's official path-tracing images apply Russian roulette without a depth cap
-    // (FORMAT.md section 8): such cameras get a cap so high that only roulette ends paths.
+    // (docs/ceng795-format.md section 8): such cameras get a cap so high that only roulette ends paths.
     const bool uncapped = course && cs.russianRoulette.value_or(false) && !cs.maxDepth;
     const int fallbackDepth = uncapped ? kUncappedDepth : scene.hints.maxDepth.value_or(16);
     const int depth = o.maxDepth ? static_cast<int>(*o.maxDepth) : cs.maxDepth.value_or(fallbackDepth);

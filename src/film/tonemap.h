@@ -1,6 +1,6 @@
 #pragma once
 // Display mapping for the PNG output (the EXR stays linear): the CENG795 course's tone
-// mapping pipeline (FORMAT.md section 9) plus a plain clamp, both ending in 8-bit RGB.
+// mapping pipeline (docs/ceng795-format.md section 9) plus a plain clamp, both ending in 8-bit RGB.
 #include <cstdint>
 #include <filesystem>
 #include <vector>

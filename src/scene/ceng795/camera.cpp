@@ -171,7 +171,7 @@ void readRenderer(Context& ctx, pugi::xml_node e, CameraRenderSettings& s) {
     if (nameTokens.size() != 1 || lowercase(nameTokens[0]) != "pathtracing")
         ctx.note("renderer " + quote(name) + " (rendered by path tracing)");
     // Each option is on exactly when named; an empty or absent list means plain path tracing
-    // with uniform hemisphere sampling (FORMAT.md §2).
+    // with uniform hemisphere sampling (docs/ceng795-format.md §2).
     s.nee = s.importanceSampling = s.russianRoulette = false;
     const std::string params = textOf(e.child("RendererParams"));
     for (std::string_view p : tokens(params)) {
@@ -206,7 +206,7 @@ void readSettings(Context& ctx, pugi::xml_node e, std::optional<int> maxDepth, C
     s.tonemap = readTonemap(ctx, e);
     readRenderer(ctx, e, s);
     // The official path-tracing references apply Russian roulette without the depth cap
-    // (FORMAT.md §8), so those cameras get no cap of their own and the renderer's default applies.
+    // (docs/ceng795-format.md §8), so those cameras get no cap of their own and the renderer's default applies.
     if (!s.russianRoulette.value_or(false)) s.maxDepth = maxDepth;
 }
 

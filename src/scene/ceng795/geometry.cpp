@@ -167,7 +167,7 @@ bool nonDegenerate(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c) {
 }
 
 std::vector<glm::vec3> worldNormals(const std::vector<glm::vec3>& objectNormals, const glm::mat4& objectToWorld) {
-    // Normals map with the inverse transpose (FORMAT.md §10), which keeps them on the side the
+    // Normals map with the inverse transpose (docs/ceng795-format.md §10), which keeps them on the side the
     // object-space winding made the front, also under mirroring transforms.
     const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(objectToWorld)));
     std::vector<glm::vec3> out(objectNormals.size(), glm::vec3(0.0f));

@@ -1,6 +1,6 @@
 #pragma once
 // The METU CENG795 "Advanced Ray Tracing" course's XML scene format (HW1-HW6), specified in
-// /work/shared/ceng795/FORMAT.md, into the scene model. Features the model lacks are mapped to
+// docs/ceng795-format.md, into the scene model. Features the model lacks are mapped to
 // the nearest supported thing and listed in Scene::unsupported.
 #include "scene/scene.h"
 

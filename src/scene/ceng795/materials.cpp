@@ -128,7 +128,7 @@ void convertConductor(const Context& ctx, Notes& notes, pugi::xml_node e, const 
 }
 
 // The course's Roughness r perturbs the ideal reflected or refracted direction by
-// r (xi - 0.5) along each of two axes orthogonal to it (FORMAT.md, material `Roughness`). We
+// r (xi - 0.5) along each of two axes orthogonal to it (docs/ceng795-format.md, material `Roughness`). We
 // render it as GGX with the same spread: that recipe puts the reflected direction's tangent
 // offsets uniformly in a square of side r, the microfacet normal's (half the deflection) in a
 // square of side r / 2, whose median radial slope is 0.2 r (sqrt(2 / pi) r / 4); a GGX normal's
@@ -244,7 +244,7 @@ uint32_t addEmissiveCopy(std::vector<Material>& materials, uint32_t base, const 
     Material m = materials[base];
     m.name = name;
     m.emission = radiance;
-    // Course NEE divides by |cos| at the light (FORMAT.md §7): object lights emit from both sides.
+    // Course NEE divides by |cos| at the light (docs/ceng795-format.md §7): object lights emit from both sides.
     m.doubleSided = true;
     materials.push_back(m);
     return static_cast<uint32_t>(materials.size() - 1);
