@@ -1,12 +1,10 @@
 #pragma once
+#include "accel/huge_page_allocator.h"
+
 #include <glm/glm.hpp>
 #include <cstdint>
-#include <type_traits>
 #include <limits>
-#include <memory>
-#include <new>
 #include <span>
-#include <utility>
 #include <vector>
 
 namespace pt {
@@ -36,27 +34,7 @@ struct BvhNode {
 };
 static_assert(sizeof(BvhNode) == 32, "BvhNode is uploaded verbatim to the GPU");
 
-// A std::allocator whose value-less construct() default-initialises, so that resize() leaves
-// trivial elements unwritten: the builder fills its fresh node array on all threads instead of
-// first zero-filling it on one (about 50 MB for a million triangles).
-template <class T>
-struct DefaultInitAllocator : std::allocator<T> {
-    template <class U>
-    struct rebind {
-        using other = DefaultInitAllocator<U>;
-    };
-    DefaultInitAllocator() = default;
-    template <class U>
-    DefaultInitAllocator(const DefaultInitAllocator<U>&) noexcept {}
-    template <class U>
-    void construct(U* p) noexcept(std::is_nothrow_default_constructible_v<U>) { ::new (static_cast<void*>(p)) U; }
-    template <class U, class... Args>
-    void construct(U* p, Args&&... args) { ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...); }
-    // Arrays of 2 MiB and more on transparent huge pages (bvh.cpp: fewer page faults when the
-    // build first writes them).
-    T* allocate(size_t count);
-    void deallocate(T* p, size_t count) noexcept;
-};
+// Default-initialising (no zero fill) and on huge pages from 2 MiB: huge_page_allocator.h.
 using BvhNodeArray = std::vector<BvhNode, DefaultInitAllocator<BvhNode>>;
 
 struct BvhBuildOptions {
