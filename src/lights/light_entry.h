@@ -29,6 +29,13 @@ float luminance(const glm::vec3& c);
 // that a colour outside the luminance weights (pure blue emission, say) still gets a share.
 double selectionWeight(const glm::vec3& c);
 
+// Power of a Lambertian emitter of the material's emission over `area`: pi x radiance x area,
+// twice that when it emits from both sides.
+double lambertianEmitterPower(const Material& material, double area);
+// The entry of an emissive primitive (its type, index and the area it is sampled by), or nothing
+// when its power is not a positive finite number.
+std::optional<LightEntry> areaEmitter(uint32_t type, uint32_t index, float samplingArea, double power);
+
 // An emissive triangle (index: its position in the BVH-ordered array), or nothing for a
 // triangle that does not emit or has no area (it cannot be hit).
 std::optional<LightEntry> triangleLight(const gpu::GpuTriangle& triangle, uint32_t index, const Material& material);

@@ -23,37 +23,56 @@ double selectionWeight(const glm::vec3& c) {
     return std::max<double>(luminance(c), kSelectionWeightFloor * (c.x + c.y + c.z));
 }
 
+double lambertianEmitterPower(const Material& m, double area) {
+    return kLightPi * selectionWeight(m.emission) * area * (m.doubleSided ? 2.0 : 1.0);
+}
+
+std::optional<LightEntry> areaEmitter(uint32_t type, uint32_t index, float samplingArea, double power) {
+    if (!(power > 0.0) || !std::isfinite(power)) return std::nullopt;
+    LightEntry e{};
+    e.light.type = type;
+    e.light.primitive = index;
+    e.light.area = samplingArea;
+    e.power = power;
+    return e;
+}
+
+namespace {
+
+void addEntry(const LightEntry& entry, LightTable& table, std::vector<double>& power) {
+    table.lights.push_back(entry.light);
+    power.push_back(entry.power);
+    table.totalPower += entry.power;
+}
+
+// Emissive triangles or spheres: each gets its entry (or NO_LIGHT) in its lightIndex.
+template <class Primitive, class MakeEntry>
+void addPrimitiveEmitters(std::span<Primitive> primitives, std::span<const Material> materials, MakeEntry makeEntry,
+                          LightTable& table, std::vector<double>& power) {
+    for (uint32_t i = 0; i < primitives.size(); ++i) {
+        Primitive& primitive = primitives[i];
+        primitive.lightIndex = NO_LIGHT;
+        if (auto entry = makeEntry(primitive, i, materials[primitive.materialIndex])) {
+            primitive.lightIndex = static_cast<uint32_t>(table.lights.size());
+            addEntry(*entry, table, power);
+        }
+    }
+}
+
+} // namespace
+
 LightTable buildLightTable(std::span<gpu::GpuTriangle> triangles, std::span<gpu::GpuSphere> spheres,
     std::span<const PunctualLight> punctual, std::span<const Material> materials, float sceneRadius,
     double environmentRadiance) {
     LightTable table;
     std::vector<double> power;
-    auto add = [&](const LightEntry& entry) {
-        table.lights.push_back(entry.light);
-        power.push_back(entry.power);
-        table.totalPower += entry.power;
-    };
-    for (uint32_t i = 0; i < triangles.size(); ++i) {
-        gpu::GpuTriangle& tri = triangles[i];
-        tri.lightIndex = NO_LIGHT;
-        if (auto entry = triangleLight(tri, i, materials[tri.materialIndex])) {
-            tri.lightIndex = static_cast<uint32_t>(table.lights.size());
-            add(*entry);
-        }
-    }
-    for (uint32_t i = 0; i < spheres.size(); ++i) {
-        gpu::GpuSphere& sphere = spheres[i];
-        sphere.lightIndex = NO_LIGHT;
-        if (auto entry = sphereLight(sphere, i, materials[sphere.materialIndex])) {
-            sphere.lightIndex = static_cast<uint32_t>(table.lights.size());
-            add(*entry);
-        }
-    }
+    addPrimitiveEmitters(triangles, materials, triangleLight, table, power);
+    addPrimitiveEmitters(spheres, materials, sphereLight, table, power);
     for (const PunctualLight& pl : punctual)
-        if (auto entry = punctualLight(pl, sceneRadius)) add(*entry);
+        if (auto entry = punctualLight(pl, sceneRadius)) addEntry(*entry, table, power);
     if (environmentRadiance >= 0.0) {
         table.environmentIndex = static_cast<uint32_t>(table.lights.size());
-        add(environmentLight(environmentRadiance, sceneRadius));
+        addEntry(environmentLight(environmentRadiance, sceneRadius), table, power);
     }
 
     table.cdf.assign(1, 0.0f);

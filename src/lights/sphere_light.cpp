@@ -39,19 +39,15 @@ std::optional<LightEntry> sphereLight(const gpu::GpuSphere& sphere, uint32_t ind
     if (!m.emissive()) return std::nullopt;
     const glm::dmat3 a = linearPart(sphere.objectToWorld);
     const double det = std::abs(glm::determinant(a));
+    if (!(det > 0.0)) return std::nullopt;
     // Area estimate for the power only: 4 pi times the squared geometric-mean radius.
     const double area = 4.0 * kLightPi * std::pow(det, 2.0 / 3.0);
-    const double p = kLightPi * selectionWeight(m.emission) * area * (m.doubleSided ? 2.0 : 1.0);
-    if (!(det > 0.0) || !(p > 0.0) || !std::isfinite(p)) return std::nullopt;
-    LightEntry e{};
-    e.light.type = LIGHT_SPHERE;
-    e.light.primitive = index;
-    e.light.area = static_cast<float>(det);
-    e.light.position = glm::vec3(sphere.objectToWorld[0].w, sphere.objectToWorld[1].w, sphere.objectToWorld[2].w);
+    std::optional<LightEntry> e = areaEmitter(LIGHT_SPHERE, index, static_cast<float>(det), lambertianEmitterPower(m, area));
+    if (!e) return std::nullopt;
+    e->light.position = glm::vec3(sphere.objectToWorld[0].w, sphere.objectToWorld[1].w, sphere.objectToWorld[2].w);
     double radius = 0.0;
     // Double-sided spheres are lit from inside too: area sampling covers both cases.
-    if (!m.doubleSided && roundRadius(a, radius)) e.light.radius = static_cast<float>(radius);
-    e.power = p;
+    if (!m.doubleSided && roundRadius(a, radius)) e->light.radius = static_cast<float>(radius);
     return e;
 }
 
