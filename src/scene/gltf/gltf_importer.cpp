@@ -1,0 +1,121 @@
+// The glTF importer's run (gltf_importer.h): the settings carried in the scene's extras, the node
+// hierarchy walked from the scene's roots (each node's transform, then its mesh, camera and
+// light), and the note of extensions the scene uses that are not supported.
+#include "scene/gltf/gltf_importer.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
+#include <glm/gtc/type_ptr.hpp>
+
+#include <set>
+
+namespace pt::gltf {
+
+Scene GltfImporter::run() {
+    scene_.source = file_;
+    readHints();
+    convertMaterials();
+    std::vector<int> roots = rootNodes();
+    std::vector<bool> onPath(model_.nodes.size(), false);
+    for (int root : roots) visitNode(root, glm::mat4(1.0f), onPath, 0);
+    if (scene_.triangleCount() == 0)
+        fail("no renderable geometry (the scene has no triangle primitives)");
+    noteUnsupportedExtensions();
+    std::vector<std::string> notes;
+    for (const auto& [what, count] : unsupportedCounts_)
+        notes.push_back(count > 1 ? what + " (x" + std::to_string(count) + ")" : what);
+    scene_.unsupported = notes;
+    return std::move(scene_);
+}
+
+// ---- settings carried in scenes[].extras (width, height, max_depth) ----
+void GltfImporter::readHints() {
+    int sceneIndex = model_.defaultScene >= 0 ? model_.defaultScene : 0;
+    if (sceneIndex >= static_cast<int>(model_.scenes.size())) return;
+    const tinygltf::Value& extras = model_.scenes[sceneIndex].extras;
+    if (!extras.IsObject()) return;
+    auto intHint = [&](const char* key, std::optional<int>& out, int lo, int hi) {
+        if (!extras.Has(key)) return;
+        const tinygltf::Value& v = extras.Get(key);
+        if (!v.IsNumber()) return;
+        double d = v.GetNumberAsDouble();
+        if (!(d >= lo && d <= hi)) fail(std::string("scene extras: ") + key + " " + std::to_string(d) + " is out of range");
+        out = static_cast<int>(d);
+    };
+    intHint("width", scene_.hints.width, 1, 1 << 16);
+    intHint("height", scene_.hints.height, 1, 1 << 16);
+    intHint("max_depth", scene_.hints.maxDepth, 1, 1 << 16);
+}
+
+// ---- node hierarchy ----
+std::vector<int> GltfImporter::rootNodes() {
+    std::vector<int> roots;
+    if (!model_.scenes.empty()) {
+        int s = model_.defaultScene >= 0 ? model_.defaultScene : 0;
+        if (s >= static_cast<int>(model_.scenes.size())) fail("default scene " + std::to_string(s) + " does not exist");
+        roots = model_.scenes[s].nodes;
+    } else {
+        // No scene: every node that is nobody's child is a root.
+        std::vector<bool> isChild(model_.nodes.size(), false);
+        for (const auto& n : model_.nodes)
+            for (int c : n.children)
+                if (c >= 0 && c < static_cast<int>(isChild.size())) isChild[c] = true;
+        for (size_t i = 0; i < model_.nodes.size(); ++i)
+            if (!isChild[i]) roots.push_back(static_cast<int>(i));
+        if (roots.empty() && !model_.nodes.empty()) fail("node hierarchy is cyclic (every node is a child)");
+    }
+    return roots;
+}
+
+glm::mat4 GltfImporter::localTransform(const tinygltf::Node& node, int index) {
+    glm::mat4 m(1.0f);
+    if (node.matrix.size() == 16) {
+        for (int i = 0; i < 16; ++i) glm::value_ptr(m)[i] = static_cast<float>(node.matrix[i]);
+    } else {
+        glm::vec3 t(0.0f), s(1.0f);
+        glm::quat r(1.0f, 0.0f, 0.0f, 0.0f);
+        if (node.translation.size() == 3) t = glm::vec3(node.translation[0], node.translation[1], node.translation[2]);
+        if (node.scale.size() == 3) s = glm::vec3(node.scale[0], node.scale[1], node.scale[2]);
+        if (node.rotation.size() == 4)
+            r = glm::normalize(glm::quat(static_cast<float>(node.rotation[3]), static_cast<float>(node.rotation[0]),
+                static_cast<float>(node.rotation[1]), static_cast<float>(node.rotation[2])));
+        m = glm::translate(glm::mat4(1.0f), t) * glm::mat4_cast(r) * glm::scale(glm::mat4(1.0f), s);
+    }
+    for (int i = 0; i < 16; ++i)
+        if (!std::isfinite(glm::value_ptr(m)[i])) fail("node " + std::to_string(index) + ": transform is not finite");
+    return m;
+}
+
+void GltfImporter::visitNode(int index, const glm::mat4& parent, std::vector<bool>& onPath, int depth) {
+    if (index < 0 || index >= static_cast<int>(model_.nodes.size())) fail("node index " + std::to_string(index) + " out of range");
+    if (onPath[index]) fail("node hierarchy is cyclic (node " + std::to_string(index) + " is its own ancestor)");
+    if (depth > kMaxNodeDepth) fail("node hierarchy deeper than " + std::to_string(kMaxNodeDepth));
+    if (visited_.size() != model_.nodes.size()) visited_.assign(model_.nodes.size(), false);
+    if (visited_[index] && ++repeatedVisits_ > kMaxRepeatedNodeVisits)
+        fail("node " + std::to_string(index) + " is shared by several parents: the hierarchy expands to more than " +
+             std::to_string(kMaxRepeatedNodeVisits) + " extra node instances");
+    visited_[index] = true;
+    const tinygltf::Node& node = model_.nodes[index];
+    glm::mat4 world = parent * localTransform(node, index);
+    for (int i = 0; i < 16; ++i)
+        if (!std::isfinite(glm::value_ptr(world)[i])) fail("node " + std::to_string(index) + ": world transform overflows");
+    if (node.mesh >= 0) {
+        if (node.mesh >= static_cast<int>(model_.meshes.size())) fail("node " + std::to_string(index) + ": mesh index out of range");
+        addMesh(model_.meshes[node.mesh], node.mesh, world);
+    }
+    if (node.camera >= 0) addCamera(node.camera, world);
+    if (auto it = node.extensions.find("KHR_lights_punctual"); it != node.extensions.end()) addLight(it->second, index, world);
+    onPath[index] = true;
+    for (int child : node.children) visitNode(child, world, onPath, depth + 1);
+    onPath[index] = false;
+}
+
+void GltfImporter::noteUnsupportedExtensions() {
+    static const std::set<std::string> supported = {"KHR_materials_emissive_strength", "KHR_materials_ior",
+        "KHR_materials_specular", "KHR_materials_transmission", "KHR_materials_volume", "KHR_lights_punctual",
+        "KHR_texture_transform"};
+    for (const auto& e : model_.extensionsUsed)
+        if (!supported.count(e)) unsupported("extension " + e);
+}
+
+} // namespace pt::gltf

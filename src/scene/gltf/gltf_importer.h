@@ -1,0 +1,87 @@
+#pragma once
+// The glTF importer: turns a tinygltf::Model into a Scene, checking everything the model holds.
+// Internal to the glTF loader (its API is gltf_loader.h); the class is defined over
+//   gltf_importer.cpp        the run, scene extras and the node hierarchy
+//   gltf_meshes.cpp          accessors, meshes and their primitives
+//   gltf_materials.cpp       materials and textures with their KHR extensions
+//   gltf_lights_cameras.cpp  cameras and KHR_lights_punctual lights
+#include "scene/gltf/gltf_callbacks.h"
+#include "scene/scene.h"
+#include "scene/scene_error.h"
+
+#include <tiny_gltf.h>
+
+#include <glm/glm.hpp>
+
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace pt::gltf {
+
+constexpr int kMaxNodeDepth = 1024;
+// A node may be the child of several parents (glTF forbids it, files do it anyway), so a small
+// file can describe an exponential number of instances: 40 nodes that each list the next one
+// twice make 2^40. A tree visits each node once, whatever its size; repeat visits are bounded,
+// and so are the vertices and triangles all instances add up to.
+constexpr size_t kMaxRepeatedNodeVisits = size_t(1) << 12;
+constexpr size_t kMaxInstanced = size_t(1) << 27; // vertices, and triangles
+
+inline bool finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+class GltfImporter {
+public:
+    GltfImporter(const tinygltf::Model& model, std::string file, DecodedImages& images)
+        : model_(model), file_(std::move(file)), decoded_(images) {}
+
+    Scene run();
+
+private:
+    [[noreturn]] void fail(const std::string& problem) const { throw SceneError(file_, problem); }
+    void unsupported(const std::string& what) { unsupportedCounts_[what]++; }
+
+    // ---- gltf_importer.cpp ----
+    void readHints();
+    std::vector<int> rootNodes();
+    glm::mat4 localTransform(const tinygltf::Node& node, int index);
+    void visitNode(int index, const glm::mat4& parent, std::vector<bool>& onPath, int depth);
+    void noteUnsupportedExtensions();
+
+    // ---- gltf_materials.cpp ----
+    void convertMaterials();
+    void convertFactors(const tinygltf::Material& src, const std::string& label, Material& m);
+    void convertTextures(const tinygltf::Material& src, const std::string& label, Material& m);
+    static int wrap(int mode, const std::string& where, const GltfImporter& self);
+    std::optional<uint32_t> texture(int index, int texCoord, const tinygltf::ExtensionMap& extensions, Texture::Encoding encoding,
+        const std::string& where);
+    uint32_t imageIndex(int index, const std::string& where);
+    uint32_t defaultMaterial();
+
+    // ---- gltf_meshes.cpp ----
+    const unsigned char* accessorData(int accessorIndex, const std::string& what, size_t& count, size_t& stride,
+        int& componentType, int& type);
+    template <int N>
+    std::vector<glm::vec<N, float>> readVectors(int accessorIndex, const std::string& what, bool allowNormalizedInts);
+    std::vector<uint32_t> readIndices(int accessorIndex, const std::string& what);
+    void addMesh(const tinygltf::Mesh& mesh, int meshIndex, const glm::mat4& world);
+
+    // ---- gltf_lights_cameras.cpp ----
+    void addCamera(int cameraIndex, const glm::mat4& world);
+    void addLight(const tinygltf::Value& ref, int nodeIndex, const glm::mat4& world);
+
+    const tinygltf::Model& model_;
+    std::string file_;
+    DecodedImages& decoded_;
+    std::map<int, uint32_t> imageIndices_;
+    Scene scene_;
+    int defaultMaterial_ = -1;
+    std::vector<bool> visited_;
+    size_t repeatedVisits_ = 0, instancedVertices_ = 0, instancedTriangles_ = 0;
+    std::map<std::string, int> unsupportedCounts_;
+};
+
+} // namespace pt::gltf

@@ -1,0 +1,215 @@
+// glTF materials into the scene model (gltf_importer.h): the metallic-roughness factors, the
+// KHR_materials_* extensions (emissive_strength, ior, specular, transmission, volume), the
+// textures with their samplers and KHR_texture_transform, the images they use, and the glTF
+// default material for primitives without one.
+#include "scene/gltf/gltf_importer.h"
+
+namespace pt::gltf {
+namespace {
+
+double number(const tinygltf::Value& obj, const char* key, double fallback) {
+    if (!obj.IsObject() || !obj.Has(key)) return fallback;
+    const tinygltf::Value& v = obj.Get(key);
+    return v.IsNumber() ? v.GetNumberAsDouble() : fallback;
+}
+glm::vec3 color(const tinygltf::Value& obj, const char* key, glm::vec3 fallback) {
+    if (!obj.IsObject() || !obj.Has(key)) return fallback;
+    const tinygltf::Value& v = obj.Get(key);
+    if (!v.IsArray() || v.ArrayLen() < 3) return fallback;
+    glm::vec3 c;
+    for (int i = 0; i < 3; ++i) c[i] = v.Get(i).IsNumber() ? static_cast<float>(v.Get(i).GetNumberAsDouble()) : fallback[i];
+    return c;
+}
+const tinygltf::Value* extension(const tinygltf::Material& m, const char* name) {
+    auto it = m.extensions.find(name);
+    return it == m.extensions.end() ? nullptr : &it->second;
+}
+
+} // namespace
+
+void GltfImporter::convertMaterials() {
+    for (size_t i = 0; i < model_.materials.size(); ++i) {
+        const tinygltf::Material& src = model_.materials[i];
+        const std::string label = "material " + std::to_string(i) + (src.name.empty() ? "" : " '" + src.name + "'");
+        Material m;
+        m.name = src.name.empty() ? "material " + std::to_string(i) : src.name;
+        m.doubleSided = src.doubleSided;
+        const auto& pbr = src.pbrMetallicRoughness;
+        for (int c = 0; c < 3; ++c) m.baseColor[c] = pbr.baseColorFactor.size() > 2 ? static_cast<float>(pbr.baseColorFactor[c]) : 1.0f;
+        for (int c = 0; c < 3; ++c) m.emission[c] = src.emissiveFactor.size() > 2 ? static_cast<float>(src.emissiveFactor[c]) : 0.0f;
+        if (const auto* e = extension(src, "KHR_materials_emissive_strength"))
+            m.emission *= static_cast<float>(number(*e, "emissiveStrength", 1.0));
+        if (!finite(m.baseColor) || !finite(m.emission) || glm::any(glm::lessThan(m.emission, glm::vec3(0))))
+            fail(label + ": base colour and emission must be finite and non-negative");
+        m.baseColor = glm::clamp(m.baseColor, 0.0f, 1.0f);
+
+        convertFactors(src, label, m);
+        convertTextures(src, label, m);
+        scene_.materials.push_back(m);
+    }
+}
+
+// The glTF metallic-roughness factors and the KHR_materials_* extensions. Everything is a
+// MaterialType::Pbr (shaders/bsdf/gltf_pbr.glsl) except three cases where the glTF model
+// reduces exactly to a simpler one, kept because scenes made for other renderers (the
+// Mitsuba references in tests/references) use them to say "Lambertian", "mirror" and "glass":
+//   metallic 0, transmission 0, KHR_materials_specular specularFactor 0  -> Lambertian
+//   metallic 1, roughness 0                                               -> Schlick mirror
+//   metallic 0, transmission 1, default specular, KHR_materials_volume    -> dielectric (GGX
+//     when rough), which also carries the volume's Beer-Lambert absorption.
+void GltfImporter::convertFactors(const tinygltf::Material& src, const std::string& label, Material& m) {
+    const auto& pbr = src.pbrMetallicRoughness;
+    auto unit = [&](double v, const char* what) {
+        if (!(v >= 0.0 && v <= 1.0)) fail(label + ": " + what + " " + std::to_string(v) + " must be in [0, 1]");
+        return static_cast<float>(v);
+    };
+    m.metallic = unit(pbr.metallicFactor, "metallicFactor");
+    m.roughness = unit(pbr.roughnessFactor, "roughnessFactor");
+    if (const auto* e = extension(src, "KHR_materials_transmission"))
+        m.transmission = unit(number(*e, "transmissionFactor", 0.0), "transmissionFactor");
+    if (const auto* e = extension(src, "KHR_materials_ior")) m.ior = static_cast<float>(number(*e, "ior", 1.5));
+    if (!(m.ior >= 1.0f && m.ior < 10.0f)) fail(label + ": ior " + std::to_string(m.ior) + " must be in [1, 10)");
+    m.specular = glm::vec3(1.0f);
+    if (const auto* e = extension(src, "KHR_materials_specular")) {
+        m.specularWeight = unit(number(*e, "specularFactor", 1.0), "specularFactor");
+        m.specular = color(*e, "specularColorFactor", glm::vec3(1.0f));
+        if (!finite(m.specular) || glm::any(glm::lessThan(m.specular, glm::vec3(0))))
+            fail(label + ": specularColorFactor must be finite and non-negative");
+    }
+    // A volume makes transmission refract; thicknessFactor only approximates the volume's
+    // depth for rasterisers (the path tracer has the mesh itself), so only 0 -- "thin
+    // walled" -- is used from it.
+    const tinygltf::Value* volume = extension(src, "KHR_materials_volume");
+    m.thinWalled = volume == nullptr || number(*volume, "thicknessFactor", 0.0) <= 0.0;
+    if (volume) {
+        m.attenuationColor = color(*volume, "attenuationColor", glm::vec3(1.0f));
+        m.attenuationDistance = static_cast<float>(number(*volume, "attenuationDistance", INFINITY));
+        if (!(m.attenuationDistance > 0) || !finite(m.attenuationColor) ||
+            glm::any(glm::lessThan(m.attenuationColor, glm::vec3(0))))
+            fail(label + ": KHR_materials_volume attenuation must be positive");
+    }
+    const bool defaultSpecular = m.specularWeight == 1.0f && m.specular == glm::vec3(1.0f);
+    if (m.metallic == 0.0f && m.transmission == 0.0f && m.specularWeight == 0.0f) {
+        m.type = MaterialType::Diffuse;
+    } else if (m.metallic == 1.0f && m.roughness == 0.0f) {
+        m.type = MaterialType::Mirror;
+    } else if (m.metallic == 0.0f && m.transmission == 1.0f && defaultSpecular && !m.thinWalled) {
+        m.type = MaterialType::Dielectric;
+    } else {
+        m.type = MaterialType::Pbr;
+    }
+}
+
+// ---- textures ----
+// baseColor and emissive are sRGB-encoded, metallicRoughness and normal linear (glTF 2.0
+// section 3.9). Occlusion is for rasterisers: a path tracer computes it.
+void GltfImporter::convertTextures(const tinygltf::Material& src, const std::string& label, Material& m) {
+    const auto& pbr = src.pbrMetallicRoughness;
+    m.baseColorTexture = texture(pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord, pbr.baseColorTexture.extensions,
+        Texture::Encoding::Srgb, label + ": baseColorTexture");
+    m.metallicRoughnessTexture = texture(pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord,
+        pbr.metallicRoughnessTexture.extensions, Texture::Encoding::Linear, label + ": metallicRoughnessTexture");
+    m.normalTexture = texture(src.normalTexture.index, src.normalTexture.texCoord, src.normalTexture.extensions,
+        Texture::Encoding::Linear, label + ": normalTexture");
+    m.normalScale = static_cast<float>(src.normalTexture.scale);
+    if (!std::isfinite(m.normalScale)) fail(label + ": normalTexture scale must be finite");
+    m.emissiveTexture = texture(src.emissiveTexture.index, src.emissiveTexture.texCoord, src.emissiveTexture.extensions,
+        Texture::Encoding::Srgb, label + ": emissiveTexture");
+    // A texture can make a "mirror" rough or part-metal: only the full model covers that.
+    if (m.metallicRoughnessTexture && m.type == MaterialType::Mirror) m.type = MaterialType::Pbr;
+
+    m.opacity = pbr.baseColorFactor.size() > 3 ? static_cast<float>(pbr.baseColorFactor[3]) : 1.0f;
+    if (!(m.opacity >= 0.0f && m.opacity <= 1.0f)) fail(label + ": baseColorFactor alpha must be in [0, 1]");
+    if (src.alphaMode == "MASK") {
+        m.alphaMode = Material::AlphaMode::Mask;
+        m.alphaCutoff = static_cast<float>(src.alphaCutoff);
+        if (!std::isfinite(m.alphaCutoff)) fail(label + ": alphaCutoff must be finite");
+    } else if (src.alphaMode == "BLEND") {
+        m.alphaMode = Material::AlphaMode::Blend;
+    } else if (!src.alphaMode.empty() && src.alphaMode != "OPAQUE") {
+        fail(label + ": unknown alphaMode '" + src.alphaMode + "'");
+    }
+}
+
+int GltfImporter::wrap(int mode, const std::string& where, const GltfImporter& self) {
+    switch (mode) {
+    case 10497: return static_cast<int>(TextureWrap::Repeat);
+    case 33071: return static_cast<int>(TextureWrap::Clamp);
+    case 33648: return static_cast<int>(TextureWrap::Mirror);
+    default: self.fail(where + ": unknown wrap mode " + std::to_string(mode));
+    }
+}
+
+// A scene texture for one textureInfo (with its KHR_texture_transform), or none.
+std::optional<uint32_t> GltfImporter::texture(int index, int texCoord, const tinygltf::ExtensionMap& extensions, Texture::Encoding encoding,
+    const std::string& where) {
+    if (index < 0) return std::nullopt;
+    if (index >= static_cast<int>(model_.textures.size())) fail(where + ": texture " + std::to_string(index) + " does not exist");
+    const tinygltf::Texture& src = model_.textures[index];
+    if (src.source < 0 || src.source >= static_cast<int>(model_.images.size()))
+        fail(where + ": texture " + std::to_string(index) + " has no image (or one in an unsupported extension)");
+    Texture t;
+    t.encoding = encoding;
+    t.image = imageIndex(src.source, where);
+    if (src.sampler >= 0) {
+        if (src.sampler >= static_cast<int>(model_.samplers.size())) fail(where + ": sampler " + std::to_string(src.sampler) + " does not exist");
+        const tinygltf::Sampler& sampler = model_.samplers[src.sampler];
+        t.bilinear = sampler.magFilter != 9728; // NEAREST
+        t.wrapU = static_cast<TextureWrap>(wrap(sampler.wrapS, where, *this));
+        t.wrapV = static_cast<TextureWrap>(wrap(sampler.wrapT, where, *this));
+    }
+    // KHR_texture_transform: uv' = T(offset) R(rotation) S(scale) uv.
+    if (auto e = extensions.find("KHR_texture_transform"); e != extensions.end()) {
+        const tinygltf::Value& x = e->second;
+        const double rotation = number(x, "rotation", 0.0);
+        glm::dvec2 offset(0.0), scale(1.0);
+        auto pair = [&](const char* key, glm::dvec2& out) {
+            if (!x.Has(key) || !x.Get(key).IsArray() || x.Get(key).ArrayLen() < 2) return;
+            for (int i = 0; i < 2; ++i)
+                if (x.Get(key).Get(i).IsNumber()) out[i] = x.Get(key).Get(i).GetNumberAsDouble();
+        };
+        pair("offset", offset);
+        pair("scale", scale);
+        if (!std::isfinite(rotation) || !std::isfinite(offset.x + offset.y + scale.x + scale.y))
+            fail(where + ": KHR_texture_transform values must be finite");
+        const double c = std::cos(rotation), s = std::sin(rotation);
+        t.uvRow0 = glm::vec3(c * scale.x, s * scale.y, offset.x);
+        t.uvRow1 = glm::vec3(-s * scale.x, c * scale.y, offset.y);
+        if (x.Has("texCoord") && x.Get("texCoord").IsInt()) texCoord = x.Get("texCoord").GetNumberAsInt();
+    }
+    if (texCoord != 0) unsupported("texture coordinate sets other than TEXCOORD_0 (TEXCOORD_0 used)");
+    scene_.textures.push_back(t);
+    return static_cast<uint32_t>(scene_.textures.size() - 1);
+}
+
+// The scene image for glTF image `index`, moved out of the decoded set on first use.
+uint32_t GltfImporter::imageIndex(int index, const std::string& where) {
+    if (auto it = imageIndices_.find(index); it != imageIndices_.end()) return it->second;
+    if (static_cast<size_t>(index) >= decoded_.images.size() || !decoded_.images[index])
+        fail(where + ": image " + std::to_string(index) +
+             (model_.images[index].uri.empty() || model_.images[index].uri.rfind("data:", 0) == 0 ? "" : " '" + model_.images[index].uri + "'") +
+             " has no data (its file was not found or could not be read)");
+    scene_.textureImages.push_back(std::move(*decoded_.images[index]));
+    decoded_.images[index].reset();
+    const uint32_t i = static_cast<uint32_t>(scene_.textureImages.size() - 1);
+    imageIndices_.emplace(index, i);
+    return i;
+}
+
+uint32_t GltfImporter::defaultMaterial() {
+    if (defaultMaterial_ < 0) {
+        Material m;
+        m.name = "glTF default";
+        // The glTF default material: white, metallic 1, roughness 1.
+        m.type = MaterialType::Pbr;
+        m.baseColor = glm::vec3(1.0f);
+        m.metallic = 1.0f;
+        m.roughness = 1.0f;
+        m.specular = glm::vec3(1.0f);
+        defaultMaterial_ = static_cast<int>(scene_.materials.size());
+        scene_.materials.push_back(m);
+    }
+    return static_cast<uint32_t>(defaultMaterial_);
+}
+
+} // namespace pt::gltf
