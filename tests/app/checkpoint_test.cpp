@@ -4,6 +4,7 @@
 // one error line and a non-zero exit after saving the progress so far.
 #include "image/image_io.h"
 #include "support/pt_process.h"
+#include "support/test_directory.h"
 
 #include <gtest/gtest.h>
 

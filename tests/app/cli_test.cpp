@@ -4,20 +4,14 @@
 // Every test runs pt in its own temporary directory (its working directory too, so a default
 // output path could not litter the source tree), with stdout and stderr captured to files.
 #include "support/malformed_corpus.h"
+#include "support/pt_process.h"
+#include "support/test_directory.h"
 #include "image/image_io.h"
 #include "film/metrics.h"
 
 #include <gtest/gtest.h>
 
-#include <fcntl.h>
-#include <signal.h>
-#include <spawn.h>
-#include <sys/stat.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -25,56 +19,18 @@
 #include <map>
 #include <sstream>
 #include <string>
-#include <thread>
 #include <vector>
-
-extern char** environ;
 
 namespace fs = std::filesystem;
 
 namespace {
 
 const fs::path kTests = PT_TEST_DATA_DIR;
-const fs::path kCorpus = kTests / "data" / "malformed_gltf";
 const fs::path kDiffuseScene = kTests / "references" / "cbox-diffuse" / "scene.gltf";
 const fs::path kDiffuseReference = kTests / "references" / "cbox-diffuse" / "reference.exr";
 
-struct RunResult {
-    bool signaled = false;
-    int signal = 0;
-    int status = -1; // exit status when !signaled
-    bool timedOut = false;
-    double seconds = 0;
-    std::string out, err;
-
-    // Lines of stderr that start with "pt: error: ".
-    std::vector<std::string> errorLines() const {
-        std::vector<std::string> lines;
-        std::istringstream s(err);
-        for (std::string line; std::getline(s, line);)
-            if (line.rfind("pt: error: ", 0) == 0) lines.push_back(line);
-        return lines;
-    }
-    // The only error line ("" and a test failure when there is not exactly one).
-    std::string errorLine() const {
-        const auto lines = errorLines();
-        EXPECT_EQ(lines.size(), 1u) << "expected exactly one 'pt: error: ' line in stderr:\n" << err;
-        return lines.size() == 1 ? lines[0] : std::string();
-    }
-};
-
-std::ostream& operator<<(std::ostream& os, const RunResult& r) {
-    os << (r.signaled ? "killed by signal " + std::to_string(r.signal) : "exit " + std::to_string(r.status))
-       << (r.timedOut ? " (timed out)" : "") << " after " << r.seconds << " s\n--- stderr:\n" << r.err << "--- stdout:\n" << r.out;
-    return os;
-}
-
-std::string readFile(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
+using pt::test::PtRun;
+using pt::test::readFile;
 
 using pt::test::lower;
 using pt::test::removeAll;
@@ -82,13 +38,7 @@ using pt::test::removeAll;
 class CliTest : public ::testing::Test {
 protected:
     void SetUp() override {
-        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        std::string name = std::string(info->test_suite_name()) + "_" + info->name();
-        for (char& c : name)
-            if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
-        dir_ = fs::temp_directory_path() / ("pt_cli_" + std::to_string(::getpid()) + "_" + name);
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
+        dir_ = pt::test::freshTestDirectory("cli");
         captureDir_ = dir_ / ".capture";
         fs::create_directories(captureDir_);
     }
@@ -97,67 +47,20 @@ protected:
         if (!HasFailure()) fs::remove_all(dir_, ignored); // keep the evidence of a failure
     }
 
-    // Runs `pt args...` in dir_ with `env` added to (and PT_VALIDATION removed from, unless
-    // given) the environment; kills it after `timeoutSeconds`.
-    RunResult run(const std::vector<std::string>& args, const std::map<std::string, std::string>& env = {},
+    // Runs `pt args...` in dir_ with `env` added to (and PT_VALIDATION and PT_FAULT removed from,
+    // unless given) the environment, stdout and stderr captured; kills it after `timeoutSeconds`.
+    PtRun run(const std::vector<std::string>& args, const std::map<std::string, std::string>& env = {},
         double timeoutSeconds = 30) {
-        std::vector<std::string> argStrings = {PT_BINARY};
-        argStrings.insert(argStrings.end(), args.begin(), args.end());
-        std::vector<char*> argv;
-        for (auto& a : argStrings) argv.push_back(a.data());
-        argv.push_back(nullptr);
-
-        std::vector<std::string> envStrings;
-        for (char** e = environ; *e; ++e) {
-            const std::string entry = *e;
-            const std::string key = entry.substr(0, entry.find('='));
-            if (key == "PT_VALIDATION" || env.count(key)) continue;
-            envStrings.push_back(entry);
-        }
-        for (const auto& [k, v] : env) envStrings.push_back(k + "=" + v);
-        std::vector<char*> envp;
-        for (auto& e : envStrings) envp.push_back(e.data());
-        envp.push_back(nullptr);
-
-        const fs::path outPath = captureDir_ / "stdout", errPath = captureDir_ / "stderr";
-        posix_spawn_file_actions_t actions;
-        posix_spawn_file_actions_init(&actions);
-        posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
-        posix_spawn_file_actions_addopen(&actions, 1, outPath.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-        posix_spawn_file_actions_addopen(&actions, 2, errPath.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-        posix_spawn_file_actions_addchdir_np(&actions, dir_.c_str());
-
-        RunResult r;
-        const auto start = std::chrono::steady_clock::now();
-        pid_t pid = -1;
-        const int rc = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), envp.data());
-        posix_spawn_file_actions_destroy(&actions);
-        if (rc != 0) {
-            ADD_FAILURE() << "cannot start " << argv[0] << ": " << std::strerror(rc);
-            return r;
-        }
-        int wstatus = 0;
-        while (true) {
-            const pid_t w = ::waitpid(pid, &wstatus, WNOHANG);
-            if (w == pid) break;
-            if (w < 0 && errno != EINTR) {
-                ADD_FAILURE() << "waitpid: " << std::strerror(errno);
-                return r;
-            }
-            if (std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() > timeoutSeconds) {
-                r.timedOut = true;
-                ::kill(pid, SIGKILL);
-                ::waitpid(pid, &wstatus, 0);
-                break;
-            }
-            std::this_thread::sleep_for(std::chrono::milliseconds(2));
-        }
-        r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        r.signaled = WIFSIGNALED(wstatus);
-        if (r.signaled) r.signal = WTERMSIG(wstatus);
-        if (WIFEXITED(wstatus)) r.status = WEXITSTATUS(wstatus);
-        r.out = readFile(outPath);
-        r.err = readFile(errPath);
+        std::vector<std::string> argv = {PT_BINARY};
+        argv.insert(argv.end(), args.begin(), args.end());
+        pt::test::RunOptions options;
+        options.dir = dir_;
+        options.env = env;
+        options.stdoutFile = captureDir_ / "stdout";
+        options.stderrFile = captureDir_ / "stderr";
+        options.timeoutSeconds = timeoutSeconds;
+        const PtRun r = pt::test::runProcess(argv, options);
+        if (!r.launchError.empty()) ADD_FAILURE() << r.launchError;
         return r;
     }
 
@@ -210,7 +113,7 @@ protected:
         ASSERT_NE(it, expected.end()) << name << " has no expected substring in README.md";
         const std::string file = (kTests / "data" / corpus / name).string();
 
-        const RunResult r = run({"render", file, "--spp", "1", "-o", (dir_ / "x.exr").string()}, {}, 10);
+        const PtRun r = run({"render", file, "--spp", "1", "-o", (dir_ / "x.exr").string()}, {}, 10);
         EXPECT_EXIT_STATUS(r, 1);
         EXPECT_LT(r.seconds, 1.0) << r;
         const std::string line = r.errorLine();
@@ -253,25 +156,20 @@ TEST(CliCorpus, AtLeastFortyKindsAcrossTheFormats) {
     EXPECT_GE(kinds, 40u);
 }
 
-std::string paramName(const ::testing::TestParamInfo<std::string>& info) {
-    std::string s = info.param;
-    for (char& c : s)
-        if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
-    return s;
-}
+using pt::test::corpusParamName;
 
-INSTANTIATE_TEST_SUITE_P(Corpus, MalformedCorpus, ::testing::ValuesIn(corpusFiles()), paramName);
+INSTANTIATE_TEST_SUITE_P(Corpus, MalformedCorpus, ::testing::ValuesIn(corpusFiles()), corpusParamName);
 INSTANTIATE_TEST_SUITE_P(XmlCorpus, MalformedXmlCorpus, ::testing::ValuesIn(pt::test::malformedCorpusFiles("malformed_xml")),
-    paramName);
+    corpusParamName);
 INSTANTIATE_TEST_SUITE_P(PlyCorpus, MalformedPlyCorpus, ::testing::ValuesIn(pt::test::malformedCorpusFiles("malformed_ply")),
-    paramName);
+    corpusParamName);
 
 // ---------------------------------------------------------------------------------------------
 // Successful renders
 
 TEST_F(CliTest, DefaultSceneWritesExrWithMetadataAndPng) {
     const fs::path exr = dir_ / "cbox.exr", png = dir_ / "cbox.png";
-    const RunResult r = run({"render", "-o", exr.string(), "--spp", "2", "--width", "32", "--height", "32"});
+    const PtRun r = run({"render", "-o", exr.string(), "--spp", "2", "--width", "32", "--height", "32"});
     EXPECT_EXIT_STATUS(r, 0);
     EXPECT_TRUE(r.errorLines().empty()) << r;
     ASSERT_TRUE(fs::exists(exr)) << r;
@@ -305,7 +203,7 @@ TEST_F(CliTest, DefaultSceneWritesExrWithMetadataAndPng) {
 
 TEST_F(CliTest, SeedAndSppReachTheMetadata) {
     const fs::path exr = dir_ / "sub" / "dir" / "seeded.exr";
-    const RunResult r = run({"render", "-o", exr.string(), "--spp", "3", "--seed", "7", "--width", "8", "--height", "4",
+    const PtRun r = run({"render", "-o", exr.string(), "--spp", "3", "--seed", "7", "--width", "8", "--height", "4",
         "--quiet"});
     EXPECT_EXIT_STATUS(r, 0);
     ASSERT_TRUE(fs::exists(exr)) << r; // parent directories are created
@@ -320,7 +218,7 @@ TEST_F(CliTest, SeedAndSppReachTheMetadata) {
 
 TEST_F(CliTest, ValidationLayerStaysSilent) {
     const fs::path exr = dir_ / "v.exr";
-    const RunResult r =
+    const PtRun r =
         run({"render", "--spp", "1", "--width", "16", "--height", "16", "-o", exr.string()}, {{"PT_VALIDATION", "1"}});
     EXPECT_EXIT_STATUS(r, 0);
     EXPECT_TRUE(r.errorLines().empty()) << r;
@@ -330,7 +228,7 @@ TEST_F(CliTest, ValidationLayerStaysSilent) {
 }
 
 TEST_F(CliTest, DevicesListsAtLeastOneDevice) {
-    const RunResult r = run({"devices"});
+    const PtRun r = run({"devices"});
     EXPECT_EXIT_STATUS(r, 0);
     std::istringstream s(r.out);
     int devices = 0;
@@ -344,7 +242,7 @@ TEST_F(CliTest, DevicesListsAtLeastOneDevice) {
 
 TEST_F(CliTest, ErrorLogRecordsEveryPass) {
     const fs::path log = dir_ / "errors.csv", exr = dir_ / "diffuse.exr";
-    const RunResult r = run({"render", kDiffuseScene.string(), "--reference", kDiffuseReference.string(), "--error-log",
+    const PtRun r = run({"render", kDiffuseScene.string(), "--reference", kDiffuseReference.string(), "--error-log",
         log.string(), "--spp", "4", "--pass-spp", "1", "-o", exr.string(), "--quiet"});
     EXPECT_EXIT_STATUS(r, 0);
     ASSERT_TRUE(fs::exists(log)) << r;
@@ -383,7 +281,7 @@ TEST_F(CliTest, ErrorLogRecordsEveryPass) {
 
 TEST_F(CliTest, MissingSceneFile) {
     const std::string scene = (dir_ / "nothere.gltf").string();
-    const RunResult r = run({"render", scene, "--spp", "1", "-o", (dir_ / "x.exr").string()});
+    const PtRun r = run({"render", scene, "--spp", "1", "-o", (dir_ / "x.exr").string()});
     EXPECT_EXIT_STATUS(r, 1);
     const std::string line = r.errorLine();
     EXPECT_NE(line.find(scene), std::string::npos) << line;
@@ -396,7 +294,7 @@ TEST_F(CliTest, DirectoryAsScene) {
         SCOPED_TRACE(name);
         const std::string scene = (dir_ / name).string();
         fs::create_directories(scene);
-        const RunResult r = run({"render", scene, "--spp", "1", "-o", (dir_ / "x.exr").string()});
+        const PtRun r = run({"render", scene, "--spp", "1", "-o", (dir_ / "x.exr").string()});
         EXPECT_EXIT_STATUS(r, 1);
         const std::string line = r.errorLine();
         EXPECT_NE(line.find(scene), std::string::npos) << line;
@@ -407,7 +305,7 @@ TEST_F(CliTest, DirectoryAsScene) {
 TEST_F(CliTest, UnknownSceneExtension) {
     const std::string scene = (dir_ / "model.obj").string();
     std::ofstream(scene) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
-    const RunResult r = run({"render", scene, "--spp", "1", "-o", (dir_ / "x.exr").string()});
+    const PtRun r = run({"render", scene, "--spp", "1", "-o", (dir_ / "x.exr").string()});
     EXPECT_EXIT_STATUS(r, 1);
     const std::string line = r.errorLine();
     EXPECT_NE(line.find(scene), std::string::npos) << line;
@@ -416,7 +314,7 @@ TEST_F(CliTest, UnknownSceneExtension) {
 }
 
 TEST_F(CliTest, AbsurdResolutionFailsFastWithoutAllocating) {
-    const RunResult r =
+    const PtRun r =
         run({"render", "--spp", "1", "--width", "100000", "--height", "100000", "-o", (dir_ / "x.exr").string()}, {}, 10);
     EXPECT_EXIT_STATUS(r, 1);
     EXPECT_LT(r.seconds, 2.0) << r;
@@ -428,7 +326,7 @@ TEST_F(CliTest, AbsurdResolutionFailsFastWithoutAllocating) {
 
 TEST_F(CliTest, ReferenceOfTheWrongSize) {
     const std::string ref = kDiffuseReference.string(); // 256x256
-    const RunResult r =
+    const PtRun r =
         run({"render", "--reference", ref, "--spp", "1", "--width", "32", "--height", "32", "-o", (dir_ / "x.exr").string()});
     EXPECT_EXIT_STATUS(r, 1);
     const std::string line = r.errorLine();
@@ -439,7 +337,7 @@ TEST_F(CliTest, ReferenceOfTheWrongSize) {
 
 TEST_F(CliTest, MissingReference) {
     const std::string ref = (dir_ / "nothere.exr").string();
-    const RunResult r =
+    const PtRun r =
         run({"render", "--reference", ref, "--spp", "1", "--width", "8", "--height", "8", "-o", (dir_ / "x.exr").string()});
     EXPECT_EXIT_STATUS(r, 1);
     const std::string line = r.errorLine();
@@ -449,7 +347,7 @@ TEST_F(CliTest, MissingReference) {
 
 TEST_F(CliTest, ReferenceThatIsNotAnExr) {
     const std::string ref = kDiffuseScene.string();
-    const RunResult r =
+    const PtRun r =
         run({"render", "--reference", ref, "--spp", "1", "--width", "8", "--height", "8", "-o", (dir_ / "x.exr").string()});
     EXPECT_EXIT_STATUS(r, 1);
     EXPECT_NE(r.errorLine().find(ref), std::string::npos);
@@ -458,7 +356,7 @@ TEST_F(CliTest, ReferenceThatIsNotAnExr) {
 
 TEST_F(CliTest, OutputUnderProc) {
     const std::string out = "/proc/pt-cli-test-does-not-exist/y.exr";
-    const RunResult r = run({"render", "--spp", "1", "--width", "8", "--height", "8", "-o", out});
+    const PtRun r = run({"render", "--spp", "1", "--width", "8", "--height", "8", "-o", out});
     EXPECT_EXIT_STATUS(r, 1);
     const std::string line = r.errorLine();
     // Naming the output, or the directory that could not be made for it.
@@ -469,7 +367,7 @@ TEST_F(CliTest, OutputWhoseParentIsARegularFile) {
     const fs::path file = dir_ / "file.txt";
     std::ofstream(file) << "not a directory\n";
     const std::string out = (file / "y.exr").string();
-    const RunResult r = run({"render", "--spp", "1", "--width", "8", "--height", "8", "-o", out});
+    const PtRun r = run({"render", "--spp", "1", "--width", "8", "--height", "8", "-o", out});
     EXPECT_EXIT_STATUS(r, 1);
     const std::string line = r.errorLine();
     EXPECT_NE(line.find(file.string()), std::string::npos) << line;
@@ -480,7 +378,7 @@ TEST_F(CliTest, OutputWhoseParentIsARegularFile) {
 TEST_F(CliTest, OutputThatIsADirectory) {
     const fs::path out = dir_ / "taken.exr";
     fs::create_directories(out);
-    const RunResult r = run({"render", "--spp", "1", "--width", "8", "--height", "8", "-o", out.string(), "--quiet"});
+    const PtRun r = run({"render", "--spp", "1", "--width", "8", "--height", "8", "-o", out.string(), "--quiet"});
     EXPECT_EXIT_STATUS(r, 1);
     EXPECT_NE(r.errorLine().find(out.string()), std::string::npos);
     EXPECT_TRUE(fs::is_directory(out));
@@ -489,14 +387,14 @@ TEST_F(CliTest, OutputThatIsADirectory) {
 
 TEST_F(CliTest, OutputMustBeExr) {
     const std::string out = (dir_ / "image.png").string();
-    const RunResult r = run({"render", "--spp", "1", "--width", "8", "--height", "8", "-o", out});
+    const PtRun r = run({"render", "--spp", "1", "--width", "8", "--height", "8", "-o", out});
     EXPECT_EXIT_STATUS(r, 1);
     EXPECT_NE(r.errorLine().find(out), std::string::npos);
     EXPECT_TRUE(outputs().empty());
 }
 
 TEST_F(CliTest, CameraOutOfRange) {
-    const RunResult r =
+    const PtRun r =
         run({"render", "--camera", "5", "--spp", "1", "--width", "8", "--height", "8", "-o", (dir_ / "x.exr").string()});
     EXPECT_EXIT_STATUS(r, 1);
     const std::string line = r.errorLine();
@@ -509,39 +407,39 @@ TEST_F(CliTest, CameraOutOfRange) {
 // Usage errors: exit status 2, nothing rendered.
 
 TEST_F(CliTest, SppAndTimeTogetherIsAUsageError) {
-    const RunResult r = run({"render", "--spp", "4", "--time", "1", "-o", (dir_ / "x.exr").string()});
+    const PtRun r = run({"render", "--spp", "4", "--time", "1", "-o", (dir_ / "x.exr").string()});
     EXPECT_EXIT_STATUS(r, 2);
     EXPECT_NE(r.err.find("--time"), std::string::npos) << r;
     EXPECT_TRUE(outputs().empty());
 }
 
 TEST_F(CliTest, BadSwitchValueIsAUsageError) {
-    const RunResult r = run({"render", "--nee", "maybe", "-o", (dir_ / "x.exr").string()});
+    const PtRun r = run({"render", "--nee", "maybe", "-o", (dir_ / "x.exr").string()});
     EXPECT_EXIT_STATUS(r, 2);
     EXPECT_NE(r.err.find("maybe"), std::string::npos) << r;
     EXPECT_TRUE(outputs().empty());
 }
 
 TEST_F(CliTest, UnknownOptionIsAUsageError) {
-    const RunResult r = run({"render", "--no-such-option", "-o", (dir_ / "x.exr").string()});
+    const PtRun r = run({"render", "--no-such-option", "-o", (dir_ / "x.exr").string()});
     EXPECT_EXIT_STATUS(r, 2);
     EXPECT_TRUE(outputs().empty());
 }
 
 TEST_F(CliTest, MissingSubcommandIsAUsageError) {
-    const RunResult r = run({});
+    const PtRun r = run({});
     EXPECT_EXIT_STATUS(r, 2);
 }
 
 TEST_F(CliTest, ErrorLogWithoutReferenceIsAUsageError) {
-    const RunResult r = run({"render", "--error-log", (dir_ / "e.csv").string(), "-o", (dir_ / "x.exr").string()});
+    const PtRun r = run({"render", "--error-log", (dir_ / "e.csv").string(), "-o", (dir_ / "x.exr").string()});
     EXPECT_EXIT_STATUS(r, 2);
     EXPECT_NE(r.err.find("--reference"), std::string::npos) << r;
     EXPECT_TRUE(outputs().empty());
 }
 
 TEST_F(CliTest, HelpExitsZero) {
-    const RunResult r = run({"render", "--help"});
+    const PtRun r = run({"render", "--help"});
     EXPECT_EXIT_STATUS(r, 0);
     EXPECT_NE(r.out.find("--spp"), std::string::npos) << r;
 }
@@ -550,7 +448,7 @@ TEST_F(CliTest, HelpExitsZero) {
 
 // Vulkan failures are one clear line too: no driver at all, and a --device nothing matches.
 TEST_F(CliTest, NoVulkanDriverIsAClearError) {
-    const RunResult r = run({"render", "--spp", "1", "--width", "8", "--height", "8", "-o", (dir_ / "x.exr").string()},
+    const PtRun r = run({"render", "--spp", "1", "--width", "8", "--height", "8", "-o", (dir_ / "x.exr").string()},
         {{"VK_ICD_FILENAMES", (dir_ / "no-such-icd.json").string()}, {"VK_DRIVER_FILES", (dir_ / "no-such-icd.json").string()}});
     EXPECT_EXIT_STATUS(r, 1);
     const std::string line = lower(r.errorLine());
@@ -560,7 +458,7 @@ TEST_F(CliTest, NoVulkanDriverIsAClearError) {
 }
 
 TEST_F(CliTest, UnmatchedDeviceIsAClearError) {
-    const RunResult r = run({"render", "--spp", "1", "--width", "8", "--height", "8", "--device", "NoSuchGpu9000", "-o",
+    const PtRun r = run({"render", "--spp", "1", "--width", "8", "--height", "8", "--device", "NoSuchGpu9000", "-o",
         (dir_ / "x.exr").string()});
     EXPECT_EXIT_STATUS(r, 1);
     const std::string line = r.errorLine();
@@ -572,7 +470,7 @@ TEST_F(CliTest, UnmatchedDeviceIsAClearError) {
 // nothing emitting says so instead of silently writing a black image.
 TEST_F(CliTest, UnsupportedFeaturesAreListedInOneWarning) {
     const std::string scene = (kTests / "data" / "cli" / "unsupported_features.gltf").string();
-    const RunResult r = run({"render", scene, "--spp", "1", "--width", "8", "--height", "8", "-o", (dir_ / "x.exr").string()});
+    const PtRun r = run({"render", scene, "--spp", "1", "--width", "8", "--height", "8", "-o", (dir_ / "x.exr").string()});
     EXPECT_EXIT_STATUS(r, 0);
     std::vector<std::string> notSupported, noLight;
     std::istringstream lines(r.err);
@@ -593,7 +491,7 @@ TEST_F(CliTest, CourseSceneRendersEveryCameraToItsImageName) {
     const std::string scene = (kTests / "data" / "ceng795" / "cornellbox_jaroslav_path_glass.xml").string();
     // Eight cameras with different switches: eight pipelines of about 2 s each on lavapipe, more
     // with another test beside it.
-    const RunResult all =
+    const PtRun all =
         run({"render", scene, "--spp", "1", "--width", "16", "--height", "16", "-o", (dir_ / "all").string()}, {}, 120);
     EXPECT_EXIT_STATUS(all, 0);
     for (const char* name : {"glass", "glass_next", "glass_next_importance_russian", "glass_russian"}) {
@@ -604,7 +502,7 @@ TEST_F(CliTest, CourseSceneRendersEveryCameraToItsImageName) {
     for (const auto& e : fs::directory_iterator(dir_ / "all")) images += e.path().extension() == ".exr";
     EXPECT_EQ(images, 8u);
 
-    const RunResult one = run({"render", scene, "--camera", "4", "--spp", "1", "--width", "16", "--height", "16", "-o",
+    const PtRun one = run({"render", scene, "--camera", "4", "--spp", "1", "--width", "16", "--height", "16", "-o",
         (dir_ / "one.exr").string()});
     EXPECT_EXIT_STATUS(one, 0);
     pt::ImageMetadata meta;
@@ -615,7 +513,7 @@ TEST_F(CliTest, CourseSceneRendersEveryCameraToItsImageName) {
     EXPECT_NE(meta["integrator"].find("rr=on"), std::string::npos) << meta["integrator"];
     EXPECT_NE(meta["integrator"].find("sampling=cosine"), std::string::npos) << meta["integrator"];
 
-    const RunResult missing = run({"render", scene, "--camera", "42", "--spp", "1", "-o", (dir_ / "x.exr").string()});
+    const PtRun missing = run({"render", scene, "--camera", "42", "--spp", "1", "-o", (dir_ / "x.exr").string()});
     EXPECT_EXIT_STATUS(missing, 1);
     EXPECT_NE(missing.errorLine().find("42"), std::string::npos);
 }
@@ -649,7 +547,7 @@ std::vector<std::map<std::string, std::string>> readCsv(const fs::path& path) {
 } // namespace
 
 TEST_F(CliTest, BenchWritesCsvPlotAndContactSheets) {
-    const RunResult r = run({"bench", "--width", "32", "--height", "32", "--budgets", "0.8,0.2", "--configs",
+    const PtRun r = run({"bench", "--width", "32", "--height", "32", "--budgets", "0.8,0.2", "--configs",
                                 "nee+is+rr,none,nee+is+rr+sobol", "--reference-spp", "256", "-o", "bench"},
         {}, 120);
     EXPECT_EXIT_STATUS(r, 0);
@@ -695,20 +593,20 @@ TEST_F(CliTest, BenchWritesCsvPlotAndContactSheets) {
 }
 
 TEST_F(CliTest, BenchRejectsUnknownConfigurationWord) {
-    const RunResult r = run({"bench", "--width", "8", "--height", "8", "--configs", "nee+fast", "--no-plot"});
+    const PtRun r = run({"bench", "--width", "8", "--height", "8", "--configs", "nee+fast", "--no-plot"});
     EXPECT_EXIT_STATUS(r, 1);
     EXPECT_NE(r.errorLine().find("unknown word 'fast'"), std::string::npos) << r;
 }
 
 TEST_F(CliTest, BenchRejectsBadBudget) {
-    const RunResult r = run({"bench", "--width", "8", "--height", "8", "--budgets", "1,x", "--no-plot"});
+    const PtRun r = run({"bench", "--width", "8", "--height", "8", "--budgets", "1,x", "--no-plot"});
     EXPECT_EXIT_STATUS(r, 1);
     EXPECT_NE(r.errorLine().find("'x' is not a number of seconds"), std::string::npos) << r;
 }
 
 TEST_F(CliTest, TargetErrorStopsNearTheTrueError) {
     // The estimate needs no reference; the reference here only checks it.
-    const RunResult r = run({"render", kDiffuseScene.string(), "--target-error", "0.02", "--reference",
+    const PtRun r = run({"render", kDiffuseScene.string(), "--target-error", "0.02", "--reference",
                                 kDiffuseReference.string(), "-o", "t.exr", "--quiet"},
         {}, 120);
     EXPECT_EXIT_STATUS(r, 0);
@@ -731,7 +629,7 @@ TEST_F(CliTest, VarianceChannelsMatchTheSpreadOfSeeds) {
     std::vector<pt::Image> means;
     for (const char* seed : {"1", "2"}) {
         const std::string file = std::string("v") + seed + ".exr";
-        const RunResult r = run({"render", "--width", "32", "--height", "32", "--spp", "64", "--seed", seed, "--variance",
+        const PtRun r = run({"render", "--width", "32", "--height", "32", "--spp", "64", "--seed", seed, "--variance",
             "-o", file, "--quiet"});
         ASSERT_EQ(r.status, 0) << r;
         variances.push_back(pt::readExrChannels(dir_ / file, names));

@@ -3,6 +3,7 @@
 // and merge refuses parts that cannot belong together.
 #include "image/image_io.h"
 #include "support/pt_process.h"
+#include "support/test_directory.h"
 
 #include <gtest/gtest.h>
 

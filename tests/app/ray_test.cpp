@@ -4,6 +4,7 @@
 // the lost task). Skipped when the venv of scripts/setup.sh (PT_RAY_PYTHON) is missing.
 #include "image/image_io.h"
 #include "support/pt_process.h"
+#include "support/test_directory.h"
 
 #include <gtest/gtest.h>
 
@@ -13,7 +14,6 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
-#include <fstream>
 #include <sstream>
 
 namespace fs = std::filesystem;
@@ -23,22 +23,15 @@ namespace {
 
 const std::string kPtArgs = "--width 32 --height 24 --max-depth 4 --seed 3 --pass-spp 1";
 
-std::string readText(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
-
 // The command line of process `pid`, arguments separated by spaces ("" if it is gone).
 std::string commandLine(pid_t pid) {
-    std::string text = readText("/proc/" + std::to_string(pid) + "/cmdline");
+    std::string text = readFile("/proc/" + std::to_string(pid) + "/cmdline");
     std::replace(text.begin(), text.end(), '\0', ' ');
     return text;
 }
 
 pid_t parentOf(pid_t pid) {
-    std::istringstream stat(readText("/proc/" + std::to_string(pid) + "/stat"));
+    std::istringstream stat(readFile("/proc/" + std::to_string(pid) + "/stat"));
     std::string field;
     for (int i = 0; i < 4 && stat >> field; ++i)
         if (i == 3) return static_cast<pid_t>(std::stol(field));

@@ -1,7 +1,7 @@
 #include "film/tonemap.h"
+#include "support/test_directory.h"
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <cmath>
 #include <cstdint>
@@ -315,13 +315,7 @@ class TonemapPngTest : public ::testing::Test {
 protected:
     // A fresh directory per test so parallel ctest runs cannot collide and the
     // "no temporary file left behind" checks see only this test's output.
-    void SetUp() override {
-        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        dir_ = fs::temp_directory_path() /
-               ("pt_tonemap_" + std::to_string(::getpid()) + "_" + info->name());
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
-    }
+    void SetUp() override { dir_ = pt::test::freshTestDirectory("tonemap"); }
     void TearDown() override {
         std::error_code ignored;
         fs::remove_all(dir_, ignored);

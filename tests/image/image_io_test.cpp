@@ -1,12 +1,12 @@
 #include "image/image_io.h"
 #include "film/tonemap.h" // writePng
+#include "support/test_directory.h"
 
 #include <ImfChannelList.h>
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
 #include <ImfOutputFile.h>
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <cmath>
 #include <cstdint>
@@ -36,13 +36,7 @@ namespace {
 // "no temporary files left behind" check sees only this test's output.
 class ImageIoTest : public ::testing::Test {
 protected:
-    void SetUp() override {
-        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        dir_ = fs::temp_directory_path() /
-               ("pt_image_io_" + std::to_string(::getpid()) + "_" + info->name());
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
-    }
+    void SetUp() override { dir_ = pt::test::freshTestDirectory("image_io"); }
     void TearDown() override {
         std::error_code ignored;
         fs::remove_all(dir_, ignored);

@@ -1,6 +1,7 @@
 #include "support/malformed_corpus.h"
 
 #include <algorithm>
+#include <cctype>
 #include <fstream>
 #include <sstream>
 
@@ -66,6 +67,13 @@ std::vector<std::string> malformedCorpusFiles(const std::string& corpus) {
     }
     std::sort(files.begin(), files.end());
     return files;
+}
+
+std::string corpusParamName(const ::testing::TestParamInfo<std::string>& info) {
+    std::string s = info.param;
+    for (char& c : s)
+        if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+    return s;
 }
 
 } // namespace pt::test

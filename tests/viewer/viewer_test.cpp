@@ -5,68 +5,36 @@
 // with one line. The Xvfb tests skip only when xvfb-run is not installed (.ci/run installs it).
 #include "image/image_io.h"
 #include "film/metrics.h"
+#include "support/pt_process.h"
+#include "support/test_directory.h"
 
 #include <gtest/gtest.h>
 
-#include <fcntl.h>
-#include <signal.h>
-#include <spawn.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
-#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <map>
 #include <set>
 #include <sstream>
 #include <string>
-#include <thread>
 #include <vector>
 
 #define STB_IMAGE_STATIC
 #define STB_IMAGE_IMPLEMENTATION
 #include <stb/stb_image.h>
 
-extern char** environ;
-
 namespace fs = std::filesystem;
 
 namespace {
 
-struct RunResult {
-    int status = -1; // exit status, or -1 when killed
-    std::string out, err;
-};
-
-std::ostream& operator<<(std::ostream& os, const RunResult& r) {
-    return os << "exit " << r.status << "\n--- stderr:\n" << r.err << "--- stdout:\n" << r.out;
-}
-
-std::string readFile(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
-
-bool onPath(const std::string& program) {
-    const char* path = std::getenv("PATH");
-    std::istringstream dirs(path ? path : "");
-    for (std::string d; std::getline(dirs, d, ':');)
-        if (!d.empty() && ::access((fs::path(d) / program).c_str(), X_OK) == 0) return true;
-    return false;
-}
+using pt::test::onPath;
+using pt::test::PtRun;
 
 class ViewerProcess : public ::testing::Test {
 protected:
     void SetUp() override {
-        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        dir_ = fs::temp_directory_path() / ("pt_view_" + std::to_string(::getpid()) + "_" + info->name());
-        fs::remove_all(dir_);
+        dir_ = pt::test::freshTestDirectory("view");
         fs::create_directories(dir_ / "xdg");
         fs::permissions(dir_ / "xdg", fs::perms::owner_all);
     }
@@ -76,57 +44,24 @@ protected:
     }
 
     // Runs argv in dir_ with `unset` removed from the environment and `set` added.
-    RunResult run(std::vector<std::string> args, const std::set<std::string>& unset = {},
+    PtRun run(const std::vector<std::string>& args, const std::set<std::string>& unset = {},
         const std::map<std::string, std::string>& set = {}, double timeoutSeconds = 240) {
-        std::vector<char*> argv;
-        for (auto& a : args) argv.push_back(a.data());
-        argv.push_back(nullptr);
-        std::vector<std::string> envStrings;
-        for (char** e = environ; *e; ++e) {
-            const std::string entry = *e;
-            const std::string key = entry.substr(0, entry.find('='));
-            if (!unset.count(key) && !set.count(key) && key != "PT_VALIDATION" && key != "XDG_RUNTIME_DIR") envStrings.push_back(entry);
-        }
-        envStrings.push_back("XDG_RUNTIME_DIR=" + (dir_ / "xdg").string()); // GLFW and Mesa want one
-        for (const auto& [k, v] : set) envStrings.push_back(k + "=" + v);
-        std::vector<char*> envp;
-        for (auto& e : envStrings) envp.push_back(e.data());
-        envp.push_back(nullptr);
-
-        const fs::path outPath = dir_ / "stdout.txt", errPath = dir_ / "stderr.txt";
-        posix_spawn_file_actions_t actions;
-        posix_spawn_file_actions_init(&actions);
-        posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
-        posix_spawn_file_actions_addopen(&actions, 1, outPath.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-        posix_spawn_file_actions_addopen(&actions, 2, errPath.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-        posix_spawn_file_actions_addchdir_np(&actions, dir_.c_str());
-        RunResult r;
-        pid_t pid = -1;
-        const int rc = posix_spawnp(&pid, argv[0], &actions, nullptr, argv.data(), envp.data());
-        posix_spawn_file_actions_destroy(&actions);
-        if (rc != 0) {
-            ADD_FAILURE() << "cannot start " << argv[0] << ": " << std::strerror(rc);
-            return r;
-        }
-        const auto start = std::chrono::steady_clock::now();
-        int wstatus = 0;
-        while (::waitpid(pid, &wstatus, WNOHANG) == 0) {
-            if (std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() > timeoutSeconds) {
-                ::kill(pid, SIGKILL);
-                ::waitpid(pid, &wstatus, 0);
-                ADD_FAILURE() << "timed out after " << timeoutSeconds << " s";
-                break;
-            }
-            std::this_thread::sleep_for(std::chrono::milliseconds(20));
-        }
-        r.status = WIFEXITED(wstatus) ? WEXITSTATUS(wstatus) : -1;
-        r.out = readFile(outPath);
-        r.err = readFile(errPath);
+        pt::test::RunOptions options;
+        options.dir = dir_;
+        options.unset.insert(unset.begin(), unset.end());
+        options.env = set;
+        options.env["XDG_RUNTIME_DIR"] = (dir_ / "xdg").string(); // GLFW and Mesa want one
+        options.stdoutFile = dir_ / "stdout.txt";
+        options.stderrFile = dir_ / "stderr.txt";
+        options.timeoutSeconds = timeoutSeconds;
+        const PtRun r = pt::test::runProcess(args, options);
+        if (!r.launchError.empty()) ADD_FAILURE() << r.launchError;
+        if (r.timedOut) ADD_FAILURE() << "timed out after " << timeoutSeconds << " s";
         return r;
     }
 
     // `pt view ARGS --script SCRIPT` inside xvfb-run with a 24-bit screen.
-    RunResult view(const std::string& script, std::vector<std::string> args) {
+    PtRun view(const std::string& script, std::vector<std::string> args) {
         std::ofstream(dir_ / "script.txt") << script;
         std::vector<std::string> cmd = {"xvfb-run", "-a", "-s", "-screen 0 1024x768x24", PT_BINARY, "view"};
         cmd.insert(cmd.end(), args.begin(), args.end());
@@ -178,7 +113,7 @@ Png readPng(const fs::path& path) {
 
 TEST_F(ViewerProcess, ScriptedSessionSavesResetsAndResizes) {
     SKIP_WITHOUT_XVFB();
-    const RunResult r = view(
+    const PtRun r = view(
         "wait-spp 4\n"
         "report\n"
         "save out/still.exr\n"
@@ -234,7 +169,7 @@ TEST_F(ViewerProcess, DebugViewsSwitchesAndToneMappingRunClean) {
     script += "view none\ntoggle nee\ntoggle rr\ntoggle sampling\nmax-depth 4\nclamp 10\nwait-spp 2\n"
               "tonemap photographic\nwait 2\nscreenshot out/photographic.png\ntonemap aces\nexposure 1\nwait 2\n"
               "screenshot out/aces.png\nsave out/switched.exr\nquit\n";
-    const RunResult r = view(script, {"--validation", "--width", "64", "--height", "64"});
+    const PtRun r = view(script, {"--validation", "--width", "64", "--height", "64"});
     ASSERT_EQ(r.status, 0) << r;
     for (const auto& name : {"albedo", "normal", "depth", "bvh", "nan", "photographic", "aces"}) {
         const Png png = readPng(dir_ / "out" / (std::string(name) + ".png"));
@@ -253,12 +188,12 @@ TEST_F(ViewerProcess, DebugViewsSwitchesAndToneMappingRunClean) {
 // the same spp, so the same variance: each side's block variance is estimated from it).
 TEST_F(ViewerProcess, UntouchedViewMatchesHeadlessRender) {
     SKIP_WITHOUT_XVFB();
-    const RunResult v = view("wait-spp 16\nsave out/view.exr\nquit\n", {"--width", "128", "--height", "128", "--spp", "16"});
+    const PtRun v = view("wait-spp 16\nsave out/view.exr\nquit\n", {"--width", "128", "--height", "128", "--spp", "16"});
     ASSERT_EQ(v.status, 0) << v;
-    const RunResult r = run({PT_BINARY, "render", "--width", "128", "--height", "128", "--spp", "16", "--seed", "7", "-q", "-o",
+    const PtRun r = run({PT_BINARY, "render", "--width", "128", "--height", "128", "--spp", "16", "--seed", "7", "-q", "-o",
         "out/render.exr"});
     ASSERT_EQ(r.status, 0) << r;
-    const RunResult same = run({PT_BINARY, "render", "--width", "128", "--height", "128", "--spp", "16", "-q", "-o",
+    const PtRun same = run({PT_BINARY, "render", "--width", "128", "--height", "128", "--spp", "16", "-q", "-o",
         "out/same-seed.exr"});
     ASSERT_EQ(same.status, 0) << same;
 
@@ -284,14 +219,14 @@ TEST_F(ViewerProcess, UntouchedViewMatchesHeadlessRender) {
 }
 
 TEST_F(ViewerProcess, NoDisplayFailsWithOneLine) {
-    const RunResult r = run({PT_BINARY, "view"}, {"DISPLAY", "WAYLAND_DISPLAY"});
+    const PtRun r = run({PT_BINARY, "view"}, {"DISPLAY", "WAYLAND_DISPLAY"});
     EXPECT_EQ(r.status, 1) << r;
     EXPECT_EQ(r.err, "pt: error: pt view: no display (DISPLAY and WAYLAND_DISPLAY are not set); render to a file with "
                      "'pt render' instead\n");
 }
 
 TEST_F(ViewerProcess, UnreachableDisplayFailsWithOneLine) {
-    const RunResult r = run({PT_BINARY, "view"}, {"WAYLAND_DISPLAY"}, {{"DISPLAY", ":4242"}});
+    const PtRun r = run({PT_BINARY, "view"}, {"WAYLAND_DISPLAY"}, {{"DISPLAY", ":4242"}});
     EXPECT_EQ(r.status, 1) << r;
     EXPECT_EQ(r.err.rfind("pt: error: pt view: cannot open the display", 0), 0u) << r;
     EXPECT_NE(r.err.find("'pt render'"), std::string::npos) << r;

@@ -5,9 +5,9 @@
 // scene into a fresh directory, loads it, and checks the one-line error of a bad one.
 #include "scene/ceng795/loader.h"
 #include "scene/scene_error.h"
+#include "support/test_directory.h"
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -66,12 +66,7 @@ inline std::string triangleScene(const std::string& meshAttributes, const std::s
 
 class Ceng795 : public ::testing::Test {
 protected:
-    void SetUp() override {
-        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        dir_ = fs::temp_directory_path() / ("pt_ceng795_" + std::to_string(::getpid()) + "_" + info->name());
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
-    }
+    void SetUp() override { dir_ = freshTestDirectory("ceng795"); }
     void TearDown() override { fs::remove_all(dir_); }
 
     fs::path write(const std::string& name, const std::string& content) const {

@@ -3,9 +3,9 @@
 // with the file name, never a crash, a hang or a huge allocation.
 #include "scene/ceng795/ply_reader.h"
 #include "scene/scene_error.h"
+#include "support/test_directory.h"
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <bit>
@@ -159,12 +159,7 @@ std::string squareAscii(const std::string& faceLines) {
 
 class PlyReader : public ::testing::Test {
 protected:
-    void SetUp() override {
-        const auto* test = ::testing::UnitTest::GetInstance()->current_test_info();
-        dir_ = fs::temp_directory_path() / ("pt_ply_test_" + std::to_string(::getpid()) + "_" + test->name());
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
-    }
+    void SetUp() override { dir_ = pt::test::freshTestDirectory("ply_test"); }
     void TearDown() override {
         std::error_code ec;
         fs::remove_all(dir_, ec);

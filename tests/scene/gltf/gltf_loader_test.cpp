@@ -626,14 +626,7 @@ TEST_P(MalformedGltf, ThrowsSceneErrorNamingFileAndProblem) {
     EXPECT_THROW(pt::loadScene(path), pt::SceneError);
 }
 
-std::string paramName(const ::testing::TestParamInfo<std::string>& info) {
-    std::string s = info.param;
-    for (char& c : s)
-        if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
-    return s;
-}
-
-INSTANTIATE_TEST_SUITE_P(Corpus, MalformedGltf, ::testing::ValuesIn(corpusFiles()), paramName);
+INSTANTIATE_TEST_SUITE_P(Corpus, MalformedGltf, ::testing::ValuesIn(corpusFiles()), pt::test::corpusParamName);
 
 // ---------------------------------------------------------------------------------------------
 // Files that are not glTF documents at all.
