@@ -15,6 +15,8 @@ packages=(
   libgtest-dev mesa-vulkan-drivers
   libglfw3-dev xvfb xauth
   python3-venv # scripts/setup_ray_venv.sh: the Ray driver's venv (tools/pt_ray)
+  python3-matplotlib # pt bench's plots and contact sheets (tools/bench_plot.py)
+  clang-format # the formatting test (tests/layout/format_test.sh) checks the tree against .clang-format
   clang libclang-rt-14-dev # scripts/sanitizers.sh: ASan + UBSan build and libFuzzer targets
 )
 

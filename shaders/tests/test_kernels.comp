@@ -1,6 +1,6 @@
 #version 460
 // Test kernel: runs the production sampling, light and traversal code on inputs the host
-// chooses, so host-side tests (tests/gpu/) can check samplers against their pdfs and the BVH
+// chooses, so host-side tests (tests/shaders/) can check samplers against their pdfs and the BVH
 // against brute force with exactly the arithmetic the renderer uses.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_buffer_reference : require

@@ -23,7 +23,7 @@ double mse(const Image& x, const Image& ref);
 // Checked against true relMSE in bench/RESULTS.md: within 1.1x on the Mitsuba scenes from 5 spp
 // with the independent sampler; with Sobol' it overestimates (the per-pixel variance ignores
 // the stratification), by up to 1.5x. Rare paths not yet seen at a few spp make it
-// unreliable there (tests/render/metrics_test.cpp shows both ways).
+// unreliable there (tests/film/metrics_test.cpp shows both ways).
 double estimatedRelMse(const Image& mean, const Image& varianceOfMean);
 
 // Per-block means of an image, used to compare two noisy renders without

@@ -1,6 +1,6 @@
 #pragma once
 // What the CENG795 course XML loader's tests share (the tests of one element family each are
-// the *_test.cpp files beside this one; the format is /work/shared/ceng795/FORMAT.md): vector
+// the *_test.cpp files beside this one; the format is docs/ceng795-format.md): vector
 // comparisons, lookups in a loaded scene, pieces of small scenes, and the fixture that writes a
 // scene into a fresh directory, loads it, and checks the one-line error of a bad one.
 #include "scene/ceng795/loader.h"

@@ -65,7 +65,7 @@ TEST_F(Ceng795, MaxRecursionDepthCountsBouncesAfterTheCameraRay) {
     ASSERT_TRUE(s.hints.maxDepth.has_value());
     EXPECT_EQ(*s.hints.maxDepth, 4); // camera ray + 3 bounces
     EXPECT_EQ(s.cameras[0].settings.maxDepth, std::optional<int>(4));
-    // FORMAT.md §8: the official references apply Russian roulette without the depth cap.
+    // docs/ceng795-format.md §8: the official references apply Russian roulette without the depth cap.
     EXPECT_FALSE(s.cameras[1].settings.maxDepth.has_value());
     // Absent: no depth from the file at all.
     const pt::Scene none = load(triangleScene("", "", cameras));

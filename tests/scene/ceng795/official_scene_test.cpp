@@ -23,7 +23,7 @@ TEST(Ceng795Official, CornellPathDiffuseCameras) {
         const bool russian = names[i].find("russian") != std::string::npos;
         EXPECT_EQ(c.settings.nee, std::optional<bool>(names[i].find("next") != std::string::npos)) << names[i];
         EXPECT_EQ(c.settings.russianRoulette, std::optional<bool>(russian)) << names[i];
-        // diffuse.exr's camera says ImportanceSampling in the official file (FORMAT.md §8 quirk).
+        // diffuse.exr's camera says ImportanceSampling in the official file (docs/ceng795-format.md §8 quirk).
         const bool importance = names[i].find("importance") != std::string::npos || names[i] == "diffuse.exr";
         EXPECT_EQ(c.settings.importanceSampling, std::optional<bool>(importance)) << names[i];
         EXPECT_EQ(c.settings.maxDepth, russian ? std::nullopt : std::optional<int>(4)) << names[i];

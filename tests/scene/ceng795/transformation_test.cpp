@@ -42,7 +42,7 @@ TEST_F(Ceng795, RotationIsCounterClockwiseAboutAnUnnormalisedAxis) {
 }
 
 TEST_F(Ceng795, MirroringTransformKeepsTheFrontSide) {
-    // FORMAT.md §10: normals map with the inverse transpose, which for Scaling -1 1 1 keeps +z.
+    // docs/ceng795-format.md §10: normals map with the inverse transpose, which for Scaling -1 1 1 keeps +z.
     // The mirrored winding would face -z, so the loader swaps two corners.
     const std::string transforms = "<Transformations><Scaling id=\"1\">-1 1 1</Scaling></Transformations>";
     const pt::Scene s = load(triangleScene(" shadingMode=\"smooth\"", "<Transformations>s1</Transformations>", transforms));

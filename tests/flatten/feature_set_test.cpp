@@ -1,0 +1,61 @@
+// The kernel feature table (shaders/shared/features.h) and what FeatureSet derives from it.
+#include "flatten/feature_set.h"
+#include "flatten/flat_scene.h"
+#include "scene/default_scene.h"
+#include "shared/layout.h"
+
+#include <gtest/gtest.h>
+
+#include <set>
+#include <string>
+
+namespace {
+
+using namespace pt;
+
+TEST(FeatureTable, ConstantIdsAreUniqueAndClearOfTheWorkgroupSize) {
+    std::set<uint32_t> ids{SPEC_LOCAL_SIZE_X, SPEC_LOCAL_SIZE_Y};
+    std::set<std::string> names;
+    for (const FeatureInfo& row : featureTable()) {
+        EXPECT_TRUE(ids.insert(row.id).second) << row.field << " reuses constant_id " << row.id;
+        EXPECT_TRUE(names.insert(row.constant).second) << row.constant;
+        EXPECT_GT(std::string(row.description).size(), 10u) << row.field << " needs a description";
+    }
+    // One constant per row, plus the workgroup size, all distinct.
+    const std::vector<SpecializationConstant> constants = FeatureSet{}.constants(8, 8);
+    ASSERT_EQ(constants.size(), featureTable().size() + 2);
+    std::set<uint32_t> constantIds;
+    for (const SpecializationConstant& c : constants) EXPECT_TRUE(constantIds.insert(c.id).second) << c.id;
+}
+
+TEST(FeatureTable, TheCornellBoxNeedsTrianglesDiffuseAndEmitters) {
+    const FlatScene box = flattenScene(loadDefaultScene());
+    EXPECT_EQ(computeFeatures(box, IntegratorSettings{}).describe(),
+              "triangles diffuse emitters nee mis rr cosine-sampling");
+    IntegratorSettings classic;
+    classic.classic = true; // the course's ray tracer samples lights everywhere, no MIS or roulette
+    EXPECT_EQ(computeFeatures(box, classic).describe(), "classic triangles diffuse emitters nee cosine-sampling");
+    IntegratorSettings plain;
+    plain.nee = false; // MIS needs NEE
+    plain.sampling = DirectionSampling::Uniform;
+    plain.sampler = SamplerKind::Sobol;
+    EXPECT_EQ(computeFeatures(box, plain).describe(), "triangles diffuse emitters rr uniform-sampling sobol");
+}
+
+TEST(FeatureTable, AllCompilesEverySceneFeatureAndKeepsTheSwitches) {
+    IntegratorSettings s;
+    s.mis = false;
+    const FeatureSet all = FeatureSet::all(s);
+    EXPECT_TRUE(all.diffuse && all.dielectric && all.textures && all.motion && all.environment);
+    EXPECT_TRUE(all.nee);
+    EXPECT_FALSE(all.mis);
+    EXPECT_FALSE(all.lightTracing); // decided by the scene, never compiled in by all()
+    EXPECT_FALSE(all.classic);
+    EXPECT_EQ(all.debugView, DEBUG_VIEW_NONE);
+    // The constants carry each field's value.
+    for (const SpecializationConstant& c : all.constants(8, 4)) {
+        if (c.id == SPEC_LOCAL_SIZE_Y) EXPECT_EQ(c.value, 4u);
+    }
+}
+
+} // namespace
