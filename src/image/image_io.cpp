@@ -1,6 +1,7 @@
 #include "image/image_io.h"
 
 #include "image/atomic_file.h"
+#include "image/file_read.h"
 
 #include <ImfChannelList.h>
 #include <ImfFrameBuffer.h>
@@ -123,7 +124,7 @@ private:
 // instead of a read past the end.
 class ExrMemStream : public Imf::IStream {
 public:
-    ExrMemStream(const std::string& name, const std::vector<char>& data)
+    ExrMemStream(const std::string& name, const std::vector<unsigned char>& data)
         : Imf::IStream(name.c_str()), data_(data) {}
     bool read(char c[], int n) override {
         if (n < 0 || static_cast<uint64_t>(n) > data_.size() - pos_)
@@ -140,22 +141,28 @@ public:
     }
 
 private:
-    const std::vector<char>& data_;
+    const std::vector<unsigned char>& data_;
     uint64_t pos_ = 0;
 };
 
-std::vector<char> readWholeFile(const std::filesystem::path& path) {
-    std::FILE* f = std::fopen(path.c_str(), "rb");
-    if (!f) fail(path, "cannot open (" + errnoText(errno) + ")");
-    std::vector<char> data;
-    char chunk[1 << 16];
-    std::size_t n;
-    while ((n = std::fread(chunk, 1, sizeof chunk, f)) > 0) data.insert(data.end(), chunk, chunk + n);
-    const bool bad = std::ferror(f) != 0;
-    const int err = errno;
-    std::fclose(f);
-    if (bad) fail(path, "read failed (" + errnoText(err) + ")");
-    return data;
+// By the input-file policy (file_read.h), in this reader's words, which predate it: the
+// system's reason in brackets ("cannot open (No such file or directory)", "read failed (Is a
+// directory)"). Unlike the other readers it streams devices and FIFOs to their end (a state file
+// or reference can come through a pipe) and has no size limit of its own: the data window check
+// below bounds what is decoded, and a stream too big to hold ends as out of memory.
+std::vector<unsigned char> readWholeFile(const std::filesystem::path& path) {
+    FileRead file = tryReadInputFile(path, {.streamNonRegular = true});
+    switch (file.problem) {
+    case FileProblem::None: return std::move(file.bytes);
+    case FileProblem::NotFound:
+    case FileProblem::CannotAccess:
+    case FileProblem::CannotOpen: fail(path, "cannot open (" + file.reason + ")");
+    case FileProblem::Directory: fail(path, "read failed (" + errnoText(EISDIR) + ")");
+    case FileProblem::OutOfMemory: throw std::bad_alloc();
+    case FileProblem::ReadFailed:
+        fail(path, "read failed (" + (file.reason.empty() ? std::string("the file shrank while being read") : file.reason) + ")");
+    default: fail(path, "read failed (" + file.reason + ")"); // SizeUnknown
+    }
 }
 
 // A corrupt header can claim an enormous data window; refuse it before we
@@ -176,8 +183,8 @@ void readMetadata(const Imf::Header& header, ImageMetadata& metadata) {
 }
 
 Image readExrImpl(const std::filesystem::path& path, ImageMetadata* metadata) {
-    const std::vector<char> bytes = readWholeFile(path);
-    if (bytes.size() < 4 || !Imf::isImfMagic(bytes.data()))
+    const std::vector<unsigned char> bytes = readWholeFile(path);
+    if (bytes.size() < 4 || !Imf::isImfMagic(reinterpret_cast<const char*>(bytes.data())))
         fail(path, "not an OpenEXR file");
 
     ExrMemStream stream(path.string(), bytes);
@@ -242,8 +249,8 @@ Image readExrImpl(const std::filesystem::path& path, ImageMetadata* metadata) {
 
 ExrChannels readExrChannelsImpl(const std::filesystem::path& path, const std::vector<std::string>& names,
                                 ImageMetadata* metadata) {
-    const std::vector<char> bytes = readWholeFile(path);
-    if (bytes.size() < 4 || !Imf::isImfMagic(bytes.data())) fail(path, "not an OpenEXR file");
+    const std::vector<unsigned char> bytes = readWholeFile(path);
+    if (bytes.size() < 4 || !Imf::isImfMagic(reinterpret_cast<const char*>(bytes.data()))) fail(path, "not an OpenEXR file");
     ExrMemStream stream(path.string(), bytes);
     Imf::InputFile in(stream);
     const Imf::Header& header = in.header();

@@ -1,5 +1,6 @@
 #include "image/texture_image.h"
 
+#include "image/file_read.h"
 #include "image/image_io.h"
 #include "image/jpeg_decode.h"
 #include "image/stb_input_checks.h"
@@ -22,10 +23,9 @@
 
 #include <algorithm>
 #include <cstring>
-#include <fstream>
-#include <iterator>
 #include <limits>
 #include <memory>
+#include <new>
 #include <optional>
 #include <utility>
 #include <stdexcept>
@@ -123,15 +123,22 @@ TextureImage loadTextureImage(const std::filesystem::path& path) {
         std::memcpy(image.rgbaF.data(), exr.rgba.data(), image.rgbaF.size() * sizeof(glm::vec4));
         return image;
     }
-    // A device or FIFO (a scene naming /dev/zero or /dev/stdin) would be read forever.
-    std::error_code ec;
-    const auto status = std::filesystem::status(path, ec);
-    if (status.type() == std::filesystem::file_type::not_found) fail(source, "cannot open image file (not found)");
-    if (!std::filesystem::is_regular_file(status)) fail(source, "not a regular file");
-    std::ifstream in(path, std::ios::binary);
-    if (!in) fail(source, "cannot open image file");
-    std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    return decodeTextureImage(bytes.data(), bytes.size(), source);
+    // By the input-file policy (file_read.h): regular files only (a scene naming /dev/zero or
+    // /dev/stdin would be read forever), in this reader's own words. Empty and oversized files
+    // are left to the decoder's checks, which word them for every image source alike.
+    const FileRead file = tryReadInputFile(path);
+    switch (file.problem) {
+    case FileProblem::None: break;
+    case FileProblem::NotFound: fail(source, "cannot open image file (not found)");
+    case FileProblem::CannotAccess:
+    case FileProblem::Directory:
+    case FileProblem::NotRegularFile: fail(source, "not a regular file");
+    case FileProblem::OutOfMemory: throw std::bad_alloc();
+    case FileProblem::ReadFailed:
+        fail(source, "read failed (" + (file.reason.empty() ? std::string("the file shrank while being read") : file.reason) + ")");
+    default: fail(source, "cannot open image file"); // CannotOpen, SizeUnknown
+    }
+    return decodeTextureImage(file.bytes.data(), file.bytes.size(), source);
 }
 
 Image loadRadianceImage(const std::filesystem::path& path) {

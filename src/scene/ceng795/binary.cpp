@@ -1,5 +1,7 @@
 #include "scene/ceng795/binary.h"
 
+#include "image/file_read.h"
+
 #include <cmath>
 #include <cstring>
 #include <fstream>
@@ -8,14 +10,16 @@ namespace pt::ceng795 {
 namespace {
 
 // Reads the whole payload after checking the count against the file's size, so a corrupt or
-// hostile count cannot make us allocate more than the file holds.
+// hostile count cannot make us allocate more than the file holds. The file is checked by the
+// input-file policy (image/file_read.h) but not read by it: only the count and the payload it
+// announces are read, whatever follows them in the file.
 std::vector<unsigned char> readPayload(const Context& ctx, pugi::xml_node where, size_t elementBytes, uint64_t& count) {
     const std::string relative = where.attribute("binaryFile").value();
     const std::filesystem::path path = ctx.resolve(relative);
-    std::error_code ec;
-    if (!std::filesystem::is_regular_file(path, ec)) ctx.fail(where, "binaryFile " + quote(relative) + " not found");
-    const uint64_t size = std::filesystem::file_size(path, ec);
-    if (ec) ctx.fail(where, "binaryFile " + quote(relative) + ": cannot read its size");
+    const InputFileCheck file = checkInputFile(path);
+    if (file.notARegularFile()) ctx.fail(where, "binaryFile " + quote(relative) + " not found");
+    if (file.problem == FileProblem::SizeUnknown) ctx.fail(where, "binaryFile " + quote(relative) + ": cannot read its size");
+    const uint64_t size = file.size;
     std::ifstream in(path, std::ios::binary);
     int32_t n = 0;
     if (!in || size < 4 || !in.read(reinterpret_cast<char*>(&n), 4)) ctx.fail(where, "binaryFile " + quote(relative) + ": missing count");

@@ -1,5 +1,6 @@
 #include "scene/ceng795/geometry.h"
 
+#include "image/file_read.h"
 #include "scene/ceng795/binary.h"
 #include "scene/ceng795/ply_reader.h"
 #include "scene/scene_error.h"
@@ -102,8 +103,9 @@ std::shared_ptr<const ObjectMesh> FaceReader::fromPly(pugi::xml_node faces) {
     const std::string relative = faces.attribute("plyFile").value();
     const std::filesystem::path path = ctx_.resolve(relative).lexically_normal();
     if (auto it = plyCache_.find(path); it != plyCache_.end()) return it->second;
-    std::error_code ec;
-    if (!std::filesystem::is_regular_file(path, ec)) ctx_.fail(faces, "plyFile " + quote(relative) + " not found");
+    // The input-file policy's first checks (image/file_read.h): anything that is not a regular
+    // file is "not found" here; readPly applies the rest in its own words.
+    if (checkInputFile(path).notARegularFile()) ctx_.fail(faces, "plyFile " + quote(relative) + " not found");
     PlyMesh ply;
     try {
         ply = readPly(path);

@@ -1,10 +1,12 @@
-// A hand-written PLY reader (Debian packages no PLY library). The file is read whole, the header
-// is parsed into a small description of elements and properties, the declared counts are checked
-// against the bytes that actually follow, and then one templated body reader walks the data with
-// either an ascii or a binary cursor. Internally problems are thrown as PlyProblem (text only);
+// A hand-written PLY reader (Debian packages no PLY library). The file is read whole (by the
+// input-file policy, image/file_read.h), the header is parsed into a small description of
+// elements and properties, the declared counts are checked against the bytes that actually
+// follow, and then one templated body reader walks the data with either an ascii or a binary
+// cursor. Internally problems are thrown as PlyProblem (text only);
 // readPly() turns them into SceneError so that every message starts with the file name.
 #include "scene/ceng795/ply_reader.h"
 
+#include "image/file_read.h"
 #include "scene/scene_error.h"
 
 #include <algorithm>
@@ -14,7 +16,6 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
-#include <fstream>
 #include <limits>
 #include <optional>
 #include <stdexcept>
@@ -24,8 +25,6 @@
 
 namespace pt {
 namespace {
-
-namespace fs = std::filesystem;
 
 struct PlyProblem : std::runtime_error {
     using std::runtime_error::runtime_error;
@@ -614,42 +613,13 @@ PlyMesh readBody(const Header& h, std::string_view body) {
     fail("internal error: unknown format");
 }
 
-// ---------------------------------------------------------------------------------------------
-// File access
-
-std::string readFileBytes(const fs::path& path) {
-    std::error_code ec;
-    const fs::file_status status = fs::status(path, ec);
-    if (status.type() == fs::file_type::not_found) fail("file not found");
-    if (ec) fail("cannot access file (" + ec.message() + ")");
-    if (fs::is_directory(status)) fail("is a directory, not a PLY file");
-    // FIFOs and devices could block forever or never end.
-    if (!fs::is_regular_file(status)) fail("not a regular file");
-    const uintmax_t size = fs::file_size(path, ec);
-    if (ec) fail("cannot determine file size (" + ec.message() + ")");
-    std::ifstream in(path, std::ios::binary);
-    if (!in) fail("cannot open for reading");
-    std::string bytes;
-    try {
-        bytes.resize(size);
-    } catch (const std::exception&) { // bad_alloc or length_error: report it like any other problem
-        fail("file too large to read (" + std::to_string(size) + " bytes)");
-    }
-    in.read(bytes.data(), static_cast<std::streamsize>(size));
-    if (static_cast<uintmax_t>(in.gcount()) != size) fail("read error (file shrank while reading?)");
-    return bytes;
-}
-
 } // namespace
 
+// The file is read by the input-file policy (image/file_read.h), whose words are this reader's.
 PlyMesh readPly(const std::filesystem::path& path) {
-    std::string bytes;
-    try {
-        bytes = readFileBytes(path);
-    } catch (const PlyProblem& problem) {
-        throw SceneError(path.string(), problem.what());
-    }
-    return parsePly(bytes, path.string());
+    const FileRead file = tryReadInputFile(path);
+    if (!file) throw SceneError(path.string(), describeFileProblem(file, "a PLY file"));
+    return parsePly(std::string_view(reinterpret_cast<const char*>(file.bytes.data()), file.bytes.size()), path.string());
 }
 
 PlyMesh parsePly(std::string_view bytes, const std::string& displayName) {

@@ -1,9 +1,11 @@
 #include "scene/gltf/gltf_callbacks.h"
 
+#include "image/file_read.h"
+
 #include <tiny_gltf.h>
 
 #include <filesystem>
-#include <fstream>
+#include <new>
 #include <stdexcept>
 #include <string>
 
@@ -30,8 +32,10 @@ bool decodeImage(tinygltf::Image* image, const int index, std::string* err, std:
 // ---- file access for external buffers and images ----
 // tinygltf's own callbacks trust the file: a URI naming a directory made its ReadWholeFile ask for
 // 2^63 bytes (found by fuzzing), a device such as /dev/zero has no end, and its path expansion
-// runs wordexp() on the URI. Ours take the path as written (relative to the scene's folder),
-// read regular files only and bound their size.
+// runs wordexp() on the URI. Ours take the path as written (relative to the scene's folder) and
+// read it by the input-file policy (image/file_read.h): regular files only, not empty, at most
+// 4 GiB. tinygltf puts our words into its own message ("File read error : <uri> : File <problem>
+// : <path>"), so these keep the words tinygltf's messages use.
 constexpr uint64_t kMaxExternalFileBytes = uint64_t(1) << 32;
 
 bool fileExists(const std::string& path, void*) {
@@ -41,23 +45,26 @@ bool fileExists(const std::string& path, void*) {
 
 std::string pathAsWritten(const std::string& path, void*) { return path; }
 
+const char* problemWords(FileProblem problem) {
+    switch (problem) {
+    case FileProblem::NotFound: return "not found";
+    case FileProblem::SizeUnknown: return "size unreadable";
+    case FileProblem::Empty: return "is empty";
+    case FileProblem::TooLarge: return "is larger than 4 GiB";
+    case FileProblem::CannotOpen: return "cannot be opened";
+    case FileProblem::ReadFailed: return "read failed";
+    default: return "is not a regular file"; // CannotAccess, Directory, NotRegularFile
+    }
+}
+
 bool readWholeFile(std::vector<unsigned char>* out, std::string* err, const std::string& path, void*) {
-    auto problem = [&](const std::string& what) {
-        if (err) *err += "File " + what + " : " + path + "\n";
+    FileRead file = tryReadInputFile(path, {.maxBytes = kMaxExternalFileBytes, .refuseEmpty = true});
+    if (file.problem == FileProblem::OutOfMemory) throw std::bad_alloc(); // as a failed resize of `out` would
+    if (!file) {
+        if (err) *err += "File " + std::string(problemWords(file.problem)) + " : " + path + "\n";
         return false;
-    };
-    std::error_code ec;
-    const auto status = std::filesystem::status(path, ec);
-    if (status.type() == std::filesystem::file_type::not_found) return problem("not found");
-    if (!std::filesystem::is_regular_file(status)) return problem("is not a regular file");
-    const uint64_t size = std::filesystem::file_size(path, ec);
-    if (ec) return problem("size unreadable");
-    if (size == 0) return problem("is empty");
-    if (size > kMaxExternalFileBytes) return problem("is larger than 4 GiB");
-    std::ifstream in(path, std::ios::binary);
-    if (!in) return problem("cannot be opened");
-    out->resize(size);
-    if (!in.read(reinterpret_cast<char*>(out->data()), static_cast<std::streamsize>(size))) return problem("read failed");
+    }
+    *out = std::move(file.bytes);
     return true;
 }
 

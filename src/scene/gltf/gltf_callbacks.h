@@ -1,7 +1,7 @@
 #pragma once
 // The callbacks tinygltf calls while it reads a file, ours instead of its own: image decoding
 // (image/texture_image.h's decoder and limits for every image, whatever its source) and access
-// to the external files that buffers and images name (regular files only, of bounded size).
+// to the external files that buffers and images name (by image/file_read.h's policy).
 #include "image/texture_image.h"
 
 #include <optional>

@@ -3,6 +3,7 @@
 // importer (gltf_importer.h).
 #include "scene/gltf/gltf_loader.h"
 
+#include "image/file_read.h"
 #include "scene/gltf/gltf_callbacks.h"
 #include "scene/gltf/gltf_importer.h"
 #include "scene/scene_error.h"
@@ -43,9 +44,11 @@ Scene importModel(bool ok, const tinygltf::Model& model, const std::string& err,
 
 Scene loadGltfFile(const std::filesystem::path& path) {
     const std::string name = path.string();
-    std::error_code ec;
-    if (!std::filesystem::exists(path, ec)) throw SceneError(name, "file not found");
-    if (std::filesystem::is_directory(path, ec)) throw SceneError(name, "is a directory, not a glTF file");
+    // The input-file policy's first checks (image/file_read.h); tinygltf then reads the whole file
+    // through our readWholeFile callback, which applies the rest. Here only the magic is peeked at.
+    const InputFileCheck file = checkInputFile(path, {.streamNonRegular = true});
+    if (file.problem == FileProblem::NotFound || file.problem == FileProblem::CannotAccess) throw SceneError(name, "file not found");
+    if (file.problem == FileProblem::Directory) throw SceneError(name, "is a directory, not a glTF file");
     std::ifstream in(path, std::ios::binary);
     if (!in) throw SceneError(name, "cannot open for reading");
     char magic[4] = {};
