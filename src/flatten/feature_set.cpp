@@ -147,7 +147,7 @@ std::string FeatureSet::describe() const {
     };
 #define PT_FEATURE_LOG(field, kind, NAME, id, unspecialised, all, decide, log, description) \
     {                                                                                      \
-        const auto v = field;                                                              \
+        [[maybe_unused]] const auto v = field;                                             \
         add(log);                                                                          \
     }
     PT_FEATURES(PT_FEATURE_LOG)

@@ -1,5 +1,6 @@
 #include "scene/ceng795/loader.h"
 
+#include "image/file_read.h"
 #include "image/image_io.h"
 #include "image/texture_image.h"
 
@@ -13,8 +14,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
-#include <iterator>
+#include <new>
 #include <set>
 
 namespace pt {
@@ -214,16 +214,18 @@ Scene loadCeng795Text(std::string_view xml, const std::string& displayName, cons
     return importScene(ctx, root);
 }
 
+// By the input-file policy (image/file_read.h), in its words: this reader's are where they came
+// from. Devices and FIFOs are read to their end, as before the policy (a scene can come through a
+// pipe); emptiness is checked after the read, so that an unreadable empty file says so.
 Scene loadCeng795File(const std::filesystem::path& xml) {
     const std::string name = xml.string();
-    std::error_code ec;
-    if (!std::filesystem::exists(xml, ec)) throw SceneError(name, "file not found");
-    if (std::filesystem::is_directory(xml, ec)) throw SceneError(name, "is a directory, not a scene file");
-    std::ifstream in(xml, std::ios::binary);
-    if (!in) throw SceneError(name, "cannot open for reading");
-    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    if (text.empty()) throw SceneError(name, "empty file");
-    return loadCeng795Text(text, name, xml.parent_path());
+    const FileRead file = tryReadInputFile(xml, {.streamNonRegular = true});
+    if (file.problem == FileProblem::CannotAccess) throw SceneError(name, "file not found");
+    if (file.problem == FileProblem::OutOfMemory) throw std::bad_alloc();
+    if (!file) throw SceneError(name, describeFileProblem(file, "a scene file"));
+    if (file.bytes.empty()) throw SceneError(name, "empty file");
+    return loadCeng795Text(std::string_view(reinterpret_cast<const char*>(file.bytes.data()), file.bytes.size()), name,
+        xml.parent_path());
 }
 
 } // namespace pt
