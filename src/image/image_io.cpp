@@ -182,24 +182,44 @@ void readMetadata(const Imf::Header& header, ImageMetadata& metadata) {
     }
 }
 
-Image readExrImpl(const std::filesystem::path& path, ImageMetadata* metadata) {
-    const std::vector<unsigned char> bytes = readWholeFile(path);
+// The whole file in memory, refused unless it starts like an OpenEXR file.
+std::vector<unsigned char> readExrBytes(const std::filesystem::path& path) {
+    std::vector<unsigned char> bytes = readWholeFile(path);
     if (bytes.size() < 4 || !Imf::isImfMagic(reinterpret_cast<const char*>(bytes.data())))
         fail(path, "not an OpenEXR file");
+    return bytes;
+}
 
-    ExrMemStream stream(path.string(), bytes);
-    Imf::InputFile in(stream);
-    const Imf::Header& header = in.header();
+// An EXR file opened from memory, with the checks every reader makes before it reads pixels: a
+// plausible data window, and a complete file (checked before readPixels() so truncation gets a
+// clear message rather than whatever the decoder says when it runs out of bytes).
+class OpenedExr {
+public:
+    explicit OpenedExr(const std::filesystem::path& path)
+        : bytes_(readExrBytes(path)), stream_(path.string(), bytes_), in(stream_), header(in.header()),
+          dw(header.dataWindow()), w(int64_t(dw.max.x) - dw.min.x + 1), h(int64_t(dw.max.y) - dw.min.y + 1) {
+        if (w <= 0 || h <= 0 || w * h > kMaxPixels)
+            fail(path, "implausible data window " + std::to_string(w) + "x" + std::to_string(h) + " (corrupt header?)");
+        if (!in.isComplete()) fail(path, "truncated or incomplete OpenEXR file");
+    }
 
-    const Imath::Box2i dw = header.dataWindow();
-    const int64_t w = int64_t(dw.max.x) - dw.min.x + 1;
-    const int64_t h = int64_t(dw.max.y) - dw.min.y + 1;
-    if (w <= 0 || h <= 0 || w * h > kMaxPixels)
-        fail(path, "implausible data window " + std::to_string(w) + "x" + std::to_string(h) +
-                       " (corrupt header?)");
-    // Checked before readPixels() so truncation gets a clear message rather
-    // than whatever the decoder says when it runs out of bytes.
-    if (!in.isComplete()) fail(path, "truncated or incomplete OpenEXR file");
+private:
+    std::vector<unsigned char> bytes_;
+    ExrMemStream stream_;
+
+public:
+    Imf::InputFile in;
+    const Imf::Header& header;
+    const Imath::Box2i dw;
+    const int64_t w, h;
+};
+
+Image readExrImpl(const std::filesystem::path& path, ImageMetadata* metadata) {
+    OpenedExr exr(path);
+    Imf::InputFile& in = exr.in;
+    const Imf::Header& header = exr.header;
+    const Imath::Box2i dw = exr.dw;
+    const int64_t w = exr.w, h = exr.h;
 
     const Imf::ChannelList& channels = header.channels();
     const bool hasRgb = channels.findChannel("R") || channels.findChannel("G") ||
@@ -249,17 +269,11 @@ Image readExrImpl(const std::filesystem::path& path, ImageMetadata* metadata) {
 
 ExrChannels readExrChannelsImpl(const std::filesystem::path& path, const std::vector<std::string>& names,
                                 ImageMetadata* metadata) {
-    const std::vector<unsigned char> bytes = readWholeFile(path);
-    if (bytes.size() < 4 || !Imf::isImfMagic(reinterpret_cast<const char*>(bytes.data()))) fail(path, "not an OpenEXR file");
-    ExrMemStream stream(path.string(), bytes);
-    Imf::InputFile in(stream);
-    const Imf::Header& header = in.header();
-    const Imath::Box2i dw = header.dataWindow();
-    const int64_t w = int64_t(dw.max.x) - dw.min.x + 1;
-    const int64_t h = int64_t(dw.max.y) - dw.min.y + 1;
-    if (w <= 0 || h <= 0 || w * h > kMaxPixels)
-        fail(path, "implausible data window " + std::to_string(w) + "x" + std::to_string(h) + " (corrupt header?)");
-    if (!in.isComplete()) fail(path, "truncated or incomplete OpenEXR file");
+    OpenedExr exr(path);
+    Imf::InputFile& in = exr.in;
+    const Imf::Header& header = exr.header;
+    const Imath::Box2i dw = exr.dw;
+    const int64_t w = exr.w, h = exr.h;
     ExrChannels result;
     result.width = static_cast<int>(w);
     result.height = static_cast<int>(h);
