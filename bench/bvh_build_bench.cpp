@@ -26,8 +26,7 @@ struct Tri {
     glm::vec3 v0, v1, v2;
 };
 
-std::vector<Tri> soup(size_t n)
-{
+std::vector<Tri> soup(size_t n) {
     std::mt19937 rng(71);
     std::uniform_real_distribution<float> u(0.0f, 1.0f), o(-0.01f, 0.01f);
     std::vector<Tri> tris(n);
@@ -42,8 +41,7 @@ std::vector<Tri> soup(size_t n)
 
 // A latitude-longitude sphere of radius 1 displaced by a few sine octaves (2 * rings * segments
 // triangles, segments = 2 * rings).
-std::vector<Tri> surface(size_t n)
-{
+std::vector<Tri> surface(size_t n) {
     const int rings = std::max(4, int(std::sqrt(double(n) / 4.0)));
     const int segments = 2 * rings;
     const auto point = [&](int r, int s) {
@@ -59,44 +57,46 @@ std::vector<Tri> surface(size_t n)
     for (int r = 0; r < rings; ++r)
         for (int s = 0; s < segments; ++s) {
             const glm::vec3 a = point(r, s), b = point(r + 1, s), c = point(r + 1, s + 1), d = point(r, s + 1);
-            tris.push_back({ a, b, c });
-            tris.push_back({ a, c, d });
+            tris.push_back({a, b, c});
+            tris.push_back({a, c, d});
         }
     return tris;
 }
 
 // CPU seconds of the whole process (all threads): on a shared machine the single-thread figure
 // tracks the work done much more steadily than the wall clock does.
-double processCpuSeconds()
-{
+double processCpuSeconds() {
     timespec ts{};
     clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
     return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
 }
 
-std::vector<int> parseList(const std::string& s)
-{
+std::vector<int> parseList(const std::string& s) {
     std::vector<int> out;
     std::stringstream ss(s);
     for (std::string item; std::getline(ss, item, ',');) out.push_back(std::stoi(item));
     return out;
 }
 
-int run(int argc, char** argv)
-{
+int run(int argc, char** argv) {
     size_t triangles = 1000000;
     int repeats = 5;
-    std::vector<int> threads{ 1, 2 };
+    std::vector<int> threads{1, 2};
     std::string mesh = "soup";
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
         if (i + 1 >= argc) throw std::runtime_error(a + ": missing value");
         const std::string v = argv[++i];
-        if (a == "--triangles") triangles = std::stoul(v);
-        else if (a == "--repeats") repeats = std::max(1, std::stoi(v));
-        else if (a == "--threads") threads = parseList(v);
-        else if (a == "--mesh") mesh = v;
-        else throw std::runtime_error(a + ": unknown option");
+        if (a == "--triangles")
+            triangles = std::stoul(v);
+        else if (a == "--repeats")
+            repeats = std::max(1, std::stoi(v));
+        else if (a == "--threads")
+            threads = parseList(v);
+        else if (a == "--mesh")
+            mesh = v;
+        else
+            throw std::runtime_error(a + ": unknown option");
     }
     if (mesh != "soup" && mesh != "surface") throw std::runtime_error(mesh + ": --mesh is soup or surface");
     const std::vector<Tri> tris = mesh == "soup" ? soup(triangles) : surface(triangles);
@@ -106,8 +106,9 @@ int run(int argc, char** argv)
         bounds[i].grow(tris[i].v1);
         bounds[i].grow(tris[i].v2);
     }
-    std::printf("| mesh | triangles | threads | median s (min-max of %d) | M triangles/s | CPU s | SAH cost | nodes | depth |\n",
-                repeats);
+    std::printf("| mesh | triangles | threads | median s (min-max of %d) | M triangles/s | CPU s | SAH cost | nodes | "
+                "depth |\n",
+        repeats);
     std::printf("|---|---|---|---|---|---|---|---|---|\n");
     for (int t : threads) {
         pt::BvhBuildOptions opt;
@@ -124,17 +125,16 @@ int run(int argc, char** argv)
         std::sort(seconds.begin(), seconds.end());
         std::sort(cpu.begin(), cpu.end());
         const double median = seconds[seconds.size() / 2];
-        std::printf("| %s | %zu | %d | %.3f (%.3f-%.3f) | %.2f | %.3f | %.2f | %zu | %d |\n", mesh.c_str(), tris.size(), t,
-                    median, seconds.front(), seconds.back(), 1e-6 * double(tris.size()) / median, cpu[cpu.size() / 2],
-                    bvh.sahCost, bvh.nodes.size(), bvh.maxDepth);
+        std::printf("| %s | %zu | %d | %.3f (%.3f-%.3f) | %.2f | %.3f | %.2f | %zu | %d |\n", mesh.c_str(), tris.size(),
+            t, median, seconds.front(), seconds.back(), 1e-6 * double(tris.size()) / median, cpu[cpu.size() / 2],
+            bvh.sahCost, bvh.nodes.size(), bvh.maxDepth);
     }
     return 0;
 }
 
 } // namespace
 
-int main(int argc, char** argv)
-{
+int main(int argc, char** argv) {
     try {
         return run(argc, argv);
     } catch (const std::exception& e) {

@@ -4,9 +4,9 @@
 // Result of sampling a BSDF. Directions in world space, pointing away from the surface.
 struct BsdfSample {
     vec3 wi;
-    vec3 weight;     // f * |cos| / pdf
-    float pdf;       // solid angle; for delta lobes the discrete probability of the lobe
-    float etaScale;  // (n_t / n_i)^2 across a refraction, else 1: undoes radiance scaling for RR
+    vec3 weight;    // f * |cos| / pdf
+    float pdf;      // solid angle; for delta lobes the discrete probability of the lobe
+    float etaScale; // (n_t / n_i)^2 across a refraction, else 1: undoes radiance scaling for RR
     bool isDelta;
     bool valid;
 };

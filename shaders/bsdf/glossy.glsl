@@ -17,7 +17,9 @@
 #include "bsdf/fresnel.glsl"
 #include "shared/features.glsl"
 
-bool glossyIsPhong(GpuMaterial m) { return m.glossyModel == GLOSSY_ORIGINAL_PHONG || m.glossyModel == GLOSSY_MODIFIED_PHONG; }
+bool glossyIsPhong(GpuMaterial m) {
+    return m.glossyModel == GLOSSY_ORIGINAL_PHONG || m.glossyModel == GLOSSY_MODIFIED_PHONG;
+}
 
 // Probability of sampling the specular lobe.
 float glossySpecularProbability(GpuMaterial m) {
@@ -39,7 +41,8 @@ vec3 glossyEval(GpuMaterial m, vec3 wo, vec3 wi) {
         float G = min(1.0, min(2.0 * cosH * wo.z / woh, 2.0 * cosH * wi.z / woh));
         vec3 F = fresnelConductor(woh, m.conductorEta, m.conductorK);
         specular = m.specular * D * F * G / (4.0 * wi.z * wo.z);
-        if ((m.flags & MATERIAL_FLAG_KD_FRESNEL) != 0u) diffuse *= vec3(1.0) - fresnelConductor(wi.z, m.conductorEta, m.conductorK);
+        if ((m.flags & MATERIAL_FLAG_KD_FRESNEL) != 0u)
+            diffuse *= vec3(1.0) - fresnelConductor(wi.z, m.conductorEta, m.conductorK);
     } else {
         float cosAlpha = glossyIsPhong(m) ? dot(vec3(-wi.xy, wi.z), wo) : normalize(wo + wi).z;
         float lobe = pow(max(cosAlpha, 0.0), p);

@@ -62,7 +62,9 @@ vec3 pbrSpecularFresnel(GpuMaterial m, float cosI, float eta) {
 }
 
 // The share of light the dielectric layer passes to the base at a facet.
-float pbrBaseShare(GpuMaterial m, float cosI, float eta) { return 1.0 - maxComponent(pbrDielectricFresnel(m, cosI, eta)); }
+float pbrBaseShare(GpuMaterial m, float cosI, float eta) {
+    return 1.0 - maxComponent(pbrDielectricFresnel(m, cosI, eta));
+}
 
 // n_t / n_i seen from wo (1 / ior from inside a volume; a thin wall has air on both sides),
 // and both directions moved to the z > 0 side of wo.
@@ -86,7 +88,8 @@ struct PbrLobeProbabilities {
 PbrLobeProbabilities pbrLobeProbabilities(GpuMaterial m, vec3 wo, float eta) {
     PbrLobeProbabilities p;
     float dielectric = 1.0 - m.metallic;
-    float specular = dielectric * average(pbrDielectricFresnel(m, wo.z, eta)) + m.metallic * average(fresnelSchlick(m.baseColor, wo.z));
+    float specular = dielectric * average(pbrDielectricFresnel(m, wo.z, eta)) +
+                     m.metallic * average(fresnelSchlick(m.baseColor, wo.z));
     float specularMass = dielectric * m.specularWeight + m.metallic;
     specular = max(specular, PBR_MIN_SPECULAR_ESTIMATE * specularMass);
     float base = dielectric * max(pbrBaseShare(m, wo.z, eta), PBR_MIN_BASE_SHARE) * average(m.baseColor);

@@ -50,17 +50,17 @@ uvec4 rngHash(Rng r, uint dimension) {
 
 // Random numbers are addressed, not drawn: dimension = camera dimensions, then a fixed block
 // per path vertex, so toggling a technique (NEE, RR) never reshuffles the numbers of others.
-const uint DIM_PIXEL = 0u;        // 2D: jitter inside the pixel
-const uint DIM_LENS = 2u;         // 2D: point on the thin lens
+const uint DIM_PIXEL = 0u; // 2D: jitter inside the pixel
+const uint DIM_LENS = 2u;  // 2D: point on the thin lens
 const uint DIM_FIRST_BOUNCE = 4u;
 // 1D: the camera sample's time for motion blur. Far above any bounce's dimensions, so adding
 // motion to a scene leaves every other dimension (and a static scene's image) unchanged.
 const uint DIM_TIME = 0x7fffffffu;
-const uint DIM_BSDF_LOBE = 0u;    // 1D, offsets inside one vertex's block
+const uint DIM_BSDF_LOBE = 0u;      // 1D, offsets inside one vertex's block
 const uint DIM_BSDF_DIRECTION = 1u; // 2D
-const uint DIM_LIGHT_SELECT = 3u; // 1D
-const uint DIM_LIGHT_POINT = 4u;  // 2D
-const uint DIM_ROULETTE = 6u;     // 1D
+const uint DIM_LIGHT_SELECT = 3u;   // 1D
+const uint DIM_LIGHT_POINT = 4u;    // 2D
+const uint DIM_ROULETTE = 6u;       // 1D
 const uint DIMS_PER_BOUNCE = 7u;
 
 uint bounceDimension(uint bounce, uint offset) { return DIM_FIRST_BOUNCE + bounce * DIMS_PER_BOUNCE + offset; }

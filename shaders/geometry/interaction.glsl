@@ -53,7 +53,8 @@ SurfaceInteraction makeSphereInteraction(Ray ray, Hit hit) {
     vec3 po = normalize(o + hit.t * d);
     si.p = transformPoint(sphere.objectToWorld, po) + offset;
     // Normals map with the inverse transpose of objectToWorld, i.e. the transpose of worldToObject.
-    si.ng = normalize(sphere.worldToObject[0].xyz * po.x + sphere.worldToObject[1].xyz * po.y + sphere.worldToObject[2].xyz * po.z);
+    si.ng = normalize(
+        sphere.worldToObject[0].xyz * po.x + sphere.worldToObject[1].xyz * po.y + sphere.worldToObject[2].xyz * po.z);
     si.ns = si.nSurface = si.ng;
     si.pSmooth = si.p;
     si.magnitude = sphereMagnitude(sphere, offset);

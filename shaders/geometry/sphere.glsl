@@ -11,14 +11,19 @@
 vec3 transformPoint(vec4 rows[3], vec3 p) {
     return vec3(dot(rows[0].xyz, p) + rows[0].w, dot(rows[1].xyz, p) + rows[1].w, dot(rows[2].xyz, p) + rows[2].w);
 }
-vec3 transformVector(vec4 rows[3], vec3 v) { return vec3(dot(rows[0].xyz, v), dot(rows[1].xyz, v), dot(rows[2].xyz, v)); }
+vec3 transformVector(vec4 rows[3], vec3 v) {
+    return vec3(dot(rows[0].xyz, v), dot(rows[1].xyz, v), dot(rows[2].xyz, v));
+}
 
-vec3 sphereCentre(GpuSphere sphere) { return vec3(sphere.objectToWorld[0].w, sphere.objectToWorld[1].w, sphere.objectToWorld[2].w); }
+vec3 sphereCentre(GpuSphere sphere) {
+    return vec3(sphere.objectToWorld[0].w, sphere.objectToWorld[1].w, sphere.objectToWorld[2].w);
+}
 
 // Largest coordinate magnitude a point of the sphere (moved by `offset`) can have: scales the
 // ray offset (common/ray_offset.glsl).
 float sphereMagnitude(GpuSphere sphere, vec3 offset) {
-    vec3 axisLengths = vec3(length(sphere.objectToWorld[0].xyz), length(sphere.objectToWorld[1].xyz), length(sphere.objectToWorld[2].xyz));
+    vec3 axisLengths = vec3(
+        length(sphere.objectToWorld[0].xyz), length(sphere.objectToWorld[1].xyz), length(sphere.objectToWorld[2].xyz));
     return maxComponent(abs(sphereCentre(sphere) + offset)) + maxComponent(axisLengths);
 }
 
@@ -26,7 +31,9 @@ float sphereMagnitude(GpuSphere sphere, vec3 offset) {
 // the linear part only, so that origin and direction share one rounded matrix (the inverse's
 // translation column is rounded on its own: 1e7 (1 - 1e-7) against a scale of 1000 (1 - 6e-8)
 // for a sphere of radius 1e-3 at distance 1e4).
-vec3 toSphereObject(GpuSphere sphere, vec3 p) { return transformVector(sphere.worldToObject, p - sphereCentre(sphere)); }
+vec3 toSphereObject(GpuSphere sphere, vec3 p) {
+    return transformVector(sphere.worldToObject, p - sphereCentre(sphere));
+}
 
 // a * b - c * d with a single rounding error (Kahan's algorithm with fused multiply-adds, as
 // pbrt-v4's DifferenceOfProducts).
@@ -58,7 +65,8 @@ bool intersectSphere(GpuSphere sphere, Ray ray, float tMax, out float t) {
     vec3 cw = accurateCross(ow, ray.direction);
     vec4 m[3] = sphere.worldToObject;
     float detM = dot(m[0].xyz, cross(m[1].xyz, m[2].xyz));
-    vec3 co = detM * (sphere.objectToWorld[0].xyz * cw.x + sphere.objectToWorld[1].xyz * cw.y + sphere.objectToWorld[2].xyz * cw.z);
+    vec3 co = detM * (sphere.objectToWorld[0].xyz * cw.x + sphere.objectToWorld[1].xyz * cw.y +
+                         sphere.objectToWorld[2].xyz * cw.z);
     float disc = a - dot(co, co);
     if (!(disc >= 0.0)) return false;
     float c = dot(o, o) - 1.0;

@@ -83,8 +83,10 @@ BsdfSample classicSpecularSample(GpuMaterial m, bool frontFace, Frame frame, vec
         return s;
     }
     if (m.alpha == 0.0) {
-        if (HAS_DIELECTRIC && m.type == MATERIAL_DIELECTRIC) return dielectricSample(m.baseColor, m.ior, frontFace, frame, woLocal, uLobe);
-        if (HAS_CONDUCTOR && m.type == MATERIAL_CONDUCTOR) return conductorSample(m.baseColor, m.conductorEta, m.conductorK, frame, woLocal);
+        if (HAS_DIELECTRIC && m.type == MATERIAL_DIELECTRIC)
+            return dielectricSample(m.baseColor, m.ior, frontFace, frame, woLocal, uLobe);
+        if (HAS_CONDUCTOR && m.type == MATERIAL_CONDUCTOR)
+            return conductorSample(m.baseColor, m.conductorEta, m.conductorK, frame, woLocal);
     } else if (m.type == MATERIAL_DIELECTRIC || m.type == MATERIAL_CONDUCTOR) {
         // The course's Roughness, rendered as GGX (see ceng795_materials.cpp).
         if (isSurfaceBsdf(m)) return surfaceSample(m, frame, woLocal, uLobe, u);
@@ -99,13 +101,15 @@ vec3 traceClassic(Ray ray, Rng rng) {
         Hit hit;
         countClosestRay();
         if (!traceClosest(ray, FLOAT_MAX, hit)) {
-            L += beta * (HAS_ENVIRONMENT && scene.envWidth > 0u ? envRadiance(ray.direction) : backgroundRadiance(ray.direction, depth == 1u));
+            L += beta * (HAS_ENVIRONMENT && scene.envWidth > 0u ? envRadiance(ray.direction)
+                                                                : backgroundRadiance(ray.direction, depth == 1u));
             break;
         }
         SurfaceInteraction si = makeInteraction(ray, hit);
         GpuMaterial mat = sceneMaterials.v[si.materialIndex];
         applyTextures(mat, si);
-        if (HAS_ABSORPTION && mat.type == MATERIAL_DIELECTRIC && !si.frontFace && (mat.flags & MATERIAL_FLAG_ABSORBING) != 0u)
+        if (HAS_ABSORPTION && mat.type == MATERIAL_DIELECTRIC && !si.frontFace &&
+            (mat.flags & MATERIAL_FLAG_ABSORBING) != 0u)
             beta *= exp(-mat.sigmaA * hit.t);
         // Object lights seen directly or through mirrors and glass.
         if (HAS_EMITTERS) L += beta * emittedRadiance(mat, si.frontFace);
@@ -121,8 +125,8 @@ vec3 traceClassic(Ray ray, Rng rng) {
         L += beta * mat.ambient * scene.ambientLight;
         if (USE_NEE && scene.numLights > 0u) L += beta * classicDirect(si, frame, woLocal, mat, rng, depth);
         if (depth >= scene.maxDepth) break;
-        BsdfSample bs = classicSpecularSample(mat, si.frontFace, frame, woLocal, rng1(rng, bounceDimension(depth, DIM_BSDF_LOBE)),
-            rng2(rng, bounceDimension(depth, DIM_BSDF_DIRECTION)));
+        BsdfSample bs = classicSpecularSample(mat, si.frontFace, frame, woLocal,
+            rng1(rng, bounceDimension(depth, DIM_BSDF_LOBE)), rng2(rng, bounceDimension(depth, DIM_BSDF_DIRECTION)));
         if (!bs.valid || maxComponent(bs.weight) <= 0.0) break;
         beta *= bs.weight;
         ray.origin = spawnOrigin(si.p, si.ng, bs.wi, si.magnitude);

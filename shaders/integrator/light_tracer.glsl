@@ -34,10 +34,10 @@ layout(buffer_reference, std430, buffer_reference_align = 8) buffer SplatRef { u
 // Light paths draw from their own block of dimensions, far from the camera path's, so adding
 // them leaves the camera samples (and every image without light tracing) unchanged.
 const uint DIM_LIGHT_PATH = 0x40000000u;
-const uint DIM_LT_SELECT = 0u;    // 1D: which light
-const uint DIM_LT_POINT = 1u;     // 2D: point on it
-const uint DIM_LT_EMIT = 3u;      // 2D: emitted direction
-const uint DIM_LT_SIDE = 5u;      // 1D: side of a double-sided emitter
+const uint DIM_LT_SELECT = 0u; // 1D: which light
+const uint DIM_LT_POINT = 1u;  // 2D: point on it
+const uint DIM_LT_EMIT = 3u;   // 2D: emitted direction
+const uint DIM_LT_SIDE = 5u;   // 1D: side of a double-sided emitter
 const uint DIM_LT_FIRST_BOUNCE = 6u;
 const uint DIM_LT_LOBE = 0u;      // per bounce, 1D: lobe (reflect or refract)
 const uint DIM_LT_DIRECTION = 1u; // 2D: direction at a receiver
@@ -61,18 +61,19 @@ void splatAdd(uvec2 pixel, vec3 value) {
         float v = max(value[c], 0.0);
         if (v <= 0.0) continue;
         atomicAdd(splats.v[base + SPLAT_SUM + uint(c)], uint64_t(min(v * float(SPLAT_SUM_SCALE), maxScaled) + 0.5));
-        atomicAdd(splats.v[base + SPLAT_SUM_SQUARES + uint(c)], uint64_t(min(v * v * float(SPLAT_SQUARE_SCALE), maxScaled) + 0.5));
+        atomicAdd(splats.v[base + SPLAT_SUM_SQUARES + uint(c)],
+            uint64_t(min(v * v * float(SPLAT_SQUARE_SCALE), maxScaled) + 0.5));
     }
 }
 
 // A point emitting light, with its area density (selection included).
 struct EmitterPoint {
     vec3 p;
-    vec3 ng;      // geometric normal: the front (emitting) side
+    vec3 ng; // geometric normal: the front (emitting) side
     vec3 Le;
     float magnitude;
     uint materialIndex;
-    float pdf;    // per unit area, times the light's selection probability
+    float pdf; // per unit area, times the light's selection probability
     bool valid;
 };
 
@@ -138,7 +139,8 @@ void connectToCamera(SurfaceInteraction si, GpuMaterial mat, vec3 wLight, vec3 b
     float z = dot(v, cam.forward);
     if (!(z > 0.0)) return;
     vec2 plane = vec2(dot(v, cam.right), dot(v, cam.up)) / z;
-    vec2 f = vec2((plane.x - cam.window.x) / (cam.window.y - cam.window.x), (cam.window.w - plane.y) / (cam.window.w - cam.window.z));
+    vec2 f = vec2((plane.x - cam.window.x) / (cam.window.y - cam.window.x),
+        (cam.window.w - plane.y) / (cam.window.w - cam.window.z));
     if (!(f.x >= 0.0 && f.x < 1.0 && f.y >= 0.0 && f.y < 1.0)) return;
     uvec2 pixel = min(uvec2(f * vec2(scene.imageSize)), scene.imageSize - 1u);
 
@@ -153,7 +155,8 @@ void connectToCamera(SurfaceInteraction si, GpuMaterial mat, vec3 wLight, vec3 b
     // Divided by the pixel count, A_pixel becomes the whole window's area.
     float cosCamera = z / dist;
     float windowArea = (cam.window.y - cam.window.x) * (cam.window.w - cam.window.z);
-    float geometry = abs(dot(wCamera, si.ng)) / (cosLightGeometric * windowArea * dist2 * cosCamera * cosCamera * cosCamera);
+    float geometry =
+        abs(dot(wCamera, si.ng)) / (cosLightGeometric * windowArea * dist2 * cosCamera * cosCamera * cosCamera);
     splatAdd(pixel, beta * fCos * geometry);
 }
 
@@ -213,7 +216,8 @@ void traceLightPath(uvec2 pixel, uint sampleIndex) {
             if (!isReversibleOpaqueBounce(si.ng, wLight, wCamera)) return;
             float cosLightGeometric = abs(dot(wLight, si.ng));
             if (cosLightGeometric < 1e-7) return;
-            weight = surfaceEval(mat, toLocal(frame, wCamera), wLightLocal) * (abs(dot(wCamera, si.ng)) / (cosLightGeometric * bs.pdf));
+            weight = surfaceEval(mat, toLocal(frame, wCamera), wLightLocal) *
+                     (abs(dot(wCamera, si.ng)) / (cosLightGeometric * bs.pdf));
         } else {
             BsdfSample bs;
             if (HAS_DIELECTRIC && mat.type == MATERIAL_DIELECTRIC) {
@@ -225,8 +229,10 @@ void traceLightPath(uvec2 pixel, uint sampleIndex) {
                 Frame frame;
                 if (!opaqueFrame(si, mat, si.frontFace, wLight, frame)) return;
                 vec3 woLocal = toLocal(frame, wLight);
-                if (HAS_MIRROR && mat.type == MATERIAL_MIRROR) bs = mirrorSample(mat.baseColor, frame, woLocal);
-                else bs = conductorSample(mat.baseColor, mat.conductorEta, mat.conductorK, frame, woLocal);
+                if (HAS_MIRROR && mat.type == MATERIAL_MIRROR)
+                    bs = mirrorSample(mat.baseColor, frame, woLocal);
+                else
+                    bs = conductorSample(mat.baseColor, mat.conductorEta, mat.conductorK, frame, woLocal);
             }
             if (!bs.valid) return;
             wCamera = bs.wi;

@@ -71,8 +71,10 @@ vec3 tracePath(Ray ray, Rng rng) {
             if (HAS_ENVIRONMENT && scene.envWidth > 0u) {
                 vec3 Le = envRadiance(ray.direction);
                 float pdfLight = environmentPdf(ray.direction);
-                if (!USE_NEE || prevDelta || pdfLight == 0.0) L += beta * Le;
-                else if (USE_MIS) L += beta * Le * powerHeuristic(prevPdfBsdf, pdfLight);
+                if (!USE_NEE || prevDelta || pdfLight == 0.0)
+                    L += beta * Le;
+                else if (USE_MIS)
+                    L += beta * Le * powerHeuristic(prevPdfBsdf, pdfLight);
             } else {
                 L += beta * backgroundRadiance(ray.direction, depth == 1u);
             }
@@ -91,7 +93,9 @@ vec3 tracePath(Ray ray, Rng rng) {
         bool lightTraced = lightTraceable && deltaRun > 0u && isLightTracedEmitter(si.lightIndex);
         if (HAS_EMITTERS && maxComponent(mat.emission) > 0.0 && !lightTraced) {
             vec3 Le = emittedRadiance(mat, si.frontFace);
-            float pdfLight = si.lightIndex != NO_LIGHT ? lightPdf(si.lightIndex, ray.origin, si.p, si.ng, hit.t, ray.direction) : 0.0;
+            float pdfLight = si.lightIndex != NO_LIGHT
+                                 ? lightPdf(si.lightIndex, ray.origin, si.p, si.ng, hit.t, ray.direction)
+                                 : 0.0;
             if (!USE_NEE || prevDelta || pdfLight == 0.0) {
                 L += beta * Le;
             } else if (USE_MIS) {
@@ -108,8 +112,10 @@ vec3 tracePath(Ray ray, Rng rng) {
         bool receiver = false;
         if (LIGHT_TRACING) {
             receiver = isCausticReceiver(mat);
-            if (depth == 1u) lightTraceable = lightTracingActive() && receiver;
-            else if (!receiver && !isSpecularChainMaterial(mat)) lightTraceable = false;
+            if (depth == 1u)
+                lightTraceable = lightTracingActive() && receiver;
+            else if (!receiver && !isSpecularChainMaterial(mat))
+                lightTraceable = false;
         }
 
         vec3 wo = -ray.direction;
@@ -150,7 +156,8 @@ vec3 tracePath(Ray ray, Rng rng) {
         if (lightTraceable) {
             // (An opaque back face seen from a double-sided receiver has ng flipped already;
             // both tests compare sides, so the flip does not change them.)
-            bool reversible = receiver ? isReversibleOpaqueBounce(si.ng, wo, bs.wi) : isReversibleDeltaBounce(si.ng, si.ns, wo, bs.wi);
+            bool reversible = receiver ? isReversibleOpaqueBounce(si.ng, wo, bs.wi)
+                                       : isReversibleDeltaBounce(si.ng, si.ns, wo, bs.wi);
             if (!reversible) lightTraceable = false;
             deltaRun = receiver ? 0u : deltaRun + 1u;
         }

@@ -28,7 +28,8 @@ bool lightOccluded(SurfaceInteraction si, LightSample ls) {
         // Offset the light end too (surfaces only), then stop just short of it.
         // (Lights no ray can hit have nothing to offset from.) The light's size is not at hand,
         // so the offset is the unit-size one: at worst the ray stops 1/65536 short of a tiny light.
-        vec3 target = ls.isDelta ? ls.point : offsetRayOrigin(ls.point, dot(ls.normal, ls.wi) < 0.0 ? ls.normal : -ls.normal, 1.0);
+        vec3 target = ls.isDelta ? ls.point
+                                 : offsetRayOrigin(ls.point, dot(ls.normal, ls.wi) < 0.0 ? ls.normal : -ls.normal, 1.0);
         shadow.direction = target - shadow.origin;
     }
     return traceAny(shadow, tMax);

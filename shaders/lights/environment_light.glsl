@@ -66,8 +66,10 @@ uint searchCdf(FloatRef cdf, uint offset, uint n, float u) {
     uint lo = 0u, hi = n;
     while (lo + 1u < hi) {
         uint mid = (lo + hi) >> 1u;
-        if (cdf.v[offset + mid] <= u) lo = mid;
-        else hi = mid;
+        if (cdf.v[offset + mid] <= u)
+            lo = mid;
+        else
+            hi = mid;
     }
     return lo;
 }

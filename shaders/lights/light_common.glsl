@@ -4,13 +4,13 @@
 #include "common/buffers.glsl"
 
 struct LightSample {
-    vec3 point;    // on the emitter (point lights: their position)
-    vec3 normal;   // emitter normal at point, facing the side it was sampled from (0 for punctual)
-    vec3 radiance; // arriving at the shading point (point lights: I / d^2; directional: irradiance)
-    vec3 wi;       // unit direction from the shading point to the light
+    vec3 point;     // on the emitter (point lights: their position)
+    vec3 normal;    // emitter normal at point, facing the side it was sampled from (0 for punctual)
+    vec3 radiance;  // arriving at the shading point (point lights: I / d^2; directional: irradiance)
+    vec3 wi;        // unit direction from the shading point to the light
     float distance; // FLOAT_MAX for directional lights
-    float pdf;     // solid angle, times the selection pmf; for delta lights the pmf alone
-    bool isDelta;  // no BSDF sample can hit this light (delta or invisible), so no MIS
+    float pdf;      // solid angle, times the selection pmf; for delta lights the pmf alone
+    bool isDelta;   // no BSDF sample can hit this light (delta or invisible), so no MIS
 };
 
 LightSample noLightSample() {
@@ -31,8 +31,10 @@ uint selectLight(float u) {
     uint hi = scene.numLights; // cdf[numLights] == 1
     while (lo + 1u < hi) {
         uint mid = (lo + hi) >> 1u;
-        if (sceneLightCdf.v[mid] <= u) lo = mid;
-        else hi = mid;
+        if (sceneLightCdf.v[mid] <= u)
+            lo = mid;
+        else
+            hi = mid;
     }
     return lo;
 }

@@ -21,7 +21,9 @@ LightSample sampleLightIndex(uint index, vec3 x, vec2 uPoint) {
     return sampleTriangleLight(light, x, uPoint);
 }
 
-LightSample sampleLight(vec3 x, float uSelect, vec2 uPoint) { return sampleLightIndex(selectLight(uSelect), x, uPoint); }
+LightSample sampleLight(vec3 x, float uSelect, vec2 uPoint) {
+    return sampleLightIndex(selectLight(uSelect), x, uPoint);
+}
 
 // Solid-angle pdf (selection included) with which light sampling from x would have produced
 // the point p on emitter lightIndex, reached at distance t along unit direction dir with

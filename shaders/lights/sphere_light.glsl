@@ -17,7 +17,8 @@ float coneOneMinusCos(float r, float d2) {
 
 // Area scale J of the unit-sphere map at object-space point po, and the world normal there.
 float sphereAreaScale(GpuSphere sphere, GpuLight light, vec3 po, out vec3 normal) {
-    vec3 m = sphere.worldToObject[0].xyz * po.x + sphere.worldToObject[1].xyz * po.y + sphere.worldToObject[2].xyz * po.z;
+    vec3 m =
+        sphere.worldToObject[0].xyz * po.x + sphere.worldToObject[1].xyz * po.y + sphere.worldToObject[2].xyz * po.z;
     float len = length(m);
     normal = m / len;
     return light.area * len; // light.area holds |det| of the linear map

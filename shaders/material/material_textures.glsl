@@ -7,7 +7,8 @@
 #include "textures/texture.glsl"
 
 bool hasAnyTexture(GpuMaterial m) {
-    return (m.baseColorTexture & m.specularTexture & m.metallicRoughnessTexture & m.normalTexture & m.emissiveTexture) != NO_TEXTURE;
+    return (m.baseColorTexture & m.specularTexture & m.metallicRoughnessTexture & m.normalTexture &
+               m.emissiveTexture) != NO_TEXTURE;
 }
 
 // Shading normal from a tangent-space normal map: +x along dp/du, +y up the image (towards
@@ -60,7 +61,8 @@ vec3 normalFromBump(SurfaceInteraction si, uint index, float factor) {
         float h = 1e-3 / max(abs(tex.patternScale), 1e-6);
         vec3 g = vec3(bumpHeight(tex, si.uv, si.p + vec3(h, 0, 0)) - bumpHeight(tex, si.uv, si.p - vec3(h, 0, 0)),
                      bumpHeight(tex, si.uv, si.p + vec3(0, h, 0)) - bumpHeight(tex, si.uv, si.p - vec3(0, h, 0)),
-                     bumpHeight(tex, si.uv, si.p + vec3(0, 0, h)) - bumpHeight(tex, si.uv, si.p - vec3(0, 0, h))) / (2.0 * h);
+                     bumpHeight(tex, si.uv, si.p + vec3(0, 0, h)) - bumpHeight(tex, si.uv, si.p - vec3(0, 0, h))) /
+                 (2.0 * h);
         bumped = n - factor * (g - n * dot(g, n));
     }
     float len2 = dot(bumped, bumped);
@@ -92,9 +94,9 @@ void applyTextures(inout GpuMaterial m, inout SurfaceInteraction si) {
     if (m.emissiveTexture != NO_TEXTURE) m.emission *= evalTexture(m.emissiveTexture, si.uv, si.p).rgb;
     if (HAS_NORMAL_MAPS && m.normalTexture != NO_TEXTURE) {
         vec3 ns = (m.flags & MATERIAL_FLAG_BUMP_MAP) != 0u
-            ? normalFromBump(si, m.normalTexture, m.normalScale)
-            : normalFromMap(si, evalTexture(m.normalTexture, si.uv, si.p).rgb, m.normalScale,
-                  (m.flags & MATERIAL_FLAG_NORMAL_Y_DOWN) != 0u);
+                      ? normalFromBump(si, m.normalTexture, m.normalScale)
+                      : normalFromMap(si, evalTexture(m.normalTexture, si.uv, si.p).rgb, m.normalScale,
+                            (m.flags & MATERIAL_FLAG_NORMAL_Y_DOWN) != 0u);
         si.ns = dot(ns, si.ng) < 0.0 ? -ns : ns;
     }
 }

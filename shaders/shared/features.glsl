@@ -16,7 +16,7 @@
 #else
 #define PT_DECLARE_module(NAME, id, value) const bool NAME = value;
 #endif
-#define PT_DECLARE_FEATURE(field, kind, NAME, id, unspecialised, all, decide, log, description) \
+#define PT_DECLARE_FEATURE(field, kind, NAME, id, unspecialised, all, decide, log, description)                        \
     PT_DECLARE_##kind(NAME, id, unspecialised)
 PT_FEATURES(PT_DECLARE_FEATURE)
 

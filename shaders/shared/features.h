@@ -21,74 +21,76 @@
 #ifndef PT_SHADERS_SHARED_FEATURES_H
 #define PT_SHADERS_SHARED_FEATURES_H
 
-#define PT_FEATURES(PT_FEATURE)                                                                                  \
-    PT_FEATURE(classic, flag, CLASSIC, 26, false, s.classic, s.classic, v ? "classic" : nullptr,                 \
-               "the CENG795 course's classic (Whitted / direct lighting) ray tracer instead of path tracing")    \
-    PT_FEATURE(triangles, flag, HAS_TRIANGLES, 13, true, true, !scene.triangles.empty(), v ? "triangles" : nullptr, \
-               "triangle meshes")                                                                                \
-    PT_FEATURE(spheres, flag, HAS_SPHERES, 12, true, true, !scene.spheres.empty(), v ? "spheres" : nullptr,       \
-               "analytic spheres and ellipsoids")                                                                \
-    PT_FEATURE(diffuse, flag, HAS_DIFFUSE, 2, true, true, usesMaterialType(scene, MATERIAL_DIFFUSE),              \
-               v ? "diffuse" : nullptr, "Lambertian surfaces")                                                   \
-    PT_FEATURE(mirror, flag, HAS_MIRROR, 3, true, true, usesMaterialType(scene, MATERIAL_MIRROR),                 \
-               v ? "mirror" : nullptr, "smooth mirrors")                                                         \
-    PT_FEATURE(dielectric, flag, HAS_DIELECTRIC, 4, true, true, usesMaterialType(scene, MATERIAL_DIELECTRIC),     \
-               v ? "dielectric" : nullptr, "glass and other dielectrics (smooth or GGX-rough)")                  \
-    PT_FEATURE(conductor, flag, HAS_CONDUCTOR, 14, true, true, usesMaterialType(scene, MATERIAL_CONDUCTOR),       \
-               v ? "conductor" : nullptr, "metals with a complex index of refraction (smooth or GGX-rough)")     \
-    PT_FEATURE(glossy, flag, HAS_GLOSSY, 16, true, true, usesMaterialType(scene, MATERIAL_GLOSSY),                \
-               v ? "glossy" : nullptr, "the course's BRDFs: Lambert plus one Phong, Blinn-Phong or Torrance-Sparrow lobe") \
-    PT_FEATURE(pbr, flag, HAS_PBR, 24, true, true, usesMaterialType(scene, MATERIAL_PBR), v ? "pbr" : nullptr,    \
-               "glTF metallic-roughness materials")                                                              \
-    PT_FEATURE(microfacet, flag, HAS_MICROFACET, 23, true, true, usesRoughConductorOrDielectric(scene),           \
-               v ? "microfacet" : nullptr, "GGX-rough conductors or dielectrics")                                \
-    PT_FEATURE(absorption, flag, HAS_ABSORPTION, 5, true, true, usesMaterialFlag(scene, MATERIAL_FLAG_ABSORBING), \
-               v ? "absorption" : nullptr, "Beer-Lambert absorption inside dielectrics and PBR volumes")         \
-    PT_FEATURE(shadingNormals, flag, HAS_SHADING_NORMALS, 6, true, true,                                          \
-               usesTriangleFlag(scene, TRIANGLE_FLAG_SHADING_NORMALS), v ? "shading-normals" : nullptr,          \
-               "interpolated vertex normals")                                                                    \
-    PT_FEATURE(emitters, flag, HAS_EMITTERS, 7, true, true, usesEmission(scene), v ? "emitters" : nullptr,        \
-               "surfaces that emit: emissive materials, emissive textures, the course's replace_all")            \
-    PT_FEATURE(punctualLights, flag, HAS_PUNCTUAL_LIGHTS, 15, true, true, hasPunctualLights(scene),               \
-               v ? "punctual-lights" : nullptr, "point, spot, directional and the course's square lights")       \
-    PT_FEATURE(environment, flag, HAS_ENVIRONMENT, 17, true, true, scene.environment.width > 0,                   \
-               v ? "environment" : nullptr, "an environment map")                                                \
-    PT_FEATURE(textures, flag, HAS_TEXTURES, 18, true, true, usesTextureKind(scene, true),                        \
-               v ? "textures" : nullptr, "image textures on any material slot or the background")                \
-    PT_FEATURE(procedural, flag, HAS_PROCEDURAL, 21, true, true, usesTextureKind(scene, false),                   \
-               v ? "procedural-textures" : nullptr, "the course's checkerboard or Perlin textures")              \
-    PT_FEATURE(normalMaps, flag, HAS_NORMAL_MAPS, 19, true, true, usesNormalMaps(scene),                          \
-               v ? "normal-maps" : nullptr, "normal or bump maps")                                               \
-    PT_FEATURE(alpha, flag, HAS_ALPHA, 20, true, true, usesTriangleFlag(scene, TRIANGLE_FLAG_ALPHA_TESTED),       \
-               v ? "alpha" : nullptr, "alpha-tested (cut-out) triangles")                                        \
-    PT_FEATURE(unlit, flag, HAS_UNLIT, 22, true, true, usesMaterialFlag(scene, MATERIAL_FLAG_UNLIT),              \
-               v ? "unlit" : nullptr, "the course's replace_all surfaces, shown unshaded")                       \
-    PT_FEATURE(motion, flag, HAS_MOTION, 27, true, true, !scene.motions.empty(), v ? "motion-blur" : nullptr,     \
-               "moving objects (motion blur)")                                                                   \
+#define PT_FEATURES(PT_FEATURE)                                                                                        \
+    PT_FEATURE(classic, flag, CLASSIC, 26, false, s.classic, s.classic, v ? "classic" : nullptr,                       \
+        "the CENG795 course's classic (Whitted / direct lighting) ray tracer instead of path tracing")                 \
+    PT_FEATURE(triangles, flag, HAS_TRIANGLES, 13, true, true, !scene.triangles.empty(), v ? "triangles" : nullptr,    \
+        "triangle meshes")                                                                                             \
+    PT_FEATURE(spheres, flag, HAS_SPHERES, 12, true, true, !scene.spheres.empty(), v ? "spheres" : nullptr,            \
+        "analytic spheres and ellipsoids")                                                                             \
+    PT_FEATURE(diffuse, flag, HAS_DIFFUSE, 2, true, true, usesMaterialType(scene, MATERIAL_DIFFUSE),                   \
+        v ? "diffuse" : nullptr, "Lambertian surfaces")                                                                \
+    PT_FEATURE(mirror, flag, HAS_MIRROR, 3, true, true, usesMaterialType(scene, MATERIAL_MIRROR),                      \
+        v ? "mirror" : nullptr, "smooth mirrors")                                                                      \
+    PT_FEATURE(dielectric, flag, HAS_DIELECTRIC, 4, true, true, usesMaterialType(scene, MATERIAL_DIELECTRIC),          \
+        v ? "dielectric" : nullptr, "glass and other dielectrics (smooth or GGX-rough)")                               \
+    PT_FEATURE(conductor, flag, HAS_CONDUCTOR, 14, true, true, usesMaterialType(scene, MATERIAL_CONDUCTOR),            \
+        v ? "conductor" : nullptr, "metals with a complex index of refraction (smooth or GGX-rough)")                  \
+    PT_FEATURE(glossy, flag, HAS_GLOSSY, 16, true, true, usesMaterialType(scene, MATERIAL_GLOSSY),                     \
+        v ? "glossy" : nullptr, "the course's BRDFs: Lambert plus one Phong, Blinn-Phong or Torrance-Sparrow lobe")    \
+    PT_FEATURE(pbr, flag, HAS_PBR, 24, true, true, usesMaterialType(scene, MATERIAL_PBR), v ? "pbr" : nullptr,         \
+        "glTF metallic-roughness materials")                                                                           \
+    PT_FEATURE(microfacet, flag, HAS_MICROFACET, 23, true, true, usesRoughConductorOrDielectric(scene),                \
+        v ? "microfacet" : nullptr, "GGX-rough conductors or dielectrics")                                             \
+    PT_FEATURE(absorption, flag, HAS_ABSORPTION, 5, true, true, usesMaterialFlag(scene, MATERIAL_FLAG_ABSORBING),      \
+        v ? "absorption" : nullptr, "Beer-Lambert absorption inside dielectrics and PBR volumes")                      \
+    PT_FEATURE(shadingNormals, flag, HAS_SHADING_NORMALS, 6, true, true,                                               \
+        usesTriangleFlag(scene, TRIANGLE_FLAG_SHADING_NORMALS), v ? "shading-normals" : nullptr,                       \
+        "interpolated vertex normals")                                                                                 \
+    PT_FEATURE(emitters, flag, HAS_EMITTERS, 7, true, true, usesEmission(scene), v ? "emitters" : nullptr,             \
+        "surfaces that emit: emissive materials, emissive textures, the course's replace_all")                         \
+    PT_FEATURE(punctualLights, flag, HAS_PUNCTUAL_LIGHTS, 15, true, true, hasPunctualLights(scene),                    \
+        v ? "punctual-lights" : nullptr, "point, spot, directional and the course's square lights")                    \
+    PT_FEATURE(environment, flag, HAS_ENVIRONMENT, 17, true, true, scene.environment.width > 0,                        \
+        v ? "environment" : nullptr, "an environment map")                                                             \
+    PT_FEATURE(textures, flag, HAS_TEXTURES, 18, true, true, usesTextureKind(scene, true), v ? "textures" : nullptr,   \
+        "image textures on any material slot or the background")                                                       \
+    PT_FEATURE(procedural, flag, HAS_PROCEDURAL, 21, true, true, usesTextureKind(scene, false),                        \
+        v ? "procedural-textures" : nullptr, "the course's checkerboard or Perlin textures")                           \
+    PT_FEATURE(normalMaps, flag, HAS_NORMAL_MAPS, 19, true, true, usesNormalMaps(scene), v ? "normal-maps" : nullptr,  \
+        "normal or bump maps")                                                                                         \
+    PT_FEATURE(alpha, flag, HAS_ALPHA, 20, true, true, usesTriangleFlag(scene, TRIANGLE_FLAG_ALPHA_TESTED),            \
+        v ? "alpha" : nullptr, "alpha-tested (cut-out) triangles")                                                     \
+    PT_FEATURE(unlit, flag, HAS_UNLIT, 22, true, true, usesMaterialFlag(scene, MATERIAL_FLAG_UNLIT),                   \
+        v ? "unlit" : nullptr, "the course's replace_all surfaces, shown unshaded")                                    \
+    PT_FEATURE(motion, flag, HAS_MOTION, 27, true, true, !scene.motions.empty(), v ? "motion-blur" : nullptr,          \
+        "moving objects (motion blur)")                                                                                \
     /* Light sampling needs something to sample and a non-delta surface that can use it (the   \
        environment is in the light table too). The classic ray tracer always samples lights, on \
-       every surface: its Blinn-Phong terms apply to mirrors and glass too. */                                   \
-    PT_FEATURE(nee, flag, USE_NEE, 8, true, s.nee, neeUseful(scene, s, f), v ? "nee" : nullptr,                   \
-               "next event estimation (light sampling)")                                                         \
-    /* The classic ray tracer never continues diffuse paths: no MIS, no roulette. */                             \
-    PT_FEATURE(mis, flag, USE_MIS, 9, true, s.nee && s.mis, f.nee && s.mis && !f.classic, v ? "mis" : nullptr,    \
-               "multiple importance sampling of light and BSDF samples")                                         \
-    PT_FEATURE(rr, flag, USE_RR, 10, true, s.rr, s.rr && !f.classic, v ? "rr" : nullptr, "Russian roulette")      \
-    /* An estimator the scene decides, not a compiled-in feature: off in all(). */                               \
-    PT_FEATURE(lightTracing, module, LIGHT_TRACING, 31, false, false, lightTracingPays(scene, s, f),              \
-               v ? "light-tracing" : nullptr,                                                                    \
-               "caustics seen directly (camera, diffuse, specular chain, area light) by light tracing, splatted") \
-    PT_FEATURE(cosineSampling, flag, COSINE_SAMPLING, 11, true, s.sampling == DirectionSampling::Cosine,          \
-               s.sampling == DirectionSampling::Cosine, v ? "cosine-sampling" : "uniform-sampling",              \
-               "cosine-weighted rather than uniform hemisphere sampling of diffuse lobes")                       \
-    PT_FEATURE(sampler, choice, SAMPLER, 29, SAMPLER_INDEPENDENT, samplerOf(s), samplerOf(s),                     \
-               v == SAMPLER_SOBOL ? "sobol" : nullptr, "SAMPLER_*: how the sample dimensions are filled")        \
-    PT_FEATURE(countRays, flag, COUNT_RAYS, 28, false, false, false, v ? "ray-counts" : nullptr,                  \
-               "count traced rays per pixel (pt bench; GpuRenderPush::rayCounts)")                               \
-    PT_FEATURE(forcedRandom, choice, FORCED_RANDOM, 30, FORCED_RANDOM_OFF, FORCED_RANDOM_OFF, FORCED_RANDOM_OFF,  \
-               v == FORCED_RANDOM_OFF ? nullptr : v == FORCED_RANDOM_ZERO ? "forced-random-0" : "forced-random-1", \
-               "FORCED_RANDOM_*: tests only, every random number pinned to an end of [0, 1)")                    \
-    PT_FEATURE(debugView, choice, DEBUG_VIEW, 25, DEBUG_VIEW_NONE, DEBUG_VIEW_NONE, DEBUG_VIEW_NONE, nullptr,     \
-               "DEBUG_VIEW_*: the viewer's diagnostic images instead of radiance")
+       every surface: its Blinn-Phong terms apply to mirrors and glass too. */                       \
+    PT_FEATURE(nee, flag, USE_NEE, 8, true, s.nee, neeUseful(scene, s, f), v ? "nee" : nullptr,                        \
+        "next event estimation (light sampling)")                                                                      \
+    /* The classic ray tracer never continues diffuse paths: no MIS, no roulette. */                                   \
+    PT_FEATURE(mis, flag, USE_MIS, 9, true, s.nee&& s.mis, f.nee&& s.mis && !f.classic, v ? "mis" : nullptr,           \
+        "multiple importance sampling of light and BSDF samples")                                                      \
+    PT_FEATURE(rr, flag, USE_RR, 10, true, s.rr, s.rr && !f.classic, v ? "rr" : nullptr, "Russian roulette")           \
+    /* An estimator the scene decides, not a compiled-in feature: off in all(). */                                     \
+    PT_FEATURE(lightTracing, module, LIGHT_TRACING, 31, false, false, lightTracingPays(scene, s, f),                   \
+        v ? "light-tracing" : nullptr,                                                                                 \
+        "caustics seen directly (camera, diffuse, specular chain, area light) by light tracing, splatted")             \
+    PT_FEATURE(cosineSampling, flag, COSINE_SAMPLING, 11, true, s.sampling == DirectionSampling::Cosine,               \
+        s.sampling == DirectionSampling::Cosine, v ? "cosine-sampling" : "uniform-sampling",                           \
+        "cosine-weighted rather than uniform hemisphere sampling of diffuse lobes")                                    \
+    PT_FEATURE(sampler, choice, SAMPLER, 29, SAMPLER_INDEPENDENT, samplerOf(s), samplerOf(s),                          \
+        v == SAMPLER_SOBOL ? "sobol" : nullptr, "SAMPLER_*: how the sample dimensions are filled")                     \
+    PT_FEATURE(countRays, flag, COUNT_RAYS, 28, false, false, false, v ? "ray-counts" : nullptr,                       \
+        "count traced rays per pixel (pt bench; GpuRenderPush::rayCounts)")                                            \
+    PT_FEATURE(forcedRandom, choice, FORCED_RANDOM, 30, FORCED_RANDOM_OFF, FORCED_RANDOM_OFF, FORCED_RANDOM_OFF,       \
+        v == FORCED_RANDOM_OFF    ? nullptr                                                                            \
+        : v == FORCED_RANDOM_ZERO ? "forced-random-0"                                                                  \
+                                  : "forced-random-1",                                                                 \
+        "FORCED_RANDOM_*: tests only, every random number pinned to an end of [0, 1)")                                 \
+    PT_FEATURE(debugView, choice, DEBUG_VIEW, 25, DEBUG_VIEW_NONE, DEBUG_VIEW_NONE, DEBUG_VIEW_NONE, nullptr,          \
+        "DEBUG_VIEW_*: the viewer's diagnostic images instead of radiance")
 
 #endif

@@ -40,16 +40,16 @@ using uint64_t = std::uint64_t;
 #define GLOSSY_TORRANCE_SPARROW 4u
 
 // ---- Material flags ----
-#define MATERIAL_FLAG_DOUBLE_SIDED 1u // back faces shade (and emit) like front faces
-#define MATERIAL_FLAG_ABSORBING 2u    // dielectric interior has Beer-Lambert absorption
-#define MATERIAL_FLAG_NORMALIZED 4u   // glossy: energy-normalised modified Phong / Blinn-Phong lobe
-#define MATERIAL_FLAG_KD_FRESNEL 8u   // glossy Torrance-Sparrow: diffuse term times (1 - F)
-#define MATERIAL_FLAG_BLEND_KD 16u    // course blend_kd: kd = (kd + texel) / 2 instead of kd * texel
-#define MATERIAL_FLAG_BUMP_MAP 32u    // normalTexture holds heights (course bump_normal), not normals
-#define MATERIAL_FLAG_UNLIT 64u       // course replace_all: shows baseColor (texture) as is, no shading
-#define MATERIAL_FLAG_ALPHA_MASK 128u // glTF alphaMode MASK: cut out where alpha < alphaCutoff
-#define MATERIAL_FLAG_ALPHA_BLEND 256u // glTF alphaMode BLEND: stochastic cut-out with probability 1 - alpha
-#define MATERIAL_FLAG_THIN_WALLED 512u // PBR transmission without KHR_materials_volume: no refraction bend
+#define MATERIAL_FLAG_DOUBLE_SIDED 1u     // back faces shade (and emit) like front faces
+#define MATERIAL_FLAG_ABSORBING 2u        // dielectric interior has Beer-Lambert absorption
+#define MATERIAL_FLAG_NORMALIZED 4u       // glossy: energy-normalised modified Phong / Blinn-Phong lobe
+#define MATERIAL_FLAG_KD_FRESNEL 8u       // glossy Torrance-Sparrow: diffuse term times (1 - F)
+#define MATERIAL_FLAG_BLEND_KD 16u        // course blend_kd: kd = (kd + texel) / 2 instead of kd * texel
+#define MATERIAL_FLAG_BUMP_MAP 32u        // normalTexture holds heights (course bump_normal), not normals
+#define MATERIAL_FLAG_UNLIT 64u           // course replace_all: shows baseColor (texture) as is, no shading
+#define MATERIAL_FLAG_ALPHA_MASK 128u     // glTF alphaMode MASK: cut out where alpha < alphaCutoff
+#define MATERIAL_FLAG_ALPHA_BLEND 256u    // glTF alphaMode BLEND: stochastic cut-out with probability 1 - alpha
+#define MATERIAL_FLAG_THIN_WALLED 512u    // PBR transmission without KHR_materials_volume: no refraction bend
 #define MATERIAL_FLAG_NORMAL_Y_DOWN 2048u // normal map +y along +v (down the image): the course's maps
 #define MATERIAL_FLAG_CLASSIC_PHONG 1024u // classic integrator: the course's Blinn-Phong with classicDiffuse/Specular
 
@@ -59,12 +59,12 @@ using uint64_t = std::uint64_t;
 #define TEXTURE_CHECKERBOARD 1u // course checkerboard, from the world-space point
 #define TEXTURE_PERLIN 2u       // course Perlin noise, from the world-space point
 #define TEXTURE_FLAG_BILINEAR 1u
-#define TEXTURE_FLAG_SRGB 2u     // texels are sRGB-encoded (glTF colour textures)
-#define TEXTURE_FLAG_GAMMA_22 4u // texels are gamma 2.2 encoded (course degamma="true")
-#define TEXTURE_FLAG_FLOAT 8u    // texels are 4 floats (HDR images); otherwise one packed RGBA8 uint
+#define TEXTURE_FLAG_SRGB 2u        // texels are sRGB-encoded (glTF colour textures)
+#define TEXTURE_FLAG_GAMMA_22 4u    // texels are gamma 2.2 encoded (course degamma="true")
+#define TEXTURE_FLAG_FLOAT 8u       // texels are 4 floats (HDR images); otherwise one packed RGBA8 uint
 #define TEXTURE_FLAG_PERLIN_ABS 16u // Perlin: |n| (veins) instead of (n + 1) / 2
 #define TEXTURE_FLAG_TEXCOORD_1 32u // glTF TEXCOORD_1 (unused until meshes carry a second set)
-#define TEXTURE_WRAP_U_SHIFT 8u  // 2 bits each: TEXTURE_WRAP_*
+#define TEXTURE_WRAP_U_SHIFT 8u     // 2 bits each: TEXTURE_WRAP_*
 #define TEXTURE_WRAP_V_SHIFT 10u
 #define TEXTURE_WRAP_REPEAT 0u
 #define TEXTURE_WRAP_CLAMP 1u
@@ -94,8 +94,8 @@ using uint64_t = std::uint64_t;
 
 // ---- Forced random numbers (FORCED_RANDOM in shared/features.h) ----
 #define FORCED_RANDOM_OFF 0u
-#define FORCED_RANDOM_ZERO 1u     // every sample dimension is 0
-#define FORCED_RANDOM_ONE 2u      // every sample dimension is 1 - 2^-24, the largest value returned
+#define FORCED_RANDOM_ZERO 1u // every sample dimension is 0
+#define FORCED_RANDOM_ONE 2u  // every sample dimension is 1 - 2^-24, the largest value returned
 
 // ---- Per-pixel accumulation (GpuSceneParams::accumulation) ----
 // Each sum is a double-float (hi + lo, |lo| <= ulp(hi) / 2) kept by error-free transformations
@@ -103,9 +103,9 @@ using uint64_t = std::uint64_t;
 // to the constant within ~1e-9 instead of float32's ~1e-3 drift, and the state is exact
 // to store, reload (checkpoints) and merge (pt merge). Vec4 k of a pixel's ACCUM_* block:
 #define ACCUMULATION_VEC4S_PER_PIXEL 4u
-#define ACCUM_SUM 0u           // (sum rgb hi, count of dropped non-finite samples)
-#define ACCUM_SUM_LO 1u        // (sum rgb lo, 0)
-#define ACCUM_SUM_SQUARES 2u   // (sum of squares rgb hi, 0)
+#define ACCUM_SUM 0u            // (sum rgb hi, count of dropped non-finite samples)
+#define ACCUM_SUM_LO 1u         // (sum rgb lo, 0)
+#define ACCUM_SUM_SQUARES 2u    // (sum of squares rgb hi, 0)
 #define ACCUM_SUM_SQUARES_LO 3u // (sum of squares rgb lo, 0)
 
 // ---- Light-tracing splats (LIGHT_TRACING in shared/features.h) ----
@@ -116,8 +116,8 @@ using uint64_t = std::uint64_t;
 // pixel and sample, a pixel's mean is its splat sum / SPLAT_SUM_SCALE / spp. Headroom: the
 // sums hold 2^35 (mean x spp), the sums of squares 2^39.
 #define SPLAT_WORDS_PER_PIXEL 6u
-#define SPLAT_SUM 0u          // 3 words: rgb sums of the per-path contributions
-#define SPLAT_SUM_SQUARES 3u  // 3 words: rgb sums of their squares
+#define SPLAT_SUM 0u                  // 3 words: rgb sums of the per-path contributions
+#define SPLAT_SUM_SQUARES 3u          // 3 words: rgb sums of their squares
 #define SPLAT_SUM_SCALE 268435456.0   // 2^28: resolution 3.7e-9 per path
 #define SPLAT_SQUARE_SCALE 16777216.0 // 2^24
 
@@ -177,31 +177,31 @@ struct GpuBvhNode {
 PT_CHECK_SIZE(GpuBvhNode, 32);
 
 struct GpuMaterial {
-    vec3 baseColor; // diffuse albedo, mirror/dielectric/conductor tint
-    uint type;      // MATERIAL_*
-    vec3 emission;  // emitted radiance (front side; both sides if double-sided)
-    uint flags;     // MATERIAL_FLAG_*
-    vec3 sigmaA;    // Beer-Lambert absorption coefficient inside a dielectric (1/length)
-    float ior;      // interior index of refraction over exterior
-    vec3 conductorEta; // conductor, Torrance-Sparrow: real part of the complex index of refraction
-    uint glossyModel;  // GLOSSY_*
-    vec3 conductorK;   // imaginary part (absorption index)
-    float exponent;    // glossy lobe exponent
-    vec3 specular;     // glossy: ks; PBR: KHR_materials_specular colour factor
-    float alpha;       // GGX alpha (perceptual roughness squared); below MIN_ROUGH_ALPHA: smooth
-    float metallic;    // PBR: metal blend
-    float transmission; // PBR: KHR_materials_transmission factor
+    vec3 baseColor;       // diffuse albedo, mirror/dielectric/conductor tint
+    uint type;            // MATERIAL_*
+    vec3 emission;        // emitted radiance (front side; both sides if double-sided)
+    uint flags;           // MATERIAL_FLAG_*
+    vec3 sigmaA;          // Beer-Lambert absorption coefficient inside a dielectric (1/length)
+    float ior;            // interior index of refraction over exterior
+    vec3 conductorEta;    // conductor, Torrance-Sparrow: real part of the complex index of refraction
+    uint glossyModel;     // GLOSSY_*
+    vec3 conductorK;      // imaginary part (absorption index)
+    float exponent;       // glossy lobe exponent
+    vec3 specular;        // glossy: ks; PBR: KHR_materials_specular colour factor
+    float alpha;          // GGX alpha (perceptual roughness squared); below MIN_ROUGH_ALPHA: smooth
+    float metallic;       // PBR: metal blend
+    float transmission;   // PBR: KHR_materials_transmission factor
     float specularWeight; // PBR: KHR_materials_specular factor
-    float normalScale; // normal map scale, or the course BumpFactor for bump maps
+    float normalScale;    // normal map scale, or the course BumpFactor for bump maps
     // Texture slots (index into the texture table, or NO_TEXTURE). Colour slots multiply the
     // factor above (course replace_* sets the factor to 1).
-    uint baseColorTexture; // rgb: baseColor (course kd), a: opacity
-    uint specularTexture;  // course replace_ks
+    uint baseColorTexture;         // rgb: baseColor (course kd), a: opacity
+    uint specularTexture;          // course replace_ks
     uint metallicRoughnessTexture; // glTF: g roughness, b metallic
-    uint normalTexture;    // tangent-space normals, or heights with MATERIAL_FLAG_BUMP_MAP
+    uint normalTexture;            // tangent-space normals, or heights with MATERIAL_FLAG_BUMP_MAP
     uint emissiveTexture;
-    float alphaCutoff;     // MATERIAL_FLAG_ALPHA_MASK threshold
-    float opacity;         // baseColor alpha factor
+    float alphaCutoff; // MATERIAL_FLAG_ALPHA_MASK threshold
+    float opacity;     // baseColor alpha factor
     uint pad0;
     // The course's classic shading (CLASSIC): ka * Ia + sum over lights of
     // (kd cos(theta) + ks cos^p(alpha_h)) E, added on every surface type, mirrors included.
@@ -209,7 +209,7 @@ struct GpuMaterial {
     float classicExponent; // Blinn-Phong p
     vec3 classicDiffuse;   // kd (no 1/pi: the course's convention)
     float pad1;
-    vec3 classicSpecular;  // ks
+    vec3 classicSpecular; // ks
     float pad2;
 };
 PT_CHECK_SIZE(GpuMaterial, 192);
@@ -225,11 +225,11 @@ struct GpuTexture {
     float valueScale;    // multiplies every value (course: 255 / Normalizer)
     float patternScale;  // checkerboard: Scale; Perlin: NoiseScale
     float patternOffset; // checkerboard: Offset
-    vec4 uvRow0;      // uv' = (dot(uvRow0.xy, uv) + uvRow0.z, dot(uvRow1.xy, uv) + uvRow1.z)
-    vec4 uvRow1;      //   (KHR_texture_transform; identity otherwise)
-    vec3 colorA;      // checkerboard: BlackColor
+    vec4 uvRow0;         // uv' = (dot(uvRow0.xy, uv) + uvRow0.z, dot(uvRow1.xy, uv) + uvRow1.z)
+    vec4 uvRow1;         //   (KHR_texture_transform; identity otherwise)
+    vec3 colorA;         // checkerboard: BlackColor
     float pad0;
-    vec3 colorB;      // checkerboard: WhiteColor
+    vec3 colorB; // checkerboard: WhiteColor
     float pad1;
 };
 PT_CHECK_SIZE(GpuTexture, 96);
@@ -258,18 +258,18 @@ PT_CHECK_SIZE(GpuSphere, 112);
 
 // One emitter in the light-selection table (all kinds share one power CDF).
 struct GpuLight {
-    uint type;      // LIGHT_*
-    uint primitive; // triangle or sphere index (BVH order)
-    float pmf;      // probability of choosing this light
-    float area;     // triangle: area; sphere: |det| of its linear map (area scale of the unit sphere);
-                    // spot: the exponent of its falloff band (the course's 4, glTF's 2)
-    vec3 position;  // point, spot: position; round sphere, square: centre
-    float radius;   // round sphere: radius, sampled by solid angle; 0: ellipsoid, sampled by area;
-                    // square: edge length
-    vec3 intensity; // point, spot: radiant intensity (W/sr); directional: irradiance on a facing
-                    // surface; square: radiance
+    uint type;         // LIGHT_*
+    uint primitive;    // triangle or sphere index (BVH order)
+    float pmf;         // probability of choosing this light
+    float area;        // triangle: area; sphere: |det| of its linear map (area scale of the unit sphere);
+                       // spot: the exponent of its falloff band (the course's 4, glTF's 2)
+    vec3 position;     // point, spot: position; round sphere, square: centre
+    float radius;      // round sphere: radius, sampled by solid angle; 0: ellipsoid, sampled by area;
+                       // square: edge length
+    vec3 intensity;    // point, spot: radiant intensity (W/sr); directional: irradiance on a facing
+                       // surface; square: radiance
     float cosFalloff;  // spot: full intensity inside this cone
-    vec3 direction; // directional: the direction light travels; spot: axis; square: normal
+    vec3 direction;    // directional: the direction light travels; spot: axis; square: normal
     float cosCoverage; // spot: nothing outside this cone
 };
 PT_CHECK_SIZE(GpuLight, 64);
@@ -279,31 +279,31 @@ struct GpuCamera {
     float lensRadius; // thin lens; 0 = pinhole
     vec3 right;       // unit, image x
     float focusDistance;
-    vec3 up;          // unit, image y (up)
+    vec3 up; // unit, image y (up)
     float pad0;
-    vec3 forward;     // unit, view direction
+    vec3 forward; // unit, view direction
     float pad1;
-    vec4 window;      // image plane (left, right, bottom, top) at unit distance along forward
+    vec4 window; // image plane (left, right, bottom, top) at unit distance along forward
 };
 PT_CHECK_SIZE(GpuCamera, 80);
 
 // Per-render constants, in a buffer reached through its device address.
 struct GpuSceneParams {
     // Device addresses of the scene arrays (buffer device address: no 128 MiB binding limit).
-    uint64_t triangles;   // GpuTriangle[]
-    uint64_t shading;     // GpuTriangleShading[]
-    uint64_t nodes;       // GpuBvhNode[]
-    uint64_t materials;   // GpuMaterial[]
-    uint64_t lights;      // GpuLight[]
-    uint64_t lightCdf;    // float[numLights + 1]
-    uint64_t accumulation; // vec4[ACCUMULATION_VEC4S_PER_PIXEL * pixels], see ACCUM_* below
-    uint64_t spheres;      // GpuSphere[]
-    uint64_t sphereNodes;  // GpuBvhNode[]: a second BVH, over the spheres
-    uint64_t envTexels;    // vec4[envWidth * envHeight]: radiance (scale applied), row 0 at the top
-    uint64_t envMarginal;  // float[envHeight + 1]: CDF over rows of the sampling weights
+    uint64_t triangles;      // GpuTriangle[]
+    uint64_t shading;        // GpuTriangleShading[]
+    uint64_t nodes;          // GpuBvhNode[]
+    uint64_t materials;      // GpuMaterial[]
+    uint64_t lights;         // GpuLight[]
+    uint64_t lightCdf;       // float[numLights + 1]
+    uint64_t accumulation;   // vec4[ACCUMULATION_VEC4S_PER_PIXEL * pixels], see ACCUM_* below
+    uint64_t spheres;        // GpuSphere[]
+    uint64_t sphereNodes;    // GpuBvhNode[]: a second BVH, over the spheres
+    uint64_t envTexels;      // vec4[envWidth * envHeight]: radiance (scale applied), row 0 at the top
+    uint64_t envMarginal;    // float[envHeight + 1]: CDF over rows of the sampling weights
     uint64_t envConditional; // float[envHeight * (envWidth + 1)]: CDF over columns, per row
-    uint64_t textures;     // GpuTexture[]
-    uint64_t texels;       // uint[]: packed RGBA8 or float texels of every image texture
+    uint64_t textures;       // GpuTexture[]
+    uint64_t texels;         // uint[]: packed RGBA8 or float texels of every image texture
     GpuCamera camera;
     vec3 background; // radiance of rays that escape
     uint numLights;
@@ -315,9 +315,9 @@ struct GpuSceneParams {
     uint numNodes;
     uint numSpheres;
     uint numSphereNodes;
-    uint envWidth;      // 0: no environment (escaping rays see `background`)
+    uint envWidth; // 0: no environment (escaping rays see `background`)
     uint envHeight;
-    uint envLightIndex; // the environment's entry in the light table, or NO_LIGHT
+    uint envLightIndex;   // the environment's entry in the light table, or NO_LIGHT
     float envRotationCos; // rotation about +y
     float envRotationSin;
     float envSamplingTotal; // sum of the sampling weights (for the pdf)
@@ -366,13 +366,13 @@ PT_CHECK_SIZE(GpuTestRay, 32);
 
 struct GpuTestPush {
     uint64_t sceneParams;
-    uint64_t inputs; // mode-dependent: GpuTestRay[] or vec4[] directions; 0 when the host gives none
+    uint64_t inputs;  // mode-dependent: GpuTestRay[] or vec4[] directions; 0 when the host gives none
     uint64_t outputs; // mode-dependent: vec4[]
     uint mode;
     uint count;
-    vec3 point;   // shading point for light tests
+    vec3 point; // shading point for light tests
     uint seed;
-    vec3 normal;  // hemisphere tests: shading normal; BSDF tests: wo in the local frame
+    vec3 normal;        // hemisphere tests: shading normal; BSDF tests: wo in the local frame
     uint materialIndex; // BSDF tests
 };
 PT_CHECK_SIZE(GpuTestPush, 64);

@@ -100,6 +100,7 @@ void main() {
                 }
             }
         }
-        outputs.v[i] = found ? vec4(hit.t, uintBitsToFloat(hit.primitive), hit.bary) : vec4(hit.t == -2.0 ? -2.0 : -1.0, 0.0, 0.0, 0.0);
+        outputs.v[i] = found ? vec4(hit.t, uintBitsToFloat(hit.primitive), hit.bary)
+                             : vec4(hit.t == -2.0 ? -2.0 : -1.0, 0.0, 0.0, 0.0);
     }
 }

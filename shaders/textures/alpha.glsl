@@ -28,9 +28,13 @@ bool alphaCutsOut(GpuTriangle tri, uint primitive, vec2 bary, Ray ray) {
         alpha *= evalTexture(m.baseColorTexture, uv, vec3(0.0)).a;
     }
     if ((m.flags & MATERIAL_FLAG_ALPHA_MASK) != 0u) return alpha < m.alphaCutoff;
-    uint h = alphaHash(primitive ^ alphaHash(floatBitsToUint(ray.origin.x) ^ alphaHash(floatBitsToUint(ray.origin.y)
-        ^ alphaHash(floatBitsToUint(ray.origin.z) ^ alphaHash(floatBitsToUint(ray.direction.x)
-        ^ alphaHash(floatBitsToUint(ray.direction.y) ^ alphaHash(floatBitsToUint(ray.direction.z))))))));
+    uint h = alphaHash(
+        primitive ^ alphaHash(floatBitsToUint(ray.origin.x) ^
+                              alphaHash(floatBitsToUint(ray.origin.y) ^
+                                        alphaHash(floatBitsToUint(ray.origin.z) ^
+                                                  alphaHash(floatBitsToUint(ray.direction.x) ^
+                                                            alphaHash(floatBitsToUint(ray.direction.y) ^
+                                                                      alphaHash(floatBitsToUint(ray.direction.z))))))));
     return float(h >> 8) * (1.0 / 16777216.0) >= alpha;
 }
 

@@ -5,9 +5,7 @@
 #define PT_TEXTURES_IMAGE_TEXTURE_GLSL
 #include "common/buffers.glsl"
 
-float srgbToLinear(float c) {
-    return c <= 0.04045 ? c / 12.92 : pow((c + 0.055) / 1.055, 2.4);
-}
+float srgbToLinear(float c) { return c <= 0.04045 ? c / 12.92 : pow((c + 0.055) / 1.055, 2.4); }
 
 // One texel, decoded to linear RGBA.
 vec4 fetchTexel(GpuTexture tex, int x, int y) {
@@ -19,8 +17,10 @@ vec4 fetchTexel(GpuTexture tex, int x, int y) {
             uintBitsToFloat(texels.v[base + 2u]), uintBitsToFloat(texels.v[base + 3u]));
     }
     vec4 c = unpackUnorm4x8(texels.v[tex.texelOffset + index]);
-    if ((tex.flags & TEXTURE_FLAG_SRGB) != 0u) c.rgb = vec3(srgbToLinear(c.r), srgbToLinear(c.g), srgbToLinear(c.b));
-    else if ((tex.flags & TEXTURE_FLAG_GAMMA_22) != 0u) c.rgb = pow(c.rgb, vec3(2.2));
+    if ((tex.flags & TEXTURE_FLAG_SRGB) != 0u)
+        c.rgb = vec3(srgbToLinear(c.r), srgbToLinear(c.g), srgbToLinear(c.b));
+    else if ((tex.flags & TEXTURE_FLAG_GAMMA_22) != 0u)
+        c.rgb = pow(c.rgb, vec3(2.2));
     return c;
 }
 

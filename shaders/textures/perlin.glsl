@@ -14,9 +14,7 @@ uint perlinHash(uint x) {
     return x & 255u;
 }
 
-uint perlinCorner(ivec3 c) {
-    return perlinHash(uint(c.x) + perlinHash(uint(c.y) + perlinHash(uint(c.z))));
-}
+uint perlinCorner(ivec3 c) { return perlinHash(uint(c.x) + perlinHash(uint(c.y) + perlinHash(uint(c.z)))); }
 
 // Dot product with one of the 12 edge-midpoint gradients of the cube (Perlin 2002).
 float perlinGradient(uint h, vec3 d) {

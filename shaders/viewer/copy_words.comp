@@ -14,7 +14,8 @@ layout(push_constant) uniform PushBlock {
     uint64_t source;
     uint64_t destination;
     uint count;
-} push;
+}
+push;
 
 void main() {
     uint i = gl_GlobalInvocationID.x;

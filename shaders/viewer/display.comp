@@ -56,15 +56,19 @@ void main() {
     if (push.splats != 0ul) {
         uint splatBase = SPLAT_WORDS_PER_PIXEL * (film.y * push.filmSize.x + film.x) + SPLAT_SUM;
         SplatsRef splats = SplatsRef(push.splats);
-        mean += vec3(float(splats.v[splatBase]), float(splats.v[splatBase + 1u]), float(splats.v[splatBase + 2u])) * push.splatScale;
+        mean += vec3(float(splats.v[splatBase]), float(splats.v[splatBase + 1u]), float(splats.v[splatBase + 2u])) *
+                push.splatScale;
     }
     vec3 c;
     if (any(isnan(mean)) || any(isinf(mean))) {
         c = vec3(1.0, 0.0, 1.0); // magenta, as in the PNG
     } else {
-        if (push.op == DISPLAY_TONEMAP_PHOTOGRAPHIC) c = photographic(mean);
-        else if (push.op == DISPLAY_TONEMAP_ACES) c = acesFit(push.exposure * mean);
-        else c = push.exposure * mean;
+        if (push.op == DISPLAY_TONEMAP_PHOTOGRAPHIC)
+            c = photographic(mean);
+        else if (push.op == DISPLAY_TONEMAP_ACES)
+            c = acesFit(push.exposure * mean);
+        else
+            c = push.exposure * mean;
         c = encode(c);
     }
     uvec3 b = uvec3(round(clamp(c, 0.0, 1.0) * 255.0));

@@ -27,20 +27,20 @@ struct GpuDisplayPush {
     uint64_t display;      // uint[window pixels]
     uvec2 filmSize;
     uvec2 windowSize;
-    uint spp;          // samples in every film pixel
-    uint passSamples;  // samples the pass in progress added to its first passTiles tiles
+    uint spp;         // samples in every film pixel
+    uint passSamples; // samples the pass in progress added to its first passTiles tiles
     uint passTiles;
-    uint tileSize;     // tile side in film pixels, tiles numbered row by row
+    uint tileSize; // tile side in film pixels, tiles numbered row by row
     uint tilesX;
-    uint op;           // DISPLAY_TONEMAP_*
-    uint flags;        // DISPLAY_FLAG_*
-    float exposure;    // 2^EV
-    float toL;         // photographic: key / L_avg, L_avg of the exposed luminance
-    float invWhite2;   // photographic: 1 / L_white^2; 0 without burn-out
-    float saturation;  // photographic
-    float invGamma;    // without DISPLAY_FLAG_SRGB
-    uint64_t splats;   // light tracing's splat sums (uint64[SPLAT_WORDS_PER_PIXEL * film pixels]), or 0
-    float splatScale;  // 1 / (SPLAT_SUM_SCALE x samples per pixel so far): splat sum to mean
+    uint op;          // DISPLAY_TONEMAP_*
+    uint flags;       // DISPLAY_FLAG_*
+    float exposure;   // 2^EV
+    float toL;        // photographic: key / L_avg, L_avg of the exposed luminance
+    float invWhite2;  // photographic: 1 / L_white^2; 0 without burn-out
+    float saturation; // photographic
+    float invGamma;   // without DISPLAY_FLAG_SRGB
+    uint64_t splats;  // light tracing's splat sums (uint64[SPLAT_WORDS_PER_PIXEL * film pixels]), or 0
+    float splatScale; // 1 / (SPLAT_SUM_SCALE x samples per pixel so far): splat sum to mean
     uint pad0;
 };
 PT_CHECK_SIZE(GpuDisplayPush, 96);

@@ -30,14 +30,12 @@
 
 namespace pt {
 
-void Aabb::grow(const glm::vec3& p)
-{
+void Aabb::grow(const glm::vec3& p) {
     lo = glm::min(lo, p);
     hi = glm::max(hi, p);
 }
 
-void Aabb::grow(const Aabb& b)
-{
+void Aabb::grow(const Aabb& b) {
     lo = glm::min(lo, b.lo);
     hi = glm::max(hi, b.hi);
 }
@@ -45,8 +43,7 @@ void Aabb::grow(const Aabb& b)
 // Same formula as the builder's centroids ((lo + hi) * 0.5, not contractible into an FMA).
 glm::vec3 Aabb::centroid() const { return (lo + hi) * 0.5f; }
 
-float Aabb::surfaceArea() const
-{
+float Aabb::surfaceArea() const {
     if (empty()) return 0.0f;
     const glm::vec3 d = hi - lo;
     return 2.0f * (d.x * d.y + d.y * d.z + d.z * d.x);
@@ -56,9 +53,7 @@ bool Aabb::empty() const { return lo.x > hi.x || lo.y > hi.y || lo.z > hi.z; }
 
 namespace bvh_detail {
 
-Builder::Builder(std::span<const Aabb> primBounds, const BvhBuildOptions& o)
-    : input_(primBounds)
-{
+Builder::Builder(std::span<const Aabb> primBounds, const BvhBuildOptions& o) : input_(primBounds) {
     bins_ = std::clamp(o.bins, 2, kMaxBins);
     maxLeaf_ = uint32_t(std::max(o.maxLeafSize, 1));
     traversalCost_ = o.traversalCost;
@@ -66,8 +61,7 @@ Builder::Builder(std::span<const Aabb> primBounds, const BvhBuildOptions& o)
     threads_ = o.threads > 0 ? o.threads : int(std::max(1u, std::thread::hardware_concurrency()));
 }
 
-void Builder::run(Bvh& out)
-{
+void Builder::run(Bvh& out) {
     const uint32_t n = uint32_t(input_.size());
     // Uninitialised on purpose: every element is written before it is read, and zero-filling
     // 32 bytes per primitive on one thread would cost more than the top levels' binning.
@@ -84,7 +78,7 @@ void Builder::run(Bvh& out)
             const auto [b, e] = chunkRange(0, n, chunks, c);
             for (uint32_t i = b; i < e; ++i) {
                 const Aabb& s = input_[i];
-                refs_[i] = PrimRef{ { s.lo.x, s.lo.y, s.lo.z }, i, { s.hi.x, s.hi.y, s.hi.z }, 0 };
+                refs_[i] = PrimRef{{s.lo.x, s.lo.y, s.lo.z}, i, {s.hi.x, s.hi.y, s.hi.z}, 0};
                 bb[c].grow(refs_[i]);
                 cb[c].grow(centroidOf(loadLo(refs_[i]), loadHi(refs_[i])));
             }
@@ -94,11 +88,11 @@ void Builder::run(Bvh& out)
             rootCentroids.grow(cb[c]);
         }
     }
-    std::vector<BvhNode> nodes{ BvhNode{ rootBounds.lo3(), 0, rootBounds.hi3(), 0 } };
+    std::vector<BvhNode> nodes{BvhNode{rootBounds.lo3(), 0, rootBounds.hi3(), 0}};
 
     int maxDepth = 0;
     std::vector<Task> tasks;
-    buildTop(nodes, WorkItem{ 0, 0, n, 0, rootCentroids }, tasks, maxDepth);
+    buildTop(nodes, WorkItem{0, 0, n, 0, rootCentroids}, tasks, maxDepth);
 
     // Preorder of the top tree: where a sequential depth-first build would have allocated
     // nodes, a children pair of a top node or a task's whole subtree.
@@ -110,15 +104,15 @@ void Builder::run(Bvh& out)
     {
         std::vector<int32_t> taskOf(nodes.size(), -1);
         for (size_t t = 0; t < tasks.size(); ++t) taskOf[tasks[t].work.slot] = int32_t(t);
-        std::vector<uint32_t> stack{ 0 };
+        std::vector<uint32_t> stack{0};
         while (!stack.empty()) {
             const uint32_t s = stack.back();
             stack.pop_back();
             if (taskOf[s] >= 0) {
-                events.push_back({ true, uint32_t(taskOf[s]) });
+                events.push_back({true, uint32_t(taskOf[s])});
             } else if (nodes[s].count == 0) {
                 const uint32_t left = nodes[s].leftOrFirst;
-                events.push_back({ false, left });
+                events.push_back({false, left});
                 stack.push_back(left + 1);
                 stack.push_back(left);
             }
@@ -157,7 +151,7 @@ void Builder::run(Bvh& out)
             total += 2;
         }
     }
-    BvhNodeArray placed(total); // uninitialised: every node is written below
+    BvhNodeArray placed(total);                 // uninitialised: every node is written below
     for (size_t i = 0; i < nodes.size(); ++i) { // task roots among these are overwritten below
         BvhNode nd = nodes[i];
         if (nd.count == 0) nd.leftOrFirst = topIndex[nd.leftOrFirst];
@@ -191,8 +185,7 @@ void Builder::run(Bvh& out)
 }
 
 // Summed per fixed chunk, then the chunks in order: the same value for every thread count.
-double Builder::sahCost(const BvhNodeArray& nodes, uint32_t primCount) const
-{
+double Builder::sahCost(const BvhNodeArray& nodes, uint32_t primCount) const {
     const auto area = [](const BvhNode& nd) {
         const glm::dvec3 d = glm::dvec3(nd.hi) - glm::dvec3(nd.lo);
         return 2.0 * (d.x * d.y + d.y * d.z + d.z * d.x);
@@ -230,8 +223,7 @@ namespace {
 constexpr size_t kMaxPrims = (size_t(1) << 31) - 1;
 } // namespace
 
-Bvh buildBvh(std::span<const Aabb> primBounds, const BvhBuildOptions& options)
-{
+Bvh buildBvh(std::span<const Aabb> primBounds, const BvhBuildOptions& options) {
     const auto start = std::chrono::steady_clock::now();
     if (primBounds.size() > kMaxPrims) throw std::length_error("buildBvh: more than 2^31-1 primitives");
     Bvh bvh;

@@ -10,12 +10,12 @@
 namespace pt {
 
 struct Aabb {
-    glm::vec3 lo{ std::numeric_limits<float>::infinity() };
-    glm::vec3 hi{ -std::numeric_limits<float>::infinity() };
+    glm::vec3 lo{std::numeric_limits<float>::infinity()};
+    glm::vec3 hi{-std::numeric_limits<float>::infinity()};
     void grow(const glm::vec3& p);
     void grow(const Aabb& b);
-    glm::vec3 centroid() const;  // meaningless for empty boxes
-    float surfaceArea() const;   // 0 for empty boxes
+    glm::vec3 centroid() const; // meaningless for empty boxes
+    float surfaceArea() const;  // 0 for empty boxes
     bool empty() const;
 };
 
@@ -38,11 +38,11 @@ static_assert(sizeof(BvhNode) == 32, "BvhNode is uploaded verbatim to the GPU");
 using BvhNodeArray = std::vector<BvhNode, DefaultInitAllocator<BvhNode>>;
 
 struct BvhBuildOptions {
-    int bins = 16;             // clamped to [2, 128]
-    int maxLeafSize = 4;       // clamped to >= 1; never exceeded
+    int bins = 16;       // clamped to [2, 128]
+    int maxLeafSize = 4; // clamped to >= 1; never exceeded
     float traversalCost = 1.0f;
     float intersectCost = 1.0f;
-    int threads = 0;           // 0 = hardware concurrency; the result does not depend on it
+    int threads = 0; // 0 = hardware concurrency; the result does not depend on it
 };
 
 struct Bvh {
@@ -52,8 +52,8 @@ struct Bvh {
     //   (sum over interior nodes traversalCost * area + sum over leaves intersectCost * count * area) / rootArea
     // If the root box has zero area every node is counted with the root's area.
     double sahCost = 0;
-    int maxDepth = 0;          // edges on the longest root-to-leaf path (0 for a single leaf);
-                               // a push-far-child traversal needs at most this many stack entries
+    int maxDepth = 0; // edges on the longest root-to-leaf path (0 for a single leaf);
+                      // a push-far-child traversal needs at most this many stack entries
     double buildSeconds = 0;
 };
 

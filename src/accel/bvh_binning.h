@@ -20,8 +20,7 @@ struct Bins {
     std::array<std::array<V4, kMaxBins>, 3> hi;
     std::array<std::array<uint32_t, kMaxBins>, 3> count;
 
-    void reset(int bins)
-    {
+    void reset(int bins) {
         for (int a = 0; a < 3; ++a)
             for (int i = 0; i < bins; ++i) {
                 lo[a][i] = splat(kInf);
@@ -29,14 +28,12 @@ struct Bins {
                 count[a][i] = 0;
             }
     }
-    void add(int axis, int bin, V4 plo, V4 phi)
-    {
+    void add(int axis, int bin, V4 plo, V4 phi) {
         lo[axis][bin] = vmin(lo[axis][bin], plo);
         hi[axis][bin] = vmax(hi[axis][bin], phi);
         ++count[axis][bin];
     }
-    void merge(const Bins& o, int bins)
-    {
+    void merge(const Bins& o, int bins) {
         for (int a = 0; a < 3; ++a)
             for (int i = 0; i < bins; ++i) {
                 lo[a][i] = vmin(lo[a][i], o.lo[a][i]);
@@ -47,8 +44,8 @@ struct Bins {
 };
 
 struct Split {
-    int axis = -1; // -1: no split separates the primitives
-    int bin = 0;   // left side = bins [0, bin)
+    int axis = -1;     // -1: no split separates the primitives
+    int bin = 0;       // left side = bins [0, bin)
     float cost = kInf; // sum of area * count of both sides, not normalised
     uint32_t imbalance = 0;
 };
@@ -56,8 +53,7 @@ struct Split {
 // Bins [begin, end) of refs on all three axes and caches every primitive's bins in binKeys.
 // An axis with zero centroid extent has scale 0: everything lands in bin 0 and the axis never
 // offers a split. The clamp is written so that a NaN (0 * inf for a denormal extent) gives 0.
-inline void binRange(PrimRef* refs, uint32_t begin, uint32_t end, V4 origin, V4 scale, int binCount, Bins& bins)
-{
+inline void binRange(PrimRef* refs, uint32_t begin, uint32_t end, V4 origin, V4 scale, int binCount, Bins& bins) {
     bins.reset(binCount);
     const V4 zero = splat(0.0f), last = splat(float(binCount - 1));
     for (uint32_t i = begin; i < end; ++i) {
@@ -75,8 +71,7 @@ inline void binRange(PrimRef* refs, uint32_t begin, uint32_t end, V4 origin, V4 
 
 // Bin origin and scale (bins per unit length, 0 on an axis with no centroid extent) for the
 // centroid bounds cb. Returns false when no axis has any extent (nothing to bin).
-inline bool binTransform(const Box4& cb, int binCount, V4& origin, V4& scale)
-{
+inline bool binTransform(const Box4& cb, int binCount, V4& origin, V4& scale) {
     float lo[4], hi[4];
     store(lo, cb.lo);
     store(hi, cb.hi);
@@ -92,8 +87,7 @@ inline bool binTransform(const Box4& cb, int binCount, V4& origin, V4& scale)
 
 // The cheapest split over the bin boundaries of all three axes (axis -1 when no boundary
 // separates the primitives).
-inline Split findSplit(const Bins& bins, int binCount)
-{
+inline Split findSplit(const Bins& bins, int binCount) {
     Split best;
     std::array<float, kMaxBins> rightArea;
     std::array<uint32_t, kMaxBins> rightCount;

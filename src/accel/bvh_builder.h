@@ -29,8 +29,7 @@ constexpr int kSweepPrims = 16;
 constexpr int kFewBinsPrims = 64;
 constexpr int kFewBins = 8;
 
-inline float boxArea(const glm::vec3& lo, const glm::vec3& hi)
-{
+inline float boxArea(const glm::vec3& lo, const glm::vec3& hi) {
     const glm::vec3 d = hi - lo;
     return 2.0f * (d.x * d.y + d.y * d.z + d.z * d.x);
 }
@@ -73,14 +72,13 @@ private:
 
     // Relative SAH cost of a split whose children's sum of area * count is `cost`. A zero-area node
     // (points or a line) makes every split free, and then only the leaf size limit splits it.
-    float splitCost(float cost, float nodeArea) const
-    {
+    float splitCost(float cost, float nodeArea) const {
         return traversalCost_ + intersectCost_ * (nodeArea > 0.0f ? cost / nodeArea : 0.0f);
     }
 
     std::span<const Aabb> input_;
     HugeArray<PrimRef> refs_; // the primitives, permuted; leaves index ranges of it
-    HugeArray<PrimRef> alt_;   // the top phase's second buffer (it scatters between the two)
+    HugeArray<PrimRef> alt_;  // the top phase's second buffer (it scatters between the two)
     int bins_ = 16;
     uint32_t maxLeaf_ = 4;
     float traversalCost_ = 1.0f;

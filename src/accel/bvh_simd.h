@@ -47,53 +47,60 @@ struct V4 {
 };
 
 #if PT_BVH_SSE
-inline V4 splat(float f) { return { _mm_set1_ps(f) }; }
-inline V4 set3(float x, float y, float z) { return { _mm_set_ps(0.0f, z, y, x) }; }
-inline V4 loadRow(const void* p) { return { _mm_load_ps(static_cast<const float*>(p)) }; }
+inline V4 splat(float f) { return {_mm_set1_ps(f)}; }
+inline V4 set3(float x, float y, float z) { return {_mm_set_ps(0.0f, z, y, x)}; }
+inline V4 loadRow(const void* p) { return {_mm_load_ps(static_cast<const float*>(p))}; }
 inline void store(float* p, V4 a) { _mm_storeu_ps(p, a.v); }
-inline V4 vmin(V4 a, V4 b) { return { _mm_min_ps(a.v, b.v) }; }
-inline V4 vmax(V4 a, V4 b) { return { _mm_max_ps(a.v, b.v) }; }
-inline V4 vadd(V4 a, V4 b) { return { _mm_add_ps(a.v, b.v) }; }
-inline V4 vsub(V4 a, V4 b) { return { _mm_sub_ps(a.v, b.v) }; }
-inline V4 vmul(V4 a, V4 b) { return { _mm_mul_ps(a.v, b.v) }; }
-inline V4 xyz(V4 a) { return { _mm_and_ps(a.v, _mm_castsi128_ps(_mm_set_epi32(0, -1, -1, -1))) }; } // lane 3 = 0
-inline void truncToInt(V4 a, int32_t out[4]) { _mm_storeu_si128(reinterpret_cast<__m128i*>(out), _mm_cvttps_epi32(a.v)); }
+inline V4 vmin(V4 a, V4 b) { return {_mm_min_ps(a.v, b.v)}; }
+inline V4 vmax(V4 a, V4 b) { return {_mm_max_ps(a.v, b.v)}; }
+inline V4 vadd(V4 a, V4 b) { return {_mm_add_ps(a.v, b.v)}; }
+inline V4 vsub(V4 a, V4 b) { return {_mm_sub_ps(a.v, b.v)}; }
+inline V4 vmul(V4 a, V4 b) { return {_mm_mul_ps(a.v, b.v)}; }
+inline V4 xyz(V4 a) { return {_mm_and_ps(a.v, _mm_castsi128_ps(_mm_set_epi32(0, -1, -1, -1)))}; } // lane 3 = 0
+inline void truncToInt(V4 a, int32_t out[4]) {
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(out), _mm_cvttps_epi32(a.v));
+}
 // Lanes of a where `take` is true, else of b (branch-free).
-inline V4 select(bool take, V4 a, V4 b)
-{
+inline V4 select(bool take, V4 a, V4 b) {
     const __m128 m = _mm_castsi128_ps(_mm_set1_epi32(-int32_t(take)));
-    return { _mm_or_ps(_mm_and_ps(m, a.v), _mm_andnot_ps(m, b.v)) };
+    return {_mm_or_ps(_mm_and_ps(m, a.v), _mm_andnot_ps(m, b.v))};
 }
 #else
 template <class F>
-inline V4 lanes(V4 a, V4 b, F f)
-{
+inline V4 lanes(V4 a, V4 b, F f) {
     V4 r;
     for (int i = 0; i < 4; ++i) r.v[i] = f(a.v[i], b.v[i]);
     return r;
 }
-inline V4 splat(float f) { return { { f, f, f, f } }; }
-inline V4 set3(float x, float y, float z) { return { { x, y, z, 0.0f } }; }
-inline V4 loadRow(const void* p)
-{
+inline V4 splat(float f) { return {{f, f, f, f}}; }
+inline V4 set3(float x, float y, float z) { return {{x, y, z, 0.0f}}; }
+inline V4 loadRow(const void* p) {
     V4 r;
     std::memcpy(r.v, p, sizeof r.v);
     return r;
 }
 inline void store(float* p, V4 a) { std::memcpy(p, a.v, sizeof a.v); }
-inline V4 vmin(V4 a, V4 b) { return lanes(a, b, [](float x, float y) { return x < y ? x : y; }); }
-inline V4 vmax(V4 a, V4 b) { return lanes(a, b, [](float x, float y) { return x > y ? x : y; }); }
-inline V4 vadd(V4 a, V4 b) { return lanes(a, b, [](float x, float y) { return x + y; }); }
-inline V4 vsub(V4 a, V4 b) { return lanes(a, b, [](float x, float y) { return x - y; }); }
-inline V4 vmul(V4 a, V4 b) { return lanes(a, b, [](float x, float y) { return x * y; }); }
-inline V4 xyz(V4 a)
-{
+inline V4 vmin(V4 a, V4 b) {
+    return lanes(a, b, [](float x, float y) { return x < y ? x : y; });
+}
+inline V4 vmax(V4 a, V4 b) {
+    return lanes(a, b, [](float x, float y) { return x > y ? x : y; });
+}
+inline V4 vadd(V4 a, V4 b) {
+    return lanes(a, b, [](float x, float y) { return x + y; });
+}
+inline V4 vsub(V4 a, V4 b) {
+    return lanes(a, b, [](float x, float y) { return x - y; });
+}
+inline V4 vmul(V4 a, V4 b) {
+    return lanes(a, b, [](float x, float y) { return x * y; });
+}
+inline V4 xyz(V4 a) {
     a.v[3] = 0.0f;
     return a;
 }
 inline V4 select(bool take, V4 a, V4 b) { return take ? a : b; }
-inline void truncToInt(V4 a, int32_t out[4])
-{
+inline void truncToInt(V4 a, int32_t out[4]) {
     for (int i = 0; i < 4; ++i) out[i] = int32_t(a.v[i]);
 }
 #endif
@@ -102,8 +109,7 @@ inline void truncToInt(V4 a, int32_t out[4])
 // is a multiple of 4 and the padding keys are +inf (real keys are finite, so it never counts).
 // Branch-free: used by the small-node sort, where comparison sorts mispredict a lot.
 #if PT_BVH_SSE
-inline int rankOf(const float* keys, int nPadded, int i)
-{
+inline int rankOf(const float* keys, int nPadded, int i) {
     const __m128 ki = _mm_set1_ps(keys[i]);
     const __m128i ii = _mm_set1_epi32(i);
     __m128i idx = _mm_set_epi32(3, 2, 1, 0);
@@ -120,8 +126,7 @@ inline int rankOf(const float* keys, int nPadded, int i)
     return _mm_cvtsi128_si32(count);
 }
 #else
-inline int rankOf(const float* keys, int nPadded, int i)
-{
+inline int rankOf(const float* keys, int nPadded, int i) {
     int rank = 0;
     for (int j = 0; j < nPadded; ++j) rank += int(keys[j] < keys[i]) | (int(keys[j] == keys[i]) & int(j < i));
     return rank;
@@ -139,8 +144,7 @@ struct Box4 {
     V4 lo = splat(kInf);
     V4 hi = splat(-kInf);
 
-    void grow(V4 plo, V4 phi)
-    {
+    void grow(V4 plo, V4 phi) {
         lo = vmin(lo, plo);
         hi = vmax(hi, phi);
     }
@@ -149,8 +153,7 @@ struct Box4 {
     void grow(const PrimRef& r) { grow(loadLo(r), loadHi(r)); }
     // Only meaningful for non-empty boxes. 2 ((dx dy + dy dz) + dz dx) on both paths, the same
     // products summed in the same order, so SSE and scalar builds agree bit for bit.
-    float area() const
-    {
+    float area() const {
 #if PT_BVH_SSE
         const __m128 d = _mm_sub_ps(hi.v, lo.v);
         const __m128 p = _mm_mul_ps(d, _mm_shuffle_ps(d, d, _MM_SHUFFLE(3, 0, 2, 1))); // dx dy, dy dz, dz dx
@@ -162,24 +165,21 @@ struct Box4 {
         return 2.0f * (d[0] * d[1] + d[1] * d[2] + d[2] * d[0]);
 #endif
     }
-    glm::vec3 lo3() const
-    {
+    glm::vec3 lo3() const {
         float f[4];
         store(f, lo);
-        return { f[0], f[1], f[2] };
+        return {f[0], f[1], f[2]};
     }
-    glm::vec3 hi3() const
-    {
+    glm::vec3 hi3() const {
         float f[4];
         store(f, hi);
-        return { f[0], f[1], f[2] };
+        return {f[0], f[1], f[2]};
     }
 };
 
 // Grows `left` or `right` by the centroid c, branch-free (during a partition the side is
 // unpredictable): the other box is grown by an empty point (+inf low, -inf high).
-inline void addCentroidToSide(V4 c, bool isLeft, Box4& left, Box4& right)
-{
+inline void addCentroidToSide(V4 c, bool isLeft, Box4& left, Box4& right) {
     const V4 inf = splat(kInf), negInf = splat(-kInf);
     left.lo = vmin(left.lo, select(isLeft, c, inf));
     left.hi = vmax(left.hi, select(isLeft, c, negInf));

@@ -11,15 +11,13 @@
 
 namespace pt::bvh_detail {
 
-void Builder::buildTask(const Task& task, const BvhNode& root, std::vector<BvhNode>& ln, int& maxDepth)
-{
+void Builder::buildTask(const Task& task, const BvhNode& root, std::vector<BvhNode>& ln, int& maxDepth) {
     WorkItem item = task.work;
-    if (task.inAlt)
-        std::memcpy(&refs_[item.begin], &alt_[item.begin], sizeof(PrimRef) * (item.end - item.begin));
+    if (task.inAlt) std::memcpy(&refs_[item.begin], &alt_[item.begin], sizeof(PrimRef) * (item.end - item.begin));
     ln.reserve(2 * size_t(item.end - item.begin));
     ln.push_back(root);
     item.slot = 0;
-    std::vector<WorkItem> stack{ item };
+    std::vector<WorkItem> stack{item};
     while (!stack.empty()) {
         const WorkItem w = stack.back();
         stack.pop_back();
@@ -30,8 +28,8 @@ void Builder::buildTask(const Task& task, const BvhNode& root, std::vector<BvhNo
 // Branch-free Lomuto partition on the cached bin key (which side an element goes to is
 // unpredictable, so a branchy partition pays a mispredict for about every other element).
 // The children's centroid bounds are collected on the way (saving them a pass of their own).
-uint32_t Builder::partition(uint32_t begin, uint32_t end, int axis, int splitBin, Box4& leftCentroids, Box4& rightCentroids)
-{
+uint32_t Builder::partition(
+    uint32_t begin, uint32_t end, int axis, int splitBin, Box4& leftCentroids, Box4& rightCentroids) {
     const int shift = 8 * axis;
     Box4 cl, cr;
     uint32_t l = begin;
@@ -53,8 +51,7 @@ uint32_t Builder::partition(uint32_t begin, uint32_t end, int axis, int splitBin
 // sweeping 3 * bins bins) that would dominate down here, where most of the nodes are; the
 // exact sweep is cheaper and finds better splits. Identical centroids need no special case:
 // all costs tie and the most balanced split (the range median) wins. Returns false for a leaf.
-bool Builder::sweepSplit(const WorkItem& item, float nodeArea, Box4& lb, Box4& rb, uint32_t& mid)
-{
+bool Builder::sweepSplit(const WorkItem& item, float nodeArea, Box4& lb, Box4& rb, uint32_t& mid) {
     const int n = int(item.end - item.begin);
     if (n == 2) {
         // The most common case, short-cut: the same decision and order as the general code
@@ -127,8 +124,7 @@ bool Builder::sweepSplit(const WorkItem& item, float nodeArea, Box4& lb, Box4& r
 }
 
 // Binned SAH for the task phase's bigger nodes. Returns false for a leaf.
-bool Builder::binnedSplit(const WorkItem& item, float nodeArea, Box4& lb, Box4& rb, Box4& lc, Box4& rc, uint32_t& mid)
-{
+bool Builder::binnedSplit(const WorkItem& item, float nodeArea, Box4& lb, Box4& rb, Box4& lc, Box4& rc, uint32_t& mid) {
     const uint32_t n = item.end - item.begin;
     const int binCount = n <= uint32_t(kFewBinsPrims) ? std::min(bins_, kFewBins) : bins_;
     V4 origin, scale;
@@ -159,8 +155,8 @@ bool Builder::binnedSplit(const WorkItem& item, float nodeArea, Box4& lb, Box4& 
 
 // Decides leaf or split for one node; on a split appends the two children (adjacent) and
 // pushes them so that the left child is processed next (depth-first).
-void Builder::processNode(std::vector<BvhNode>& nodes, const WorkItem& item, std::vector<WorkItem>& stack, int& maxDepth)
-{
+void Builder::processNode(
+    std::vector<BvhNode>& nodes, const WorkItem& item, std::vector<WorkItem>& stack, int& maxDepth) {
     const uint32_t n = item.end - item.begin;
     Box4 lb, rb, lc, rc; // children's boxes and centroid bounds (the sweep's children need none)
     uint32_t mid = item.begin;
@@ -177,12 +173,12 @@ void Builder::processNode(std::vector<BvhNode>& nodes, const WorkItem& item, std
         return;
     }
     const uint32_t left = uint32_t(nodes.size());
-    nodes.push_back(BvhNode{ lb.lo3(), 0, lb.hi3(), 0 });
-    nodes.push_back(BvhNode{ rb.lo3(), 0, rb.hi3(), 0 });
+    nodes.push_back(BvhNode{lb.lo3(), 0, lb.hi3(), 0});
+    nodes.push_back(BvhNode{rb.lo3(), 0, rb.hi3(), 0});
     nodes[item.slot].leftOrFirst = left;
     nodes[item.slot].count = 0;
-    stack.push_back(WorkItem{ left + 1, mid, item.end, item.depth + 1, rc });
-    stack.push_back(WorkItem{ left, item.begin, mid, item.depth + 1, lc });
+    stack.push_back(WorkItem{left + 1, mid, item.end, item.depth + 1, rc});
+    stack.push_back(WorkItem{left, item.begin, mid, item.depth + 1, lc});
 }
 
 } // namespace pt::bvh_detail

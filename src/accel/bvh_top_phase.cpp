@@ -13,13 +13,12 @@
 
 namespace pt::bvh_detail {
 
-void Builder::buildTop(std::vector<BvhNode>& nodes, const WorkItem& root, std::vector<Task>& tasks, int& maxDepth)
-{
+void Builder::buildTop(std::vector<BvhNode>& nodes, const WorkItem& root, std::vector<Task>& tasks, int& maxDepth) {
     struct Unit {
         uint32_t item, begin, end;
-        uint32_t leftCount = 0;        // primitives of this unit that go to the left child
+        uint32_t leftCount = 0; // primitives of this unit that go to the left child
         uint32_t leftDst = 0, rightDst = 0;
-        Box4 centroids[2];             // of the primitives that went left [0] and right [1]
+        Box4 centroids[2]; // of the primitives that went left [0] and right [1]
     };
     enum class Mode { Leaf, Binned, Halve };
     struct Decision {
@@ -30,10 +29,10 @@ void Builder::buildTop(std::vector<BvhNode>& nodes, const WorkItem& root, std::v
     };
 
     if (root.end - root.begin <= kTaskPrims) {
-        tasks.push_back({ root, false });
+        tasks.push_back({root, false});
         return;
     }
-    std::vector<WorkItem> frontier{ root };
+    std::vector<WorkItem> frontier{root};
     for (int parity = 0; !frontier.empty(); parity ^= 1) {
         PrimRef* src = parity ? alt_.get() : refs_.get();
         PrimRef* dst = parity ? refs_.get() : alt_.get();
@@ -50,7 +49,7 @@ void Builder::buildTop(std::vector<BvhNode>& nodes, const WorkItem& root, std::v
             const size_t chunks = (w.end - w.begin + kUnitPrims - 1) / kUnitPrims;
             for (size_t c = 0; c < chunks; ++c) {
                 const auto [b, e] = chunkRange(w.begin, w.end, chunks, c);
-                units.push_back(Unit{ uint32_t(k), b, e });
+                units.push_back(Unit{uint32_t(k), b, e});
             }
         }
         firstUnit[items] = units.size();
@@ -77,7 +76,8 @@ void Builder::buildTop(std::vector<BvhNode>& nodes, const WorkItem& root, std::v
             }
             const float nodeArea = boxArea(nodes[w.slot].lo, nodes[w.slot].hi);
             if (split.axis >= 0)
-                d.mode = n <= maxLeaf_ && intersectCost_ * float(n) <= splitCost(split.cost, nodeArea) ? Mode::Leaf : Mode::Binned;
+                d.mode = n <= maxLeaf_ && intersectCost_ * float(n) <= splitCost(split.cost, nodeArea) ? Mode::Leaf
+                                                                                                       : Mode::Binned;
             else
                 d.mode = n <= maxLeaf_ ? Mode::Leaf : Mode::Halve;
             if (d.mode == Mode::Binned) {
@@ -154,14 +154,17 @@ void Builder::buildTop(std::vector<BvhNode>& nodes, const WorkItem& root, std::v
                 cr.grow(units[u].centroids[1]);
             }
             const uint32_t left = uint32_t(nodes.size());
-            nodes.push_back(BvhNode{ d.lb.lo3(), 0, d.lb.hi3(), 0 });
-            nodes.push_back(BvhNode{ d.rb.lo3(), 0, d.rb.hi3(), 0 });
+            nodes.push_back(BvhNode{d.lb.lo3(), 0, d.lb.hi3(), 0});
+            nodes.push_back(BvhNode{d.rb.lo3(), 0, d.rb.hi3(), 0});
             nodes[w.slot].leftOrFirst = left;
             nodes[w.slot].count = 0;
             const uint32_t mid = w.begin + d.leftCount;
-            for (const WorkItem& c : { WorkItem{ left, w.begin, mid, w.depth + 1, cl }, WorkItem{ left + 1, mid, w.end, w.depth + 1, cr } }) {
-                if (c.end - c.begin <= kTaskPrims) tasks.push_back({ c, parity == 0 });
-                else next.push_back(c);
+            for (const WorkItem& c :
+                {WorkItem{left, w.begin, mid, w.depth + 1, cl}, WorkItem{left + 1, mid, w.end, w.depth + 1, cr}}) {
+                if (c.end - c.begin <= kTaskPrims)
+                    tasks.push_back({c, parity == 0});
+                else
+                    next.push_back(c);
             }
         }
         frontier = std::move(next);

@@ -7,8 +7,7 @@
 
 namespace pt {
 
-void* allocateHugePages(size_t bytes)
-{
+void* allocateHugePages(size_t bytes) {
     const size_t rounded = std::max<size_t>(1, (bytes + kHugePage - 1) / kHugePage) * kHugePage;
     void* p = std::aligned_alloc(kHugePage, rounded);
     if (!p) throw std::bad_alloc();

@@ -27,8 +27,7 @@ struct HugeFree {
 template <class T>
 using HugeArray = std::unique_ptr<T[], HugeFree>;
 template <class T>
-HugeArray<T> allocateHuge(size_t count)
-{
+HugeArray<T> allocateHuge(size_t count) {
     static_assert(std::is_trivially_default_constructible_v<T> && std::is_trivially_destructible_v<T>);
     return HugeArray<T>(static_cast<T*>(allocateHugePages(count * sizeof(T))));
 }
@@ -47,18 +46,22 @@ struct DefaultInitAllocator : std::allocator<T> {
     template <class U>
     DefaultInitAllocator(const DefaultInitAllocator<U>&) noexcept {}
     template <class U>
-    void construct(U* p) noexcept(std::is_nothrow_default_constructible_v<U>) { ::new (static_cast<void*>(p)) U; }
+    void construct(U* p) noexcept(std::is_nothrow_default_constructible_v<U>) {
+        ::new (static_cast<void*>(p)) U;
+    }
     template <class U, class... Args>
-    void construct(U* p, Args&&... args) { ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...); }
-    T* allocate(size_t count)
-    {
+    void construct(U* p, Args&&... args) {
+        ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+    }
+    T* allocate(size_t count) {
         if (count * sizeof(T) < kHugePage) return std::allocator<T>::allocate(count);
         return static_cast<T*>(allocateHugePages(count * sizeof(T)));
     }
-    void deallocate(T* p, size_t count) noexcept
-    {
-        if (count * sizeof(T) < kHugePage) std::allocator<T>::deallocate(p, count);
-        else freeHugePages(p);
+    void deallocate(T* p, size_t count) noexcept {
+        if (count * sizeof(T) < kHugePage)
+            std::allocator<T>::deallocate(p, count);
+        else
+            freeHugePages(p);
     }
 };
 

@@ -20,13 +20,14 @@ namespace {
 int listDevices() {
     auto devices = pt::VulkanContext::listDevices();
     if (devices.empty()) {
-        std::fprintf(stderr, "pt: error: no Vulkan device found (install mesa-vulkan-drivers for lavapipe, or a GPU driver)\n");
+        std::fprintf(
+            stderr, "pt: error: no Vulkan device found (install mesa-vulkan-drivers for lavapipe, or a GPU driver)\n");
         return 1;
     }
     for (const auto& d : devices)
         std::printf("%u: %s (%s, %s, Vulkan %u.%u)%s%s\n", d.index, d.name.c_str(), d.type.c_str(), d.driver.c_str(),
-            VK_API_VERSION_MAJOR(d.apiVersion), VK_API_VERSION_MINOR(d.apiVersion), d.usable ? "" : " unusable: ",
-            d.whyNotUsable.c_str());
+            VK_API_VERSION_MAJOR(d.apiVersion), VK_API_VERSION_MINOR(d.apiVersion),
+            d.usable ? "" : " unusable: ", d.whyNotUsable.c_str());
     return 0;
 }
 
@@ -42,17 +43,22 @@ struct SwitchWords {
 void addSceneOptions(CLI::App* cmd, pt::RenderOptions& o, SwitchWords& w) {
     cmd->add_option("scene", o.scene, "Scene file");
     cmd->add_option("--width", o.width, "Image width (default: the scene's, else 512)")->check(CLI::Range(1, 1 << 30));
-    cmd->add_option("--height", o.height, "Image height (default: the scene's, else from the camera aspect)")->check(CLI::Range(1, 1 << 30));
-    cmd->add_option("--max-depth", o.maxDepth, "Ray segments per path including the camera ray (1: emitters only, 2: direct light); default 16")
+    cmd->add_option("--height", o.height, "Image height (default: the scene's, else from the camera aspect)")
+        ->check(CLI::Range(1, 1 << 30));
+    cmd->add_option("--max-depth", o.maxDepth,
+           "Ray segments per path including the camera ray (1: emitters only, 2: direct light); default 16")
         ->check(CLI::Range(1u, 65536u));
-    cmd->add_option("--rr-start", o.integrator.rrStartDepth, "Russian roulette starts after this many segments (default 5)");
+    cmd->add_option(
+        "--rr-start", o.integrator.rrStartDepth, "Russian roulette starts after this many segments (default 5)");
     cmd->add_option("--rr-threshold", o.integrator.rrThreshold,
            "Russian roulette: paths with throughput at least this always continue, others survive with probability "
            "throughput / threshold (default 0.5; pbrt and Mitsuba use 1)")
         ->check(CLI::Range(1e-3, 1e3));
     cmd->add_option("--seed", o.integrator.seed, "Random seed (default 0)");
-    cmd->add_option("--nee", w.nee, "Next event estimation (light sampling): on|off (default on)")->check(CLI::IsMember({"on", "off"}));
-    cmd->add_option("--mis", w.mis, "Multiple importance sampling of light and BSDF samples: on|off (default on)")->check(CLI::IsMember({"on", "off"}));
+    cmd->add_option("--nee", w.nee, "Next event estimation (light sampling): on|off (default on)")
+        ->check(CLI::IsMember({"on", "off"}));
+    cmd->add_option("--mis", w.mis, "Multiple importance sampling of light and BSDF samples: on|off (default on)")
+        ->check(CLI::IsMember({"on", "off"}));
     cmd->add_option("--rr", w.rr, "Russian roulette: on|off (default on)")->check(CLI::IsMember({"on", "off"}));
     cmd->add_option("--integrator", w.integrator,
            "path: path tracing; classic: the CENG795 course's classic ray tracer (ambient + direct light with its "
@@ -70,17 +76,21 @@ void addSceneOptions(CLI::App* cmd, pt::RenderOptions& o, SwitchWords& w) {
            "Caustics seen directly (camera, diffuse surface, mirrors or glass, area light) by light tracing, "
            "splatted, where the scene has them: on|off (default on; off leaves them to BSDF sampling)")
         ->check(CLI::IsMember({"on", "off"}));
-    cmd->add_option("--camera", o.camera, "Camera to render: glTF: its index (default 0); course XML: its id (default: every camera)");
+    cmd->add_option("--camera", o.camera,
+        "Camera to render: glTF: its index (default 0); course XML: its id (default: every camera)");
     cmd->add_option("--device", o.device, "Use the first Vulkan device whose name contains this (see 'pt devices')");
     cmd->add_option("--exposure", o.exposure, "Exposure in stops for the PNG");
     cmd->add_option("--env", o.environment, "Environment: an equirectangular (lat-long) radiance map, .exr");
-    auto* envColourOpt = cmd->add_option("--env-colour", w.envColour, "Environment: a constant radiance R G B")->expected(3);
+    auto* envColourOpt =
+        cmd->add_option("--env-colour", w.envColour, "Environment: a constant radiance R G B")->expected(3);
     envColourOpt->excludes(cmd->get_option("--env"));
-    cmd->add_option("--env-scale", o.environmentScale, "Multiply the environment's radiance")->check(CLI::Range(0.0f, 1e30f));
+    cmd->add_option("--env-scale", o.environmentScale, "Multiply the environment's radiance")
+        ->check(CLI::Range(0.0f, 1e30f));
     cmd->add_option("--env-rotate", o.environmentRotation, "Rotate the environment about +y, in degrees");
     cmd->add_flag("--validation", o.validation, "Enable the Vulkan validation layer; fail if it reports anything");
-    cmd->add_flag("--all-features", o.allFeatures, "Use the kernel with every feature compiled in instead of one specialised "
-                                                   "to the scene (to measure what specialisation saves; same image)");
+    cmd->add_flag("--all-features", o.allFeatures,
+        "Use the kernel with every feature compiled in instead of one specialised "
+        "to the scene (to measure what specialisation saves; same image)");
 }
 
 void applySwitchWords(const SwitchWords& w, pt::RenderOptions& o) {
@@ -91,8 +101,10 @@ void applySwitchWords(const SwitchWords& w, pt::RenderOptions& o) {
     if (!w.mis.empty()) o.mis = onOff(w.mis);
     if (!w.rr.empty()) o.rr = onOff(w.rr);
     if (!w.lightTracing.empty()) o.integrator.lightTracing = onOff(w.lightTracing);
-    if (!w.sampler.empty()) o.integrator.sampler = w.sampler == "sobol" ? pt::SamplerKind::Sobol : pt::SamplerKind::Independent;
-    if (!w.sampling.empty()) o.sampling = w.sampling == "uniform" ? pt::DirectionSampling::Uniform : pt::DirectionSampling::Cosine;
+    if (!w.sampler.empty())
+        o.integrator.sampler = w.sampler == "sobol" ? pt::SamplerKind::Sobol : pt::SamplerKind::Independent;
+    if (!w.sampling.empty())
+        o.sampling = w.sampling == "uniform" ? pt::DirectionSampling::Uniform : pt::DirectionSampling::Cosine;
 }
 
 } // namespace
@@ -103,26 +115,34 @@ int main(int argc, char** argv) {
     pt::RenderOptions o;
     SwitchWords words;
 
-    CLI::App* render = app.add_subcommand("render", "Render a scene (glTF .gltf/.glb; none: the built-in Cornell box) to EXR and PNG");
+    CLI::App* render =
+        app.add_subcommand("render", "Render a scene (glTF .gltf/.glb; none: the built-in Cornell box) to EXR and PNG");
     addSceneOptions(render, o, words);
-    render->add_option("-o,--output", o.output, "Output EXR (default out/<scene>.exr); a tonemapped PNG is written beside it");
-    auto* sppOpt = render->add_option("--spp", o.spp, "Samples per pixel (default 64)")->check(CLI::Range(1u, 1u << 30));
-    auto* timeOpt = render->add_option("--time", o.seconds, "Render for this many seconds instead of a fixed spp")->check(CLI::Range(0.001, 1e7));
+    render->add_option(
+        "-o,--output", o.output, "Output EXR (default out/<scene>.exr); a tonemapped PNG is written beside it");
+    auto* sppOpt =
+        render->add_option("--spp", o.spp, "Samples per pixel (default 64)")->check(CLI::Range(1u, 1u << 30));
+    auto* timeOpt = render->add_option("--time", o.seconds, "Render for this many seconds instead of a fixed spp")
+                        ->check(CLI::Range(0.001, 1e7));
     sppOpt->excludes(timeOpt);
-    render->add_option("--target-error", o.targetError,
-              "Add samples until the estimated relMSE (from the image's own variance, no reference) is at most "
-              "this; --spp or --time then cap the render")
+    render
+        ->add_option("--target-error", o.targetError,
+            "Add samples until the estimated relMSE (from the image's own variance, no reference) is at most "
+            "this; --spp or --time then cap the render")
         ->check(CLI::Range(1e-12, 1e6));
     render->add_option("--reference", o.reference, "Reference EXR: log relMSE after every pass");
     render->add_option("--error-log", o.errorLog, "CSV of spp, seconds, relMSE after every pass (needs --reference)");
     render->add_option("--tile", o.tileSize, "Split each pass into tiles of this many pixels square (same image)");
-    render->add_option("--pass-spp", o.passSpp, "Samples per pass (default: passes of about half a second; same image)");
+    render->add_option(
+        "--pass-spp", o.passSpp, "Samples per pass (default: passes of about half a second; same image)");
     render->add_flag("-q,--quiet", o.quiet, "Only print the summary line and errors");
-    render->add_flag("--variance", o.varianceAov, "Add the variance of each pixel's mean to the EXR (channels variance.R/G/B)");
+    render->add_flag(
+        "--variance", o.varianceAov, "Add the variance of each pixel's mean to the EXR (channels variance.R/G/B)");
     auto* samplesOpt = render->add_option("--samples", o.samples,
         "Render sample indices A (inclusive) to B (exclusive) of the global sequence, for pt merge");
     samplesOpt->excludes(sppOpt)->excludes(timeOpt);
-    render->add_option("--checkpoint", o.checkpoint, "Save the accumulation state to this EXR periodically and on SIGINT/SIGTERM");
+    render->add_option(
+        "--checkpoint", o.checkpoint, "Save the accumulation state to this EXR periodically and on SIGINT/SIGTERM");
     render->add_option("--checkpoint-every", o.checkpointEvery, "Seconds of rendering between checkpoints (default 60)")
         ->check(CLI::Range(0.0, 1e9));
     render->add_option("--resume", o.resume, "Continue from a checkpoint (or a --samples part) of the same render");
@@ -130,9 +150,11 @@ int main(int argc, char** argv) {
     pt::ViewOptions v;
     v.render.tileSize = 64;
     SwitchWords viewWords;
-    CLI::App* view = app.add_subcommand("view", "Interactive progressive preview in a window (keys: see README or press H)");
+    CLI::App* view =
+        app.add_subcommand("view", "Interactive progressive preview in a window (keys: see README or press H)");
     addSceneOptions(view, v.render, viewWords);
-    view->add_option("--spp", v.render.spp, "Stop refining at this many samples per pixel (default 1024)")->check(CLI::Range(1u, 1u << 30));
+    view->add_option("--spp", v.render.spp, "Stop refining at this many samples per pixel (default 1024)")
+        ->check(CLI::Range(1u, 1u << 30));
     view->add_option("--tile", v.render.tileSize, "Tile side of a full-resolution pass spread over frames (default 64)")
         ->check(CLI::Range(8u, 4096u));
     view->add_option("--frame-ms", v.frameBudgetMs, "Rendering work per frame in ms, bounds input latency (default 20)")
@@ -148,7 +170,9 @@ int main(int argc, char** argv) {
         "writes a CSV, the images, a log-log plot and contact sheets");
     addSceneOptions(benchCmd, bench.render, benchWords);
     benchCmd->add_option("--reference", bench.reference, "Reference EXR (default: render one, see --reference-spp)");
-    benchCmd->add_option("--reference-spp", bench.referenceSpp, "Samples of the reference made without --reference (default 4096)")
+    benchCmd
+        ->add_option(
+            "--reference-spp", bench.referenceSpp, "Samples of the reference made without --reference (default 4096)")
         ->check(CLI::Range(1u, 1u << 24));
     benchCmd->add_option("--budgets", budgetList, "Comma-separated time budgets in seconds (default 2,5,10,30,60)");
     benchCmd->add_option("--configs", bench.configs,

@@ -31,7 +31,8 @@ std::string value(const ImageMetadata& meta, const char* key) {
 void addMergeOptions(CLI::App* cmd, MergeOptions& o) {
     cmd->add_option("parts", o.parts, "Partial renders (pt render --samples A:B) of one scene and seed")->required();
     cmd->add_option("-o,--output", o.output, "Merged EXR; a tone-mapped PNG is written beside it")->required();
-    cmd->add_flag("--allow-gaps", o.allowGaps, "Merge even if the sample ranges leave gaps (fewer spp; still unbiased)");
+    cmd->add_flag(
+        "--allow-gaps", o.allowGaps, "Merge even if the sample ranges leave gaps (fewer spp; still unbiased)");
     cmd->add_option("--exposure", o.exposure, "Exposure in stops for the PNG");
     cmd->add_flag("-q,--quiet", o.quiet, "Only print the summary line and errors");
 }
@@ -86,9 +87,11 @@ int runMerge(const MergeOptions& o) {
     fs::path png = output;
     png.replace_extension(".png");
     writeTonemappedPng(png, image.mean, TonemapSettings{}, o.exposure);
-    if (!gaps.empty()) std::fprintf(stderr, "pt: warning: merged with gaps in the sample ranges: %s\n", gapText.c_str());
-    std::fprintf(stderr, "pt: wrote %s and %s: %zu parts, samples %s, %u spp, %llu non-finite samples dropped, "
-                         "estimated relMSE %.6g\n",
+    if (!gaps.empty())
+        std::fprintf(stderr, "pt: warning: merged with gaps in the sample ranges: %s\n", gapText.c_str());
+    std::fprintf(stderr,
+        "pt: wrote %s and %s: %zu parts, samples %s, %u spp, %llu non-finite samples dropped, "
+        "estimated relMSE %.6g\n",
         output.c_str(), png.c_str(), o.parts.size(), merged.samples.describe().c_str(), merged.spp,
         static_cast<unsigned long long>(image.droppedSamples), estimate);
     return 0;

@@ -11,7 +11,7 @@
 namespace pt {
 
 struct RenderOptions {
-    std::string scene; // empty: the built-in Cornell box
+    std::string scene;  // empty: the built-in Cornell box
     std::string output; // .exr; a tonemapped .png is written beside it
     std::optional<uint32_t> spp;
     std::optional<double> seconds;
@@ -33,24 +33,24 @@ struct RenderOptions {
     bool quiet = false;
     bool varianceAov = false; // --variance: variance-of-the-mean channels in the EXR
     float exposure = 0.0f;
-    std::string environment;                   // --env FILE.exr: equirectangular radiance map
+    std::string environment;                    // --env FILE.exr: equirectangular radiance map
     std::optional<glm::vec3> environmentColour; // --env-colour R G B: constant environment
     float environmentScale = 1.0f;
-    float environmentRotation = 0.0f;          // degrees about +y
-    IntegratorSettings integrator; // seed and rrStartDepth; the rest comes from the fields above
+    float environmentRotation = 0.0f; // degrees about +y
+    IntegratorSettings integrator;    // seed and rrStartDepth; the rest comes from the fields above
     // Long and distributed renders (app/render_session.h).
-    std::string samples;          // --samples A:B: sample indices [A, B) of the global sequence
-    std::string checkpoint;       // --checkpoint FILE: save the state there periodically and on SIGINT/SIGTERM
-    double checkpointEvery = 60;  // seconds of rendering between checkpoints
-    std::string resume;           // --resume FILE: continue from a checkpoint or part
+    std::string samples;         // --samples A:B: sample indices [A, B) of the global sequence
+    std::string checkpoint;      // --checkpoint FILE: save the state there periodically and on SIGINT/SIGTERM
+    double checkpointEvery = 60; // seconds of rendering between checkpoints
+    std::string resume;          // --resume FILE: continue from a checkpoint or part
 };
 
 // `pt view`: the scene, size, switches, camera, device and environment options of `pt render`
 // (render.spp is the sample cap, render.tileSize the tile of a full-resolution pass).
 struct ViewOptions {
     RenderOptions render;
-    std::string script;           // --script FILE: timed inputs (tests, benchmarks)
-    double frameBudgetMs = 20.0;  // rendering work per frame
+    std::string script;            // --script FILE: timed inputs (tests, benchmarks)
+    double frameBudgetMs = 20.0;   // rendering work per frame
     std::string outputDir = "out"; // where F5 and F6 save
 };
 

@@ -57,10 +57,11 @@ int renderJob(VulkanContext& context, const Scene& scene, const FlatScene& flat,
         features = FeatureSet::all(job.settings);
         features.lightTracing = lightTracing;
     }
-    Renderer renderer(context, flat, features, job.settings, job.camera, FilmSettings{job.width, job.height, scene.background});
+    Renderer renderer(
+        context, flat, features, job.settings, job.camera, FilmSettings{job.width, job.height, scene.background});
     if (!o.quiet) {
-        std::fprintf(stderr, "pt: %s: %dx%d, kernel features: %s; pipeline %.3f s\n", job.camera.name.c_str(), job.width,
-            job.height, features.describe().c_str(), renderer.pipelineSeconds());
+        std::fprintf(stderr, "pt: %s: %dx%d, kernel features: %s; pipeline %.3f s\n", job.camera.name.c_str(),
+            job.width, job.height, features.describe().c_str(), renderer.pipelineSeconds());
         std::fprintf(stderr, "pt: %s\n", job.settings.describe().c_str());
     }
     ImageMetadata meta;
@@ -90,9 +91,12 @@ int renderJob(VulkanContext& context, const Scene& scene, const FlatScene& flat,
     meta["estimated_relmse"] = formatDouble(estimate);
     if (job.target.targetError > 0) meta["target_error"] = formatDouble(job.target.targetError);
     prepareOutputDirectory(job.output);
-    if (session.outputIsState()) writeStateExr(job.output, renderer.readState(), result.mean, meta);
-    else if (o.varianceAov) writeExr(job.output, result.mean, meta, varianceChannels(result.varianceOfMean));
-    else writeExr(job.output, result.mean, meta);
+    if (session.outputIsState())
+        writeStateExr(job.output, renderer.readState(), result.mean, meta);
+    else if (o.varianceAov)
+        writeExr(job.output, result.mean, meta, varianceChannels(result.varianceOfMean));
+    else
+        writeExr(job.output, result.mean, meta);
     fs::path png = job.output;
     png.replace_extension(".png");
     writeTonemappedPng(png, result.mean, job.tonemap, o.exposure);
@@ -103,13 +107,15 @@ int renderJob(VulkanContext& context, const Scene& scene, const FlatScene& flat,
                           std::to_string(result.droppedSamples) + " non-finite samples dropped, estimated relMSE " +
                           formatDouble(estimate);
     if (job.target.targetError > 0)
-        summary += progress.targetReached ? " (target " + formatDouble(job.target.targetError) + " reached)"
-                                          : " (target " + formatDouble(job.target.targetError) + " not reached: stopped at the cap)";
+        summary += progress.targetReached
+                       ? " (target " + formatDouble(job.target.targetError) + " reached)"
+                       : " (target " + formatDouble(job.target.targetError) + " not reached: stopped at the cap)";
     if (reference) summary += ", relMSE " + formatDouble(relMse(result.mean, *reference));
     std::fprintf(stderr, "%s\n", summary.c_str());
     if (session.interrupted())
-        std::fprintf(stderr, "pt: interrupted by signal %d after %u spp; continue with --resume %s\n", session.interrupted(),
-            spp, (o.checkpoint.empty() ? (o.resume.empty() ? job.output.string() : o.resume) : o.checkpoint).c_str());
+        std::fprintf(stderr, "pt: interrupted by signal %d after %u spp; continue with --resume %s\n",
+            session.interrupted(), spp,
+            (o.checkpoint.empty() ? (o.resume.empty() ? job.output.string() : o.resume) : o.checkpoint).c_str());
     return session.exitStatus();
 }
 
@@ -126,7 +132,8 @@ int runRender(const RenderOptions& o) {
     // Fail on a bad reference or output before spending time on rendering.
     std::optional<Image> reference;
     if (!o.reference.empty()) {
-        if (jobs.size() != 1) throw std::runtime_error(o.reference + ": --reference needs a single image (use --camera)");
+        if (jobs.size() != 1)
+            throw std::runtime_error(o.reference + ": --reference needs a single image (use --camera)");
         reference = readExr(o.reference);
         if (reference->width != jobs[0].width || reference->height != jobs[0].height)
             throw std::runtime_error(o.reference + ": reference is " + std::to_string(reference->width) + "x" +
@@ -155,13 +162,15 @@ int runRender(const RenderOptions& o) {
         std::fprintf(stderr, "pt: note: lavapipe from Mesa older than 24 runs about 3.5x slower; install Mesa 25 "
                              "from bookworm-backports (scripts/setup.sh does)\n");
     if (!o.quiet) {
-        std::fprintf(stderr, "pt: %s: %zu triangles, %zu spheres, %zu lights, BVH %.3f s (SAH %.1f, depth %d), load %.2f s\n",
-            scene.source.c_str(), flat.triangles.size(), flat.spheres.size(), flat.lights.lights.size(), flat.bvhSeconds,
-            flat.sahCost, flat.bvhDepth, loadSeconds);
+        std::fprintf(stderr,
+            "pt: %s: %zu triangles, %zu spheres, %zu lights, BVH %.3f s (SAH %.1f, depth %d), load %.2f s\n",
+            scene.source.c_str(), flat.triangles.size(), flat.spheres.size(), flat.lights.lights.size(),
+            flat.bvhSeconds, flat.sahCost, flat.bvhDepth, loadSeconds);
         std::fprintf(stderr, "pt: device %s (%s)\n", context.info().name.c_str(), context.info().driver.c_str());
     }
     for (const Job& job : jobs)
-        if (const int status = renderJob(context, scene, flat, job, o, reference, errorLog.is_open() ? &errorLog : nullptr))
+        if (const int status =
+                renderJob(context, scene, flat, job, o, reference, errorLog.is_open() ? &errorLog : nullptr))
             return status; // interrupted: the checkpoint and partial image are saved
 
     if (o.validation && context.validationMessageCount() > 0) {

@@ -19,8 +19,8 @@ std::string formatSeconds(double v) {
 
 } // namespace
 
-RenderSession::RenderSession(const RenderOptions& o, const Scene& scene, const Job& job, Renderer& renderer,
-    ImageMetadata base)
+RenderSession::RenderSession(
+    const RenderOptions& o, const Scene& scene, const Job& job, Renderer& renderer, ImageMetadata base)
     : o_(o), job_(job), renderer_(renderer), identity_(renderIdentity(o, scene, job)) {
     if (!o.samples.empty()) {
         range_ = parseSampleRange(o.samples);
@@ -37,7 +37,8 @@ RenderSession::RenderSession(const RenderOptions& o, const Scene& scene, const J
                                      ", this render is " + (range_ ? range_->describe() : "from sample 0"));
         renderer.loadState(state);
         resumedSpp_ = state.spp;
-        if (auto it = saved.find("seconds"); it != saved.end()) priorSeconds_ = std::strtod(it->second.c_str(), nullptr);
+        if (auto it = saved.find("seconds"); it != saved.end())
+            priorSeconds_ = std::strtod(it->second.c_str(), nullptr);
     }
     identity_.addTo(base);
     // --resume without --checkpoint keeps checkpointing into the file it resumed from.
@@ -78,7 +79,8 @@ void RenderSession::finish(double seconds) {
 void RenderSession::addMetadata(ImageMetadata& meta, double seconds) const {
     identity_.addTo(meta);
     meta["seconds"] = formatSeconds(priorSeconds_ + seconds);
-    meta["samples"] = SampleRange{renderer_.firstSample(), renderer_.firstSample() + renderer_.samplesPerPixel()}.describe();
+    meta["samples"] =
+        SampleRange{renderer_.firstSample(), renderer_.firstSample() + renderer_.samplesPerPixel()}.describe();
 }
 
 } // namespace pt

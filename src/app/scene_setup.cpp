@@ -53,8 +53,10 @@ FlatScene flattenWithNotes(const Scene& scene) {
         std::fprintf(stderr, "pt: note: %s: dropped %zu spheres with a singular transform\n", scene.source.c_str(),
             flat.degenerateSpheres);
     if (flat.lights.lights.empty() && scene.background == glm::vec3(0.0f) && flat.environment.width == 0)
-        std::fprintf(stderr, "pt: warning: %s: nothing emits light (no emissive surfaces or lights, black background): "
-                             "the image will be black\n", scene.source.c_str());
+        std::fprintf(stderr,
+            "pt: warning: %s: nothing emits light (no emissive surfaces or lights, black background): "
+            "the image will be black\n",
+            scene.source.c_str());
     return flat;
 }
 
@@ -73,7 +75,8 @@ bool isCourseScene(const std::string& scene) {
 std::vector<Camera> chooseCameras(const Scene& scene, const RenderOptions& o, bool course) {
     if (scene.cameras.empty()) {
         if (o.camera && *o.camera != 0)
-            throw std::runtime_error(scene.source + ": --camera " + std::to_string(*o.camera) + ": the scene has no cameras");
+            throw std::runtime_error(
+                scene.source + ": --camera " + std::to_string(*o.camera) + ": the scene has no cameras");
         // No camera in the file: look at the scene's bounding box from +z.
         glm::vec3 lo(INFINITY), hi(-INFINITY);
         for (const auto& m : scene.meshes)
@@ -99,12 +102,14 @@ std::vector<Camera> chooseCameras(const Scene& scene, const RenderOptions& o, bo
             if (c.id == *o.camera) return {c};
         std::string ids;
         for (const auto& c : scene.cameras) ids += (ids.empty() ? "" : " ") + std::to_string(c.id);
-        throw std::runtime_error(scene.source + ": --camera " + std::to_string(*o.camera) + ": no camera with that id (ids: " + ids + ")");
+        throw std::runtime_error(
+            scene.source + ": --camera " + std::to_string(*o.camera) + ": no camera with that id (ids: " + ids + ")");
     }
     const int index = o.camera.value_or(0);
     if (index < 0 || index >= static_cast<int>(scene.cameras.size()))
-        throw std::runtime_error(scene.source + ": --camera " + std::to_string(index) + " is out of range (the scene has " +
-                                 std::to_string(scene.cameras.size()) + " camera(s))");
+        throw std::runtime_error(scene.source + ": --camera " + std::to_string(index) +
+                                 " is out of range (the scene has " + std::to_string(scene.cameras.size()) +
+                                 " camera(s))");
     return {scene.cameras[index]};
 }
 
@@ -114,11 +119,16 @@ Job makeJob(const Scene& scene, const Camera& camera, const RenderOptions& o, bo
     const CameraRenderSettings& cs = camera.settings;
     // Size: command line, then the camera's, then the scene's hints, then 512 wide.
     job.width = o.width.value_or(cs.width.value_or(scene.hints.width.value_or(512)));
-    if (o.height) job.height = *o.height;
-    else if (!o.width && cs.height) job.height = *cs.height;
-    else if (!o.width && scene.hints.height) job.height = *scene.hints.height;
-    else if (camera.aspectRatio > 0) job.height = std::max(1, static_cast<int>(std::lround(job.width / camera.aspectRatio)));
-    else job.height = job.width;
+    if (o.height)
+        job.height = *o.height;
+    else if (!o.width && cs.height)
+        job.height = *cs.height;
+    else if (!o.width && scene.hints.height)
+        job.height = *scene.hints.height;
+    else if (camera.aspectRatio > 0)
+        job.height = std::max(1, static_cast<int>(std::lround(job.width / camera.aspectRatio)));
+    else
+        job.height = job.width;
     // A size that came from the scene file (its camera, extras or aspect ratio) is the file's problem.
     try {
         validateImageSize(job.width, job.height);
@@ -133,7 +143,8 @@ Job makeJob(const Scene& scene, const Camera& camera, const RenderOptions& o, bo
     s.nee = o.nee.value_or(cs.nee.value_or(true));
     s.mis = o.mis.value_or(true);
     s.rr = o.rr.value_or(cs.russianRoulette.value_or(true));
-    s.sampling = o.sampling.value_or(cs.importanceSampling.value_or(true) ? DirectionSampling::Cosine : DirectionSampling::Uniform);
+    s.sampling = o.sampling.value_or(
+        cs.importanceSampling.value_or(true) ? DirectionSampling::Cosine : DirectionSampling::Uniform);
     // The course's official path-tracing images apply Russian roulette without a depth cap
     // (docs/ceng795-format.md section 8): such cameras get a cap so high that only roulette ends paths.
     const bool uncapped = course && cs.russianRoulette.value_or(false) && !cs.maxDepth;
@@ -156,7 +167,8 @@ Job makeJob(const Scene& scene, const Camera& camera, const RenderOptions& o, bo
     const fs::path requested(o.output);
     if (requested.extension() == ".exr") {
         if (severalImages)
-            throw std::runtime_error(o.output + ": several cameras render several images: give a folder, or pick one with --camera");
+            throw std::runtime_error(
+                o.output + ": several cameras render several images: give a folder, or pick one with --camera");
         job.output = requested;
     } else if (!o.output.empty() && (course || fs::is_directory(requested))) {
         job.output = requested / name;

@@ -62,9 +62,9 @@ int runView(const ViewOptions& v) {
         } catch (const std::exception& e) {
             throw viewer::NoDisplayError(std::string("no Vulkan device can present to the window: ") + e.what());
         }
-        std::fprintf(stderr, "pt: view: %s: %zu triangles, %zu spheres, %zu lights; device %s (%s)\n", scene.source.c_str(),
-            flat.triangles.size(), flat.spheres.size(), flat.lights.lights.size(), context->info().name.c_str(),
-            context->info().driver.c_str());
+        std::fprintf(stderr, "pt: view: %s: %zu triangles, %zu spheres, %zu lights; device %s (%s)\n",
+            scene.source.c_str(), flat.triangles.size(), flat.spheres.size(), flat.lights.lights.size(),
+            context->info().name.c_str(), context->info().driver.c_str());
         int status = viewer::runViewer(window, *context, flat, config);
         if (o.validation && context->validationMessageCount() > 0) {
             std::fprintf(stderr, "pt: error: Vulkan validation reported %u message(s); first: %s\n",

@@ -73,7 +73,8 @@ AccumulatedImage resolve(const AccumulationState& state) {
             // is what was splatted, so the mean is sum(Y) / n and the variance of that mean
             // (E[X^2] - mean^2) / N = sum(Y^2) / n^2 - mean^2 / N.
             const double splatMean = n > 0 ? splat[c] / n : 0.0;
-            const double splatVar = n > 0 ? std::max(0.0, splat2[c] / (n * n) - splatMean * splatMean / (n * double(pixels))) : 0.0;
+            const double splatVar =
+                n > 0 ? std::max(0.0, splat2[c] / (n * n) - splatMean * splatMean / (n * double(pixels))) : 0.0;
             r.mean.rgba[4 * i + c] = static_cast<float>(mean + splatMean);
             r.varianceOfMean.rgba[4 * i + c] = static_cast<float>(var + splatVar);
         }
@@ -98,8 +99,8 @@ AccumulationState mergeStates(std::vector<AccumulationState> parts) {
     for (size_t k = 1; k < parts.size(); ++k) {
         if (parts[k].width != parts[0].width || parts[k].height != parts[0].height)
             throw std::runtime_error("parts differ in size (" + std::to_string(parts[0].width) + "x" +
-                                     std::to_string(parts[0].height) + " and " + std::to_string(parts[k].width) +
-                                     "x" + std::to_string(parts[k].height) + ")");
+                                     std::to_string(parts[0].height) + " and " + std::to_string(parts[k].width) + "x" +
+                                     std::to_string(parts[k].height) + ")");
         if (parts[k].samples.begin < parts[k - 1].samples.end)
             throw std::runtime_error("sample ranges " + parts[k - 1].samples.describe() + " and " +
                                      parts[k].samples.describe() + " overlap");

@@ -25,8 +25,8 @@ SampleRange parseSampleRange(const std::string& text);
 
 struct AccumulationState {
     int width = 0, height = 0;
-    SampleRange samples; // from the first index summed to one past the last
-    uint32_t spp = 0;    // samples summed per pixel: samples.count() unless merged over gaps
+    SampleRange samples;         // from the first index summed to one past the last
+    uint32_t spp = 0;            // samples summed per pixel: samples.count() unless merged over gaps
     std::vector<glm::vec4> sums; // ACCUMULATION_VEC4S_PER_PIXEL vec4 per pixel, row-major
     // Light tracing's fixed-point splat sums (SPLAT_WORDS_PER_PIXEL per pixel, shared/layout.h),
     // or empty when the render had none.

@@ -9,22 +9,19 @@
 namespace pt {
 namespace {
 
-std::string sizeText(const Image& im) {
-    return std::to_string(im.width) + "x" + std::to_string(im.height);
-}
+std::string sizeText(const Image& im) { return std::to_string(im.width) + "x" + std::to_string(im.height); }
 
 // Also validates the buffers themselves, so the loops below may index freely.
 void checkSameSize(const Image& a, const Image& b, const char* what) {
     auto valid = [](const Image& im) {
-        return im.width > 0 && im.height > 0 &&
-               im.rgba.size() == static_cast<std::size_t>(im.width) * im.height * 4;
+        return im.width > 0 && im.height > 0 && im.rgba.size() == static_cast<std::size_t>(im.width) * im.height * 4;
     };
     if (!valid(a) || !valid(b))
-        throw std::invalid_argument(std::string(what) + ": empty image or pixel buffer size " +
-                                    "does not match width x height");
+        throw std::invalid_argument(
+            std::string(what) + ": empty image or pixel buffer size " + "does not match width x height");
     if (a.width != b.width || a.height != b.height)
-        throw std::invalid_argument(std::string(what) + ": image size mismatch (" + sizeText(a) +
-                                    " vs " + sizeText(b) + ")");
+        throw std::invalid_argument(
+            std::string(what) + ": image size mismatch (" + sizeText(a) + " vs " + sizeText(b) + ")");
 }
 
 // Mean over pixels and RGB of f(x, ref); accumulates in double because a
@@ -37,7 +34,7 @@ double meanOverRgb(const Image& x, const Image& ref, F f) {
     return sum / (double(x.rgba.size() / 4) * 3.0);
 }
 
-}  // namespace
+} // namespace
 
 double relMse(const Image& x, const Image& ref) {
     checkSameSize(x, ref, "relMse");
@@ -78,11 +75,13 @@ double mse(const Image& x, const Image& ref) {
 }
 
 BlockStats blockStats(const Image& mean, const Image* varOfMean, int blockSize) {
-    if (varOfMean) checkSameSize(mean, *varOfMean, "blockStats");
-    else checkSameSize(mean, mean, "blockStats");
+    if (varOfMean)
+        checkSameSize(mean, *varOfMean, "blockStats");
+    else
+        checkSameSize(mean, mean, "blockStats");
     if (blockSize < 1 || blockSize > mean.width || blockSize > mean.height)
-        throw std::invalid_argument("blockStats: block size " + std::to_string(blockSize) +
-                                    " invalid for a " + sizeText(mean) + " image");
+        throw std::invalid_argument(
+            "blockStats: block size " + std::to_string(blockSize) + " invalid for a " + sizeText(mean) + " image");
 
     BlockStats s;
     s.blockSize = blockSize;
@@ -158,4 +157,4 @@ AgreementResult compareBlocks(const BlockStats& a, const BlockStats& b) {
     return r;
 }
 
-}  // namespace pt
+} // namespace pt

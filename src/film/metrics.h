@@ -44,11 +44,11 @@ struct BlockStats {
 BlockStats blockStats(const Image& mean, const Image* varOfMean, int blockSize);
 
 struct AgreementResult {
-    double chi2PerDof = 0;   // mean z^2; ~1 when the two agree within noise
-    double maxAbsZ = 0;      // worst single block/channel
-    double meanZ = 0;        // signed mean z; far from 0 => systematic bias
-    int dof = 0;             // number of block/channel cells compared
-    double meanRelDiff = 0;  // mean |a-b| / ((|a|+|b|)/2), noise-free effect size
+    double chi2PerDof = 0;  // mean z^2; ~1 when the two agree within noise
+    double maxAbsZ = 0;     // worst single block/channel
+    double meanZ = 0;       // signed mean z; far from 0 => systematic bias
+    int dof = 0;            // number of block/channel cells compared
+    double meanRelDiff = 0; // mean |a-b| / ((|a|+|b|)/2), noise-free effect size
 };
 
 // z = (a - b) / sqrt(varA + varB + tiny) per block and channel. Cells where
@@ -59,4 +59,4 @@ struct AgreementResult {
 // give z = inf, so they fail any threshold instead of being ignored.
 AgreementResult compareBlocks(const BlockStats& a, const BlockStats& b);
 
-}  // namespace pt
+} // namespace pt

@@ -16,11 +16,18 @@ struct StateChannel {
     int component;
 };
 constexpr StateChannel kChannels[] = {
-    {"state.sum.R", ACCUM_SUM, 0}, {"state.sum.G", ACCUM_SUM, 1}, {"state.sum.B", ACCUM_SUM, 2},
-    {"state.sum_lo.R", ACCUM_SUM_LO, 0}, {"state.sum_lo.G", ACCUM_SUM_LO, 1}, {"state.sum_lo.B", ACCUM_SUM_LO, 2},
-    {"state.sum_sq.R", ACCUM_SUM_SQUARES, 0}, {"state.sum_sq.G", ACCUM_SUM_SQUARES, 1},
-    {"state.sum_sq.B", ACCUM_SUM_SQUARES, 2}, {"state.sum_sq_lo.R", ACCUM_SUM_SQUARES_LO, 0},
-    {"state.sum_sq_lo.G", ACCUM_SUM_SQUARES_LO, 1}, {"state.sum_sq_lo.B", ACCUM_SUM_SQUARES_LO, 2},
+    {"state.sum.R", ACCUM_SUM, 0},
+    {"state.sum.G", ACCUM_SUM, 1},
+    {"state.sum.B", ACCUM_SUM, 2},
+    {"state.sum_lo.R", ACCUM_SUM_LO, 0},
+    {"state.sum_lo.G", ACCUM_SUM_LO, 1},
+    {"state.sum_lo.B", ACCUM_SUM_LO, 2},
+    {"state.sum_sq.R", ACCUM_SUM_SQUARES, 0},
+    {"state.sum_sq.G", ACCUM_SUM_SQUARES, 1},
+    {"state.sum_sq.B", ACCUM_SUM_SQUARES, 2},
+    {"state.sum_sq_lo.R", ACCUM_SUM_SQUARES_LO, 0},
+    {"state.sum_sq_lo.G", ACCUM_SUM_SQUARES_LO, 1},
+    {"state.sum_sq_lo.B", ACCUM_SUM_SQUARES_LO, 2},
     {"state.dropped", ACCUM_SUM, 3},
 };
 
@@ -44,13 +51,14 @@ uint32_t readIndex(const std::filesystem::path& path, const ImageMetadata& metad
 
 } // namespace
 
-void writeStateExr(const std::filesystem::path& path, const AccumulationState& state, const Image& mean,
-    ImageMetadata metadata) {
+void writeStateExr(
+    const std::filesystem::path& path, const AccumulationState& state, const Image& mean, ImageMetadata metadata) {
     std::vector<ExrChannel> channels;
     const size_t pixels = state.pixels();
     for (const StateChannel& c : kChannels) {
         ExrChannel out{c.name, std::vector<float>(pixels)};
-        for (size_t i = 0; i < pixels; ++i) out.values[i] = state.sums[ACCUMULATION_VEC4S_PER_PIXEL * i + c.slot][c.component];
+        for (size_t i = 0; i < pixels; ++i)
+            out.values[i] = state.sums[ACCUMULATION_VEC4S_PER_PIXEL * i + c.slot][c.component];
         channels.push_back(std::move(out));
     }
     if (state.hasSplats()) {
@@ -91,7 +99,8 @@ AccumulationState readStateExr(const std::filesystem::path& path, ImageMetadata&
     state.sums.assign(pixels * ACCUMULATION_VEC4S_PER_PIXEL, glm::vec4(0.0f));
     for (size_t k = 0; k < std::size(kChannels); ++k)
         for (size_t i = 0; i < pixels; ++i)
-            state.sums[ACCUMULATION_VEC4S_PER_PIXEL * i + kChannels[k].slot][kChannels[k].component] = file.channels[k].values[i];
+            state.sums[ACCUMULATION_VEC4S_PER_PIXEL * i + kChannels[k].slot][kChannels[k].component] =
+                file.channels[k].values[i];
     if (metadata.count("splats") && metadata["splats"] == "1") {
         std::vector<std::string> splatNames;
         for (uint32_t word = 0; word < SPLAT_WORDS_PER_PIXEL; ++word)

@@ -15,8 +15,8 @@ namespace pt {
 
 constexpr const char* kStateFormat = "pt-accumulation-1";
 
-void writeStateExr(const std::filesystem::path& path, const AccumulationState& state, const Image& mean,
-    ImageMetadata metadata);
+void writeStateExr(
+    const std::filesystem::path& path, const AccumulationState& state, const Image& mean, ImageMetadata metadata);
 
 // Throws "<path>: <problem>" for a file without the state channels or with inconsistent metadata.
 AccumulationState readStateExr(const std::filesystem::path& path, ImageMetadata& metadata);

@@ -29,14 +29,12 @@ std::string num(double v) {
 // entry points so each can wrap it in its own exception type (with or without the path).
 std::string argumentProblem(const Image& image, const TonemapSettings& s, float exposureStops) {
     if (image.width < 0 || image.height < 0)
-        return "invalid image size " + std::to_string(image.width) + "x" +
-               std::to_string(image.height);
-    const std::size_t expected =
-        static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height) * 4;
+        return "invalid image size " + std::to_string(image.width) + "x" + std::to_string(image.height);
+    const std::size_t expected = static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height) * 4;
     if (image.rgba.size() != expected)
-        return "pixel buffer holds " + std::to_string(image.rgba.size()) +
-               " floats, expected " + std::to_string(expected) + " for " +
-               std::to_string(image.width) + "x" + std::to_string(image.height) + " RGBA";
+        return "pixel buffer holds " + std::to_string(image.rgba.size()) + " floats, expected " +
+               std::to_string(expected) + " for " + std::to_string(image.width) + "x" + std::to_string(image.height) +
+               " RGBA";
     // Same limit as writePng: the float scale factor must exist. This also keeps every
     // scaled value far inside double range in the photographic path.
     if (!std::isfinite(exposureStops) || !std::isfinite(std::exp2(exposureStops)))
@@ -50,21 +48,16 @@ std::string argumentProblem(const Image& image, const TonemapSettings& s, float 
             return "burn percentage must be in [0, 100] (got " + num(s.burnPercent) + ")";
         // A negative exponent would turn a zero channel of a coloured pixel into infinity.
         if (!(std::isfinite(s.saturation) && s.saturation >= 0.0f))
-            return "saturation must be non-negative and finite (got " + num(s.saturation) +
-                   ")";
+            return "saturation must be non-negative and finite (got " + num(s.saturation) + ")";
     }
     return "";
 }
 
-bool finiteRgb(const float* p) {
-    return std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]);
-}
+bool finiteRgb(const float* p) { return std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]); }
 
 // The exact piecewise sRGB transfer function (IEC 61966-2-1), written in float exactly as
 // image_io.cpp's writePng does, so that Clamp + sRGB reproduces its bytes.
-float srgbOetf(float v) {
-    return v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1.0f / 2.4f) - 0.055f;
-}
+float srgbOetf(float v) { return v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1.0f / 2.4f) - 0.055f; }
 
 // Display encoding of one channel: clamp, transfer curve, 8-bit rounding.
 class Encoder {
@@ -86,8 +79,7 @@ private:
 
 void putMagenta(uint8_t* q) { q[0] = 255, q[1] = 0, q[2] = 255; }
 
-void clampOperator(const Image& image, const TonemapSettings& s, float exposureStops,
-                   std::vector<uint8_t>& out) {
+void clampOperator(const Image& image, const TonemapSettings& s, float exposureStops, std::vector<uint8_t>& out) {
     const Encoder encode(s);
     // float, like writePng; a product that overflows to +inf still clamps to 1.
     const float scale = s.scale * std::exp2(exposureStops);
@@ -106,13 +98,12 @@ void clampOperator(const Image& image, const TonemapSettings& s, float exposureS
 // Luminance of the pixel with negative channels treated as 0, before exposure. Done in
 // double so that scaling and the log-average cannot overflow or lose the small pixels.
 double luminance(const float* p) {
-    return kTonemapLumR * std::max(0.0, double(p[0])) +
-           kTonemapLumG * std::max(0.0, double(p[1])) +
+    return kTonemapLumR * std::max(0.0, double(p[0])) + kTonemapLumG * std::max(0.0, double(p[1])) +
            kTonemapLumB * std::max(0.0, double(p[2]));
 }
 
-void photographicOperator(const Image& image, const TonemapSettings& s, float exposureStops,
-                          std::vector<uint8_t>& out) {
+void photographicOperator(
+    const Image& image, const TonemapSettings& s, float exposureStops, std::vector<uint8_t>& out) {
     const Encoder encode(s);
     const double scale = std::exp2(double(exposureStops));
     const std::size_t n = out.size() / 3;
@@ -133,8 +124,8 @@ void photographicOperator(const Image& image, const TonemapSettings& s, float ex
         if (useWhite) lums.push_back(y);
     }
 
-    double toL = 0.0;         // L = toL * Y (scaled Y), i.e. key / L_avg
-    double invWhite2 = 0.0;   // 1 / L_white^2; 0 means no white point (burn 0)
+    double toL = 0.0;       // L = toL * Y (scaled Y), i.e. key / L_avg
+    double invWhite2 = 0.0; // 1 / L_white^2; 0 means no white point (burn 0)
     if (count > 0) {
         // L_avg >= delta because every Y >= 0, so this division is safe.
         const double lAvg = std::exp(logSum / double(count));
@@ -144,8 +135,7 @@ void photographicOperator(const Image& image, const TonemapSettings& s, float ex
             // burnPercent is a float, so e.g. 0.1 is 0.100000001; the relative slack (larger
             // than float rounding, 6e-8) keeps 1000 pixels at 0.1% from burning 2, not 1.
             const double exact = double(count) * double(s.burnPercent) / 100.0;
-            const double burned =
-                std::clamp(std::ceil(exact * (1.0 - 1e-7)), 1.0, double(count));
+            const double burned = std::clamp(std::ceil(exact * (1.0 - 1e-7)), 1.0, double(count));
             const std::size_t idx = count - static_cast<std::size_t>(burned);
             std::nth_element(lums.begin(), lums.begin() + std::ptrdiff_t(idx), lums.end());
             const double white = toL * lums[idx];
@@ -189,17 +179,12 @@ void photographicOperator(const Image& image, const TonemapSettings& s, float ex
     throw std::runtime_error(path.string() + ": " + problem);
 }
 
-
-
 } // namespace
 
-std::vector<uint8_t> tonemapToRgb8(const Image& image, const TonemapSettings& settings,
-                                   float exposureStops) {
-    if (const std::string problem = argumentProblem(image, settings, exposureStops);
-        !problem.empty())
+std::vector<uint8_t> tonemapToRgb8(const Image& image, const TonemapSettings& settings, float exposureStops) {
+    if (const std::string problem = argumentProblem(image, settings, exposureStops); !problem.empty())
         throw std::invalid_argument("tonemap: " + problem);
-    std::vector<uint8_t> out(static_cast<std::size_t>(image.width) *
-                             static_cast<std::size_t>(image.height) * 3);
+    std::vector<uint8_t> out(static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height) * 3);
     if (settings.op == TonemapSettings::Operator::Photographic)
         photographicOperator(image, settings, exposureStops, out);
     else
@@ -207,16 +192,15 @@ std::vector<uint8_t> tonemapToRgb8(const Image& image, const TonemapSettings& se
     return out;
 }
 
-void writeTonemappedPng(const std::filesystem::path& path, const Image& image,
-                        const TonemapSettings& settings, float exposureStops) {
+void writeTonemappedPng(
+    const std::filesystem::path& path, const Image& image, const TonemapSettings& settings, float exposureStops) {
     // Checked here rather than by catching invalid_argument, so the message is the plain
     // problem after the path, like every other error of this function.
-    if (const std::string problem = argumentProblem(image, settings, exposureStops);
-        !problem.empty())
+    if (const std::string problem = argumentProblem(image, settings, exposureStops); !problem.empty())
         fail(path, problem);
     if (image.width == 0 || image.height == 0)
-        fail(path, "cannot write an empty image (" + std::to_string(image.width) + "x" +
-                       std::to_string(image.height) + ")");
+        fail(path,
+            "cannot write an empty image (" + std::to_string(image.width) + "x" + std::to_string(image.height) + ")");
     writePngRgb8(path, image.width, image.height, tonemapToRgb8(image, settings, exposureStops));
 }
 

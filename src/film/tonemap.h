@@ -42,15 +42,14 @@ inline constexpr double kTonemapLogDelta = 1e-6;
 // width*height*4) or unusable settings: exposure not finite or 2^exposure overflowing a
 // float; gamma not finite or <= 0 (unless srgb); for Photographic, key not finite or <= 0,
 // burnPercent outside [0,100], saturation not finite or < 0.
-std::vector<uint8_t> tonemapToRgb8(const Image& image, const TonemapSettings& settings,
-                                   float exposureStops = 0.0f);
+std::vector<uint8_t> tonemapToRgb8(const Image& image, const TonemapSettings& settings, float exposureStops = 0.0f);
 
 // tonemapToRgb8 written as an 8-bit RGB PNG via a temporary file in the same directory and
 // a rename, so readers never see a half-written file and a failure leaves any previous
 // file untouched. Throws std::runtime_error("<path>: <problem>") on any failure, including
 // an empty image and the argument errors above.
-void writeTonemappedPng(const std::filesystem::path& path, const Image& image,
-                        const TonemapSettings& settings, float exposureStops = 0.0f);
+void writeTonemappedPng(
+    const std::filesystem::path& path, const Image& image, const TonemapSettings& settings, float exposureStops = 0.0f);
 
 // Display-referred preview: multiplies by 2^exposureStops, clamps to [0,1], applies the
 // piecewise sRGB OETF and writes 8-bit RGB (alpha dropped): writeTonemappedPng with the

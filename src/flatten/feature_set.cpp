@@ -56,7 +56,8 @@ bool usesTextureKind(const FlatScene& scene, bool image) {
         return slot != NO_TEXTURE && (scene.textures[slot].type == TEXTURE_IMAGE) == image;
     };
     for (const auto& m : scene.materials)
-        for (uint32_t slot : {m.baseColorTexture, m.specularTexture, m.metallicRoughnessTexture, m.normalTexture, m.emissiveTexture})
+        for (uint32_t slot :
+            {m.baseColorTexture, m.specularTexture, m.metallicRoughnessTexture, m.normalTexture, m.emissiveTexture})
             if (matches(slot)) return true;
     return matches(scene.backgroundTexture);
 }
@@ -104,7 +105,8 @@ uint32_t samplerOf(const IntegratorSettings& s) {
 }
 
 constexpr FeatureInfo kFeatureTable[] = {
-#define PT_FEATURE_INFO(field, kind, NAME, id, unspecialised, all, decide, log, description) {#field, #NAME, id, description},
+#define PT_FEATURE_INFO(field, kind, NAME, id, unspecialised, all, decide, log, description)                           \
+    {#field, #NAME, id, description},
     PT_FEATURES(PT_FEATURE_INFO)
 #undef PT_FEATURE_INFO
 };
@@ -131,7 +133,7 @@ FeatureSet computeFeatures(const FlatScene& scene, const IntegratorSettings& s) 
 
 std::vector<SpecializationConstant> FeatureSet::constants(uint32_t localSizeX, uint32_t localSizeY) const {
     std::vector<SpecializationConstant> c{{SPEC_LOCAL_SIZE_X, localSizeX}, {SPEC_LOCAL_SIZE_Y, localSizeY}};
-#define PT_FEATURE_CONSTANT(field, kind, NAME, id, unspecialised, all, decide, log, description) \
+#define PT_FEATURE_CONSTANT(field, kind, NAME, id, unspecialised, all, decide, log, description)                       \
     c.push_back({id, static_cast<uint32_t>(field)});
     PT_FEATURES(PT_FEATURE_CONSTANT)
 #undef PT_FEATURE_CONSTANT
@@ -145,10 +147,10 @@ std::string FeatureSet::describe() const {
         if (!s.empty()) s += ' ';
         s += word;
     };
-#define PT_FEATURE_LOG(field, kind, NAME, id, unspecialised, all, decide, log, description) \
-    {                                                                                      \
-        [[maybe_unused]] const auto v = field;                                             \
-        add(log);                                                                          \
+#define PT_FEATURE_LOG(field, kind, NAME, id, unspecialised, all, decide, log, description)                            \
+    {                                                                                                                  \
+        [[maybe_unused]] const auto v = field;                                                                         \
+        add(log);                                                                                                      \
     }
     PT_FEATURES(PT_FEATURE_LOG)
 #undef PT_FEATURE_LOG

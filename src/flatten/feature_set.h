@@ -19,7 +19,7 @@ namespace pt {
 #define PT_FEATURE_CPP_TYPE_choice uint32_t
 
 struct FeatureSet {
-#define PT_FEATURE_MEMBER(field, kind, NAME, id, unspecialised, all, decide, log, description) \
+#define PT_FEATURE_MEMBER(field, kind, NAME, id, unspecialised, all, decide, log, description)                         \
     PT_FEATURE_CPP_TYPE_##kind field = unspecialised;
     PT_FEATURES(PT_FEATURE_MEMBER)
 #undef PT_FEATURE_MEMBER
@@ -33,9 +33,9 @@ struct FeatureSet {
 
 // One row of the table, for listings and checks.
 struct FeatureInfo {
-    const char* field;     // FeatureSet's member
-    const char* constant;  // the GLSL constant
-    uint32_t id;           // its constant_id
+    const char* field;    // FeatureSet's member
+    const char* constant; // the GLSL constant
+    uint32_t id;          // its constant_id
     const char* description;
 };
 std::span<const FeatureInfo> featureTable();

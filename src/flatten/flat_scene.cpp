@@ -11,10 +11,10 @@ namespace pt {
 namespace {
 
 static_assert(static_cast<uint32_t>(GlossyModel::OriginalPhong) == GLOSSY_ORIGINAL_PHONG &&
-              static_cast<uint32_t>(GlossyModel::OriginalBlinnPhong) == GLOSSY_ORIGINAL_BLINN_PHONG &&
-              static_cast<uint32_t>(GlossyModel::ModifiedPhong) == GLOSSY_MODIFIED_PHONG &&
-              static_cast<uint32_t>(GlossyModel::ModifiedBlinnPhong) == GLOSSY_MODIFIED_BLINN_PHONG &&
-              static_cast<uint32_t>(GlossyModel::TorranceSparrow) == GLOSSY_TORRANCE_SPARROW,
+                  static_cast<uint32_t>(GlossyModel::OriginalBlinnPhong) == GLOSSY_ORIGINAL_BLINN_PHONG &&
+                  static_cast<uint32_t>(GlossyModel::ModifiedPhong) == GLOSSY_MODIFIED_PHONG &&
+                  static_cast<uint32_t>(GlossyModel::ModifiedBlinnPhong) == GLOSSY_MODIFIED_BLINN_PHONG &&
+                  static_cast<uint32_t>(GlossyModel::TorranceSparrow) == GLOSSY_TORRANCE_SPARROW,
     "GlossyModel must list the models in the order of GLOSSY_*");
 
 gpu::GpuMaterial toGpu(const Material& m) {
@@ -69,7 +69,8 @@ gpu::GpuMaterial toGpu(const Material& m) {
     g.conductorK = m.conductorK;
     // glTF's KHR_materials_volume: transmittance attenuationColor after attenuationDistance,
     // so sigma_a = -ln(color) / distance; an infinite distance means no absorption.
-    const bool hasInterior = m.type == MaterialType::Dielectric || (m.type == MaterialType::Pbr && m.transmission > 0.0f && !m.thinWalled);
+    const bool hasInterior =
+        m.type == MaterialType::Dielectric || (m.type == MaterialType::Pbr && m.transmission > 0.0f && !m.thinWalled);
     if (hasInterior && std::isfinite(m.attenuationDistance) && m.attenuationColor != glm::vec3(1.0f)) {
         glm::vec3 c = glm::max(m.attenuationColor, glm::vec3(1e-30f));
         g.sigmaA = -glm::log(glm::min(c, glm::vec3(1.0f))) / m.attenuationDistance;
@@ -179,8 +180,8 @@ FlatEnvironment flattenEnvironment(const Environment& env, const std::string& so
             glm::vec3 c = constant ? env.colour : glm::vec3(glm::make_vec3(env.image.at(int(x), int(y))));
             c *= env.scale;
             if (!finite(c) || c.x < 0 || c.y < 0 || c.z < 0)
-                throw std::runtime_error(source + ": environment texel (" + std::to_string(x) + ", " + std::to_string(y) +
-                                         ") is negative or not finite");
+                throw std::runtime_error(source + ": environment texel (" + std::to_string(x) + ", " +
+                                         std::to_string(y) + ") is negative or not finite");
             out.texels[size_t(y) * out.width + x] = glm::vec4(c, 0.0f);
         }
     // Sampling weights: the light table's selection weight x sin(theta)
@@ -212,7 +213,8 @@ FlatEnvironment flattenEnvironment(const Environment& env, const std::string& so
     double running = 0;
     for (uint32_t y = 0; y < out.height; ++y) {
         running += rowSum[y];
-        out.marginal[y + 1] = total > 0 ? static_cast<float>(running / total) : static_cast<float>(double(y + 1) / out.height);
+        out.marginal[y + 1] =
+            total > 0 ? static_cast<float>(running / total) : static_cast<float>(double(y + 1) / out.height);
     }
     out.marginal[out.height] = 1.0f;
     // Average over the sphere: integral of L dOmega / 4 pi, dOmega = 2 pi^2 sin(theta) / (W H) per texel.
@@ -294,7 +296,8 @@ FlatScene flattenScene(const Scene& scene, const BvhBuildOptions& bvhOptions) {
                 if (!mesh.tangents.empty()) {
                     tg = {mesh.tangents[t.x], mesh.tangents[t.y], mesh.tangents[t.z]};
                     // Zero tangents mark invalid input: fall back to the triangle's own frame.
-                    if (tg.t0.w != 0.0f && tg.t1.w != 0.0f && tg.t2.w != 0.0f && scene.materials[mesh.material].normalTexture)
+                    if (tg.t0.w != 0.0f && tg.t1.w != 0.0f && tg.t2.w != 0.0f &&
+                        scene.materials[mesh.material].normalTexture)
                         tri.flags |= TRIANGLE_FLAG_TANGENTS;
                 }
                 tangents.push_back(tg);
@@ -319,8 +322,8 @@ FlatScene flattenScene(const Scene& scene, const BvhBuildOptions& bvhOptions) {
     }
     flattenSpheres(scene, bvhOptions, flat);
     if (scene.environment) flat.environment = flattenEnvironment(*scene.environment, scene.source);
-    flat.lights = buildLightTable(flat.triangles, flat.spheres, scene.punctualLights, scene.materials, sceneRadius(flat),
-        flat.environment.width > 0 ? flat.environment.averageRadiance : -1.0);
+    flat.lights = buildLightTable(flat.triangles, flat.spheres, scene.punctualLights, scene.materials,
+        sceneRadius(flat), flat.environment.width > 0 ? flat.environment.averageRadiance : -1.0);
     return flat;
 }
 

@@ -17,7 +17,7 @@ struct FlatEnvironment {
     std::vector<float> marginal;    // height + 1: CDF over rows
     std::vector<float> conditional; // height x (width + 1): CDF over columns, per row
     float rotationCos = 1.0f, rotationSin = 0.0f;
-    double averageRadiance = 0;     // luminance averaged over the sphere (for its power)
+    double averageRadiance = 0; // luminance averaged over the sphere (for its power)
 };
 
 struct FlatScene {
@@ -25,13 +25,13 @@ struct FlatScene {
     std::vector<gpu::GpuTriangleShading> shading;
     std::vector<gpu::GpuTriangleTangents> tangents; // per triangle when any mesh has tangents, else empty
     std::vector<gpu::GpuBvhNode> nodes;
-    std::vector<gpu::GpuSphere> spheres;         // BVH-ordered
-    std::vector<gpu::GpuBvhNode> sphereNodes;    // a second BVH, over the spheres
+    std::vector<gpu::GpuSphere> spheres;      // BVH-ordered
+    std::vector<gpu::GpuBvhNode> sphereNodes; // a second BVH, over the spheres
     std::vector<gpu::GpuMaterial> materials;
     std::vector<gpu::GpuTexture> textures;
     std::vector<uint32_t> texels; // every image texture's texels, packed (see GpuTexture)
     uint32_t backgroundTexture = NO_TEXTURE;
-    glm::vec3 ambientLight{0.0f}; // classic integrator
+    glm::vec3 ambientLight{0.0f};   // classic integrator
     std::vector<glm::vec4> motions; // motion blur: xyz = translation over the shutter interval
     FlatEnvironment environment;
     LightTable lights;

@@ -48,7 +48,8 @@ void flattenTextures(const Scene& scene, FlatScene& flat) {
         g.colorB = t.white;
         switch (t.type) {
         case Texture::Type::Image: {
-            if (t.image >= scene.textureImages.size()) throw std::runtime_error(scene.source + ": texture refers to a missing image");
+            if (t.image >= scene.textureImages.size())
+                throw std::runtime_error(scene.source + ": texture refers to a missing image");
             const TextureImage& image = scene.textureImages[t.image];
             if (imageOffset[t.image] < 0) imageOffset[t.image] = appendImage(image, flat.texels);
             g.type = TEXTURE_IMAGE;
@@ -73,7 +74,8 @@ void flattenTextures(const Scene& scene, FlatScene& flat) {
     }
     if (scene.backgroundTexture) flat.backgroundTexture = *scene.backgroundTexture;
     for (const gpu::GpuMaterial& m : flat.materials)
-        for (uint32_t slot : {m.baseColorTexture, m.specularTexture, m.metallicRoughnessTexture, m.normalTexture, m.emissiveTexture})
+        for (uint32_t slot :
+            {m.baseColorTexture, m.specularTexture, m.metallicRoughnessTexture, m.normalTexture, m.emissiveTexture})
             if (slot != NO_TEXTURE && slot >= flat.textures.size())
                 throw std::runtime_error(scene.source + ": a material refers to a texture that does not exist");
 }

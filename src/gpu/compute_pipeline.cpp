@@ -14,7 +14,8 @@ ComputePipeline::ComputePipeline(VulkanContext& context, std::span<const uint32_
     const std::string what = std::string("creating the '") + name + "' compute pipeline";
     if (pushConstantBytes > context.properties().limits.maxPushConstantsSize)
         throw std::runtime_error(what + ": the device allows only " +
-                                 std::to_string(context.properties().limits.maxPushConstantsSize) + " bytes of push constants");
+                                 std::to_string(context.properties().limits.maxPushConstantsSize) +
+                                 " bytes of push constants");
 
     VkShaderModuleCreateInfo moduleInfo{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
     moduleInfo.codeSize = spirv.size_bytes();

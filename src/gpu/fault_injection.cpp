@@ -22,8 +22,10 @@ Fault configuredFault() {
     if (at == std::string::npos) return fault;
     const std::string kind = spec.substr(0, at);
     fault.at = std::strtol(spec.c_str() + at + 1, nullptr, 10);
-    if (kind == "device-lost") fault.kind = "device-lost";
-    else if (kind == "out-of-memory") fault.kind = "out-of-memory";
+    if (kind == "device-lost")
+        fault.kind = "device-lost";
+    else if (kind == "out-of-memory")
+        fault.kind = "out-of-memory";
     return fault;
 }
 

@@ -10,7 +10,8 @@
 
 namespace pt {
 
-int findMemoryType(const VkPhysicalDeviceMemoryProperties& props, uint32_t allowedTypes, VkMemoryPropertyFlags required) {
+int findMemoryType(
+    const VkPhysicalDeviceMemoryProperties& props, uint32_t allowedTypes, VkMemoryPropertyFlags required) {
     for (uint32_t i = 0; i < props.memoryTypeCount; ++i)
         if ((allowedTypes & (1u << i)) && (props.memoryTypes[i].propertyFlags & required) == required)
             return static_cast<int>(i);
@@ -27,8 +28,8 @@ struct RawBuffer {
 
 // Creates a buffer and binds memory: host-visible + coherent if `preferHostVisible` finds such a
 // type that is also device-local (or if `requireHostVisible`), else device-local.
-RawBuffer createRawBuffer(VulkanContext& ctx, VkDeviceSize size, VkBufferUsageFlags usage, bool requireHostVisible,
-    const char* name) {
+RawBuffer createRawBuffer(
+    VulkanContext& ctx, VkDeviceSize size, VkBufferUsageFlags usage, bool requireHostVisible, const char* name) {
     RawBuffer raw;
     VkBufferCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
     info.size = size;
@@ -43,8 +44,10 @@ RawBuffer createRawBuffer(VulkanContext& ctx, VkDeviceSize size, VkBufferUsageFl
     if (requireHostVisible) {
         type = findMemoryType(ctx.memoryProperties(), req.memoryTypeBits, hostFlags);
     } else {
-        type = findMemoryType(ctx.memoryProperties(), req.memoryTypeBits, hostFlags | VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-        if (type < 0) type = findMemoryType(ctx.memoryProperties(), req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+        type =
+            findMemoryType(ctx.memoryProperties(), req.memoryTypeBits, hostFlags | VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+        if (type < 0)
+            type = findMemoryType(ctx.memoryProperties(), req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
     }
     if (type < 0) {
         vkDestroyBuffer(ctx.device(), raw.buffer, nullptr);
@@ -122,15 +125,19 @@ void GpuBuffer::release() {
 void GpuBuffer::upload(const void* data, VkDeviceSize bytes, VkDeviceSize offset) {
     if (bytes == 0) return;
     if (offset + bytes > size_) throw std::out_of_range(std::string("upload past the end of buffer ") + name_);
-    if (mapped_) std::memcpy(static_cast<char*>(mapped_) + offset, data, bytes);
-    else copyThroughStaging(data, nullptr, bytes, offset, true);
+    if (mapped_)
+        std::memcpy(static_cast<char*>(mapped_) + offset, data, bytes);
+    else
+        copyThroughStaging(data, nullptr, bytes, offset, true);
 }
 
 void GpuBuffer::download(void* data, VkDeviceSize bytes, VkDeviceSize offset) const {
     if (bytes == 0) return;
     if (offset + bytes > size_) throw std::out_of_range(std::string("download past the end of buffer ") + name_);
-    if (mapped_) std::memcpy(data, static_cast<const char*>(mapped_) + offset, bytes);
-    else copyThroughStaging(nullptr, data, bytes, offset, false);
+    if (mapped_)
+        std::memcpy(data, static_cast<const char*>(mapped_) + offset, bytes);
+    else
+        copyThroughStaging(nullptr, data, bytes, offset, false);
 }
 
 void GpuBuffer::fillZero() {
@@ -139,16 +146,19 @@ void GpuBuffer::fillZero() {
     context_->submitAndWait([&](VkCommandBuffer cmd) { vkCmdFillBuffer(cmd, buffer, 0, size, 0); });
 }
 
-void GpuBuffer::copyThroughStaging(const void* src, void* dst, VkDeviceSize bytes, VkDeviceSize offset, bool toDevice) const {
-    RawBuffer staging = createRawBuffer(*context_, bytes,
-        VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, true, "staging");
+void GpuBuffer::copyThroughStaging(
+    const void* src, void* dst, VkDeviceSize bytes, VkDeviceSize offset, bool toDevice) const {
+    RawBuffer staging = createRawBuffer(
+        *context_, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, true, "staging");
     try {
         if (toDevice) std::memcpy(staging.mapped, src, bytes);
         VkBuffer buffer = buffer_;
         context_->submitAndWait([&](VkCommandBuffer cmd) {
             VkBufferCopy region{toDevice ? 0 : offset, toDevice ? offset : 0, bytes};
-            if (toDevice) vkCmdCopyBuffer(cmd, staging.buffer, buffer, 1, &region);
-            else vkCmdCopyBuffer(cmd, buffer, staging.buffer, 1, &region);
+            if (toDevice)
+                vkCmdCopyBuffer(cmd, staging.buffer, buffer, 1, &region);
+            else
+                vkCmdCopyBuffer(cmd, buffer, staging.buffer, 1, &region);
         });
         if (!toDevice) std::memcpy(dst, staging.mapped, bytes);
     } catch (...) {

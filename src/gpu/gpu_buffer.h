@@ -23,7 +23,10 @@ public:
     void download(void* data, VkDeviceSize bytes, VkDeviceSize offset = 0) const;
     void fillZero();
 
-    template <class T> void upload(std::span<const T> values) { upload(values.data(), values.size_bytes()); }
+    template <class T>
+    void upload(std::span<const T> values) {
+        upload(values.data(), values.size_bytes());
+    }
 
     VkBuffer handle() const { return buffer_; }
     VkDeviceAddress address() const { return address_; }
@@ -43,6 +46,7 @@ private:
 };
 
 // Index of a memory type with all of `required` among `allowedTypes`, or -1.
-int findMemoryType(const VkPhysicalDeviceMemoryProperties& props, uint32_t allowedTypes, VkMemoryPropertyFlags required);
+int findMemoryType(
+    const VkPhysicalDeviceMemoryProperties& props, uint32_t allowedTypes, VkMemoryPropertyFlags required);
 
 } // namespace pt

@@ -128,10 +128,14 @@ DeviceInfo describeDevice(VkPhysicalDevice device, uint32_t index) {
     info.type = deviceTypeName(props.properties.deviceType);
     info.driver = std::string(driver.driverName) + " " + driver.driverInfo;
     info.apiVersion = props.properties.apiVersion;
-    if (props.properties.apiVersion < VK_API_VERSION_1_2) info.whyNotUsable = "needs Vulkan 1.2";
-    else if (!features12.bufferDeviceAddress) info.whyNotUsable = "no bufferDeviceAddress";
-    else if (!features.features.shaderInt64) info.whyNotUsable = "no shaderInt64";
-    else if (findComputeQueueFamily(device) < 0) info.whyNotUsable = "no compute queue";
+    if (props.properties.apiVersion < VK_API_VERSION_1_2)
+        info.whyNotUsable = "needs Vulkan 1.2";
+    else if (!features12.bufferDeviceAddress)
+        info.whyNotUsable = "no bufferDeviceAddress";
+    else if (!features.features.shaderInt64)
+        info.whyNotUsable = "no shaderInt64";
+    else if (findComputeQueueFamily(device) < 0)
+        info.whyNotUsable = "no compute queue";
     info.usable = info.whyNotUsable.empty();
     info.int64Atomics = features12.shaderBufferInt64Atomics;
     return info;
@@ -187,13 +191,15 @@ VulkanContext::VulkanContext(const ContextOptions& options) {
         // Pick a device: the first match for --device, else the best-ranked usable one.
         auto devices = enumerateDevices(instance_);
         if (devices.empty())
-            throw std::runtime_error("no Vulkan device found (install mesa-vulkan-drivers for lavapipe, or a GPU driver)");
+            throw std::runtime_error(
+                "no Vulkan device found (install mesa-vulkan-drivers for lavapipe, or a GPU driver)");
         int best = -1;
         int bestRank = -1;
         std::string rejected;
         for (uint32_t i = 0; i < devices.size(); ++i) {
             DeviceInfo info = describeDevice(devices[i], i);
-            if (!options.deviceSubstring.empty() && info.name.find(options.deviceSubstring) == std::string::npos) continue;
+            if (!options.deviceSubstring.empty() && info.name.find(options.deviceSubstring) == std::string::npos)
+                continue;
             if (info.usable && surface_ && !hasDeviceExtension(devices[i], VK_KHR_SWAPCHAIN_EXTENSION_NAME))
                 info.usable = false, info.whyNotUsable = "no VK_KHR_swapchain";
             else if (info.usable && surface_ && findPresentQueueFamily(devices[i], surface_) < 0)
@@ -213,8 +219,8 @@ VulkanContext::VulkanContext(const ContextOptions& options) {
         }
         if (best < 0) {
             if (!options.deviceSubstring.empty())
-                throw std::runtime_error("no usable Vulkan device matches --device '" + options.deviceSubstring +
-                                         "'" + (rejected.empty() ? "" : " (" + rejected + ")") + "; see 'pt devices'");
+                throw std::runtime_error("no usable Vulkan device matches --device '" + options.deviceSubstring + "'" +
+                                         (rejected.empty() ? "" : " (" + rejected + ")") + "; see 'pt devices'");
             throw std::runtime_error("no usable Vulkan device (" + rejected + ")");
         }
         physicalDevice_ = devices[best];
@@ -222,8 +228,8 @@ VulkanContext::VulkanContext(const ContextOptions& options) {
         slowLavapipe_ = driverIsSlowLavapipe(physicalDevice_);
         vkGetPhysicalDeviceProperties(physicalDevice_, &properties_);
         vkGetPhysicalDeviceMemoryProperties(physicalDevice_, &memoryProperties_);
-        queueFamily_ = static_cast<uint32_t>(surface_ ? findPresentQueueFamily(physicalDevice_, surface_)
-                                                       : findComputeQueueFamily(physicalDevice_));
+        queueFamily_ = static_cast<uint32_t>(
+            surface_ ? findPresentQueueFamily(physicalDevice_, surface_) : findComputeQueueFamily(physicalDevice_));
 
         float priority = 1.0f;
         VkDeviceQueueCreateInfo queueInfo{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};

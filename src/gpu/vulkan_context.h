@@ -15,12 +15,12 @@ struct DeviceInfo {
     std::string driver; // driver name and version, e.g. "llvmpipe Mesa 25.0.7"
     uint32_t apiVersion = 0;
     bool usable = false;
-    std::string whyNotUsable; // empty when usable
+    std::string whyNotUsable;  // empty when usable
     bool int64Atomics = false; // shaderBufferInt64Atomics: light tracing's splats need it
 };
 
 struct ContextOptions {
-    bool validation = false;    // enable VK_LAYER_KHRONOS_validation and count its messages
+    bool validation = false;     // enable VK_LAYER_KHRONOS_validation and count its messages
     std::string deviceSubstring; // pick the first usable device whose name contains this
 
     // Presentation (pt view); the headless path leaves both empty. `instanceExtensions` are

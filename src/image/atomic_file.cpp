@@ -52,7 +52,8 @@ void prepareOutputDirectory(const std::filesystem::path& output) {
     if (output.parent_path().empty()) return;
     std::error_code ec;
     std::filesystem::create_directories(output.parent_path(), ec);
-    if (ec) throw std::runtime_error(output.parent_path().string() + ": cannot create directory (" + ec.message() + ")");
+    if (ec)
+        throw std::runtime_error(output.parent_path().string() + ": cannot create directory (" + ec.message() + ")");
 }
 
 } // namespace pt

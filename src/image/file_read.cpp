@@ -92,8 +92,8 @@ void readStream(int fd, const FileReadOptions& options, FileRead& r) {
 } // namespace
 
 bool InputFileCheck::notARegularFile() const {
-    return problem == FileProblem::NotFound || problem == FileProblem::CannotAccess || problem == FileProblem::Directory ||
-           problem == FileProblem::NotRegularFile;
+    return problem == FileProblem::NotFound || problem == FileProblem::CannotAccess ||
+           problem == FileProblem::Directory || problem == FileProblem::NotRegularFile;
 }
 
 InputFileCheck checkInputFile(const fs::path& path, const FileReadOptions& options) {
@@ -128,8 +128,10 @@ FileRead tryReadInputFile(const fs::path& path, const FileReadOptions& options) 
         fail(r, FileProblem::CannotOpen, errnoText(errno));
         return r;
     }
-    if (r.regular) readRegular(fd.get(), r);
-    else readStream(fd.get(), options, r);
+    if (r.regular)
+        readRegular(fd.get(), r);
+    else
+        readStream(fd.get(), options, r);
     if (!r) std::vector<unsigned char>().swap(r.bytes);
     return r;
 }

@@ -55,8 +55,8 @@ struct InputFileCheck {
     // The system's words for the problem (NotFound, CannotAccess, SizeUnknown, CannotOpen,
     // ReadFailed; empty for a file that shrank), e.g. "No such file or directory".
     std::string reason;
-    uintmax_t size = 0;  // the file's size once known (for a streamed file: the bytes read)
-    uintmax_t limit = 0; // FileReadOptions::maxBytes, for TooLarge
+    uintmax_t size = 0;   // the file's size once known (for a streamed file: the bytes read)
+    uintmax_t limit = 0;  // FileReadOptions::maxBytes, for TooLarge
     bool regular = false; // a regular file (else a streamed one)
 
     explicit operator bool() const { return problem == FileProblem::None; }
@@ -82,7 +82,7 @@ FileRead tryReadInputFile(const std::filesystem::path& path, const FileReadOptio
 std::string describeFileProblem(const InputFileCheck& check, std::string_view what = "a regular file");
 
 // tryReadInputFile, throwing std::runtime_error("<path>: <describeFileProblem>") on a problem.
-std::vector<unsigned char> readInputFile(const std::filesystem::path& path, const FileReadOptions& options = {},
-                                         std::string_view what = "a regular file");
+std::vector<unsigned char> readInputFile(
+    const std::filesystem::path& path, const FileReadOptions& options = {}, std::string_view what = "a regular file");
 
 } // namespace pt

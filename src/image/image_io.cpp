@@ -35,7 +35,6 @@
 #define STB_IMAGE_WRITE_IMPLEMENTATION
 #include <stb/stb_image_write.h>
 
-
 namespace pt {
 namespace {
 
@@ -71,17 +70,14 @@ std::string errnoText(int err) { return std::generic_category().message(err); }
 
 void checkImage(const std::filesystem::path& path, const Image& image) {
     if (image.width <= 0 || image.height <= 0)
-        fail(path, "cannot write an empty image (" + std::to_string(image.width) + "x" +
-                       std::to_string(image.height) + ")");
-    const std::size_t expected =
-        static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height) * 4;
+        fail(path,
+            "cannot write an empty image (" + std::to_string(image.width) + "x" + std::to_string(image.height) + ")");
+    const std::size_t expected = static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height) * 4;
     if (image.rgba.size() != expected)
-        fail(path, "pixel buffer holds " + std::to_string(image.rgba.size()) +
-                       " floats, expected " + std::to_string(expected) + " for " +
-                       std::to_string(image.width) + "x" + std::to_string(image.height) +
-                       " RGBA");
+        fail(path, "pixel buffer holds " + std::to_string(image.rgba.size()) + " floats, expected " +
+                       std::to_string(expected) + " for " + std::to_string(image.width) + "x" +
+                       std::to_string(image.height) + " RGBA");
 }
-
 
 // OpenEXR output stream on top of AtomicFile. ~OutputFile() writes the
 // scanline offset table and swallows any exception doing so, so a failure
@@ -127,8 +123,7 @@ public:
     ExrMemStream(const std::string& name, const std::vector<unsigned char>& data)
         : Imf::IStream(name.c_str()), data_(data) {}
     bool read(char c[], int n) override {
-        if (n < 0 || static_cast<uint64_t>(n) > data_.size() - pos_)
-            throw std::runtime_error("unexpected end of file");
+        if (n < 0 || static_cast<uint64_t>(n) > data_.size() - pos_) throw std::runtime_error("unexpected end of file");
         std::memcpy(c, data_.data() + pos_, static_cast<std::size_t>(n));
         pos_ += static_cast<uint64_t>(n);
         return pos_ < data_.size();
@@ -160,7 +155,8 @@ std::vector<unsigned char> readWholeFile(const std::filesystem::path& path) {
     case FileProblem::Directory: fail(path, "read failed (" + errnoText(EISDIR) + ")");
     case FileProblem::OutOfMemory: throw std::bad_alloc();
     case FileProblem::ReadFailed:
-        fail(path, "read failed (" + (file.reason.empty() ? std::string("the file shrank while being read") : file.reason) + ")");
+        fail(path, "read failed (" +
+                       (file.reason.empty() ? std::string("the file shrank while being read") : file.reason) + ")");
     default: fail(path, "read failed (" + file.reason + ")"); // SizeUnknown
     }
 }
@@ -222,8 +218,7 @@ Image readExrImpl(const std::filesystem::path& path, ImageMetadata* metadata) {
     const int64_t w = exr.w, h = exr.h;
 
     const Imf::ChannelList& channels = header.channels();
-    const bool hasRgb = channels.findChannel("R") || channels.findChannel("G") ||
-                        channels.findChannel("B");
+    const bool hasRgb = channels.findChannel("R") || channels.findChannel("G") || channels.findChannel("B");
     const bool lumaOnly = !hasRgb && channels.findChannel("Y");
     if (!hasRgb && !lumaOnly) fail(path, "no R, G, B or Y channel");
     for (const char* name : {"R", "G", "B", "A", "Y"}) {
@@ -259,16 +254,15 @@ Image readExrImpl(const std::filesystem::path& path, ImageMetadata* metadata) {
     in.readPixels(dw.min.y, dw.max.y);
 
     if (lumaOnly) {
-        for (std::size_t i = 0; i < image.rgba.size(); i += 4)
-            image.rgba[i + 1] = image.rgba[i + 2] = image.rgba[i];
+        for (std::size_t i = 0; i < image.rgba.size(); i += 4) image.rgba[i + 1] = image.rgba[i + 2] = image.rgba[i];
     }
 
     if (metadata) readMetadata(header, *metadata);
     return image;
 }
 
-ExrChannels readExrChannelsImpl(const std::filesystem::path& path, const std::vector<std::string>& names,
-                                ImageMetadata* metadata) {
+ExrChannels readExrChannelsImpl(
+    const std::filesystem::path& path, const std::vector<std::string>& names, ImageMetadata* metadata) {
     OpenedExr exr(path);
     Imf::InputFile& in = exr.in;
     const Imf::Header& header = exr.header;
@@ -287,15 +281,15 @@ ExrChannels readExrChannelsImpl(const std::filesystem::path& path, const std::ve
     }
     for (ExrChannel& c : result.channels)
         fb.insert(c.name, Imf::Slice::Make(Imf::FLOAT, c.values.data(), dw, sizeof(float),
-                                           sizeof(float) * static_cast<std::size_t>(w)));
+                              sizeof(float) * static_cast<std::size_t>(w)));
     in.setFrameBuffer(fb);
     in.readPixels(dw.min.y, dw.max.y);
     if (metadata) readMetadata(header, *metadata);
     return result;
 }
 
-void writeExrImpl(const std::filesystem::path& path, const Image& image,
-                  const ImageMetadata& metadata, const std::vector<ExrChannel>& extra) {
+void writeExrImpl(const std::filesystem::path& path, const Image& image, const ImageMetadata& metadata,
+    const std::vector<ExrChannel>& extra) {
     checkImage(path, image);
     const std::size_t pixels = static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height);
     for (const ExrChannel& c : extra)
@@ -305,8 +299,7 @@ void writeExrImpl(const std::filesystem::path& path, const Image& image,
 
     Imf::Header header(image.width, image.height);
     header.compression() = Imf::ZIP_COMPRESSION;
-    for (const char* name : {"R", "G", "B", "A"})
-        header.channels().insert(name, Imf::Channel(Imf::FLOAT));
+    for (const char* name : {"R", "G", "B", "A"}) header.channels().insert(name, Imf::Channel(Imf::FLOAT));
     for (const ExrChannel& c : extra) header.channels().insert(c.name, Imf::Channel(Imf::FLOAT));
     for (const auto& [key, value] : metadata) {
         if (key.empty()) fail(path, "empty metadata key");
@@ -315,8 +308,7 @@ void writeExrImpl(const std::filesystem::path& path, const Image& image,
         const std::string name = key.find(':') == std::string::npos ? "pt:" + key : key;
         // Imf::Name silently truncates longer names, which would corrupt keys.
         if (name.size() > static_cast<std::size_t>(Imf::Name::MAX_LENGTH))
-            fail(path, "metadata key too long (" + std::to_string(name.size()) +
-                           " characters with prefix, max " +
+            fail(path, "metadata key too long (" + std::to_string(name.size()) + " characters with prefix, max " +
                            std::to_string(Imf::Name::MAX_LENGTH) + ")");
         header.insert(name, Imf::StringAttribute(value));
     }
@@ -335,19 +327,19 @@ void writeExrImpl(const std::filesystem::path& path, const Image& image,
             fb.insert(names[c], Imf::Slice(Imf::FLOAT, base + c * sizeof(float), xStride, yStride));
         for (const ExrChannel& c : extra)
             fb.insert(c.name, Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(const_cast<float*>(c.values.data())),
-                                         sizeof(float), sizeof(float) * static_cast<std::size_t>(image.width)));
+                                  sizeof(float), sizeof(float) * static_cast<std::size_t>(image.width)));
         out.setFrameBuffer(fb);
         out.writePixels(image.height);
-    }  // ~OutputFile writes the offset table here.
+    } // ~OutputFile writes the offset table here.
     if (stream.failed()) fail(path, "write failed while finalising the file");
     file.commit();
 }
 
-
-}  // namespace
+} // namespace
 
 // Runs an OpenEXR read, turning every failure into one "<path>: <problem>" error.
-template <class Read> auto withExrErrors(const std::filesystem::path& path, Read read) -> decltype(read()) {
+template <class Read>
+auto withExrErrors(const std::filesystem::path& path, Read read) -> decltype(read()) {
     try {
         return read();
     } catch (const IoError&) {
@@ -365,8 +357,8 @@ template <class Read> auto withExrErrors(const std::filesystem::path& path, Read
     }
 }
 
-ExrChannels readExrChannels(const std::filesystem::path& path, const std::vector<std::string>& names,
-                            ImageMetadata* metadata) {
+ExrChannels readExrChannels(
+    const std::filesystem::path& path, const std::vector<std::string>& names, ImageMetadata* metadata) {
     return withExrErrors(path, [&] { return readExrChannelsImpl(path, names, metadata); });
 }
 
@@ -374,13 +366,12 @@ Image readExr(const std::filesystem::path& path, ImageMetadata* metadata) {
     return withExrErrors(path, [&] { return readExrImpl(path, metadata); });
 }
 
-void writeExr(const std::filesystem::path& path, const Image& image,
-              const ImageMetadata& metadata) {
+void writeExr(const std::filesystem::path& path, const Image& image, const ImageMetadata& metadata) {
     writeExr(path, image, metadata, {});
 }
 
-void writeExr(const std::filesystem::path& path, const Image& image,
-              const ImageMetadata& metadata, const std::vector<ExrChannel>& extra) {
+void writeExr(const std::filesystem::path& path, const Image& image, const ImageMetadata& metadata,
+    const std::vector<ExrChannel>& extra) {
     try {
         writeExrImpl(path, image, metadata, extra);
     } catch (const IoError&) {
@@ -410,11 +401,12 @@ void writePngRgb8(const std::filesystem::path& path, int width, int height, cons
         const auto* bytes = static_cast<const uint8_t*>(data);
         dst->insert(dst->end(), bytes, bytes + size);
     };
-    if (!stbi_write_png_to_func(sink, &encoded, width, height, 3, rgb.data(), width * 3)) fail(path, "PNG encoding failed");
+    if (!stbi_write_png_to_func(sink, &encoded, width, height, 3, rgb.data(), width * 3))
+        fail(path, "PNG encoding failed");
 
     AtomicFile file(path);
     file.write(encoded.data(), encoded.size());
     file.commit();
 }
 
-}  // namespace pt
+} // namespace pt

@@ -20,8 +20,7 @@ using ImageMetadata = std::map<std::string, std::string>;
 // temporary name in the same directory and renamed into place, so readers
 // never see a half-written file.
 // Throws std::runtime_error("<path>: <problem>") on any failure.
-void writeExr(const std::filesystem::path& path, const Image& image,
-              const ImageMetadata& metadata);
+void writeExr(const std::filesystem::path& path, const Image& image, const ImageMetadata& metadata);
 
 // Extra float32 channels (one value per pixel, row-major), written after R, G, B, A: the raw
 // accumulation state of a partial render or checkpoint (film/state_file.h).
@@ -29,8 +28,8 @@ struct ExrChannel {
     std::string name;
     std::vector<float> values;
 };
-void writeExr(const std::filesystem::path& path, const Image& image,
-              const ImageMetadata& metadata, const std::vector<ExrChannel>& extra);
+void writeExr(const std::filesystem::path& path, const Image& image, const ImageMetadata& metadata,
+    const std::vector<ExrChannel>& extra);
 
 // Reads the named float channels of an EXR written by writeExr (exactly, as float32), the
 // metadata, and the image size. Throws "<path>: <problem>" naming the first missing channel.
@@ -38,8 +37,8 @@ struct ExrChannels {
     int width = 0, height = 0;
     std::vector<ExrChannel> channels; // in the order of `names`
 };
-ExrChannels readExrChannels(const std::filesystem::path& path, const std::vector<std::string>& names,
-                            ImageMetadata* metadata = nullptr);
+ExrChannels readExrChannels(
+    const std::filesystem::path& path, const std::vector<std::string>& names, ImageMetadata* metadata = nullptr);
 
 // Reads the data window of a scanline or tiled EXR of any pixel type.
 // Channels R,G,B,A are used; a missing A reads as 1, missing R/G/B as 0, and
@@ -49,8 +48,7 @@ ExrChannels readExrChannels(const std::filesystem::path& path, const std::vector
 // round-trips keys (except keys that themselves start with "pt:").
 // Throws std::runtime_error("<path>: <problem>") on missing, corrupt or
 // truncated files; never lets an OpenEXR exception escape.
-Image readExr(const std::filesystem::path& path,
-              ImageMetadata* metadata = nullptr);
+Image readExr(const std::filesystem::path& path, ImageMetadata* metadata = nullptr);
 
 // Encodes 8-bit RGB (3 bytes per pixel, row-major, top row first) as a PNG, written via a
 // temporary file in the same directory and a rename, so readers never see a half-written file
@@ -59,4 +57,4 @@ Image readExr(const std::filesystem::path& path,
 // not match the bytes.
 void writePngRgb8(const std::filesystem::path& path, int width, int height, const std::vector<uint8_t>& rgb);
 
-}  // namespace pt
+} // namespace pt

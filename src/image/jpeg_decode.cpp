@@ -29,7 +29,8 @@ struct ErrorManager {
 void ignoreMessage(j_common_ptr, int) {} // warnings (such as "premature end of data") are not printed
 
 // Decodes into `image` (its size and pixels); returns false with `message` set on any error.
-bool decodeInto(const unsigned char* bytes, size_t size, int maxSide, size_t maxPixels, TextureImage* image, char* message) {
+bool decodeInto(
+    const unsigned char* bytes, size_t size, int maxSide, size_t maxPixels, TextureImage* image, char* message) {
     jpeg_decompress_struct cinfo;
     ErrorManager err;
     cinfo.err = jpeg_std_error(&err.pub);
@@ -49,7 +50,8 @@ bool decodeInto(const unsigned char* bytes, size_t size, int maxSide, size_t max
     image->width = static_cast<int>(cinfo.image_width);
     image->height = static_cast<int>(cinfo.image_height);
     const size_t pixels = size_t(cinfo.image_width) * cinfo.image_height;
-    if (image->width <= 0 || image->height <= 0 || image->width > maxSide || image->height > maxSide || pixels > maxPixels) {
+    if (image->width <= 0 || image->height <= 0 || image->width > maxSide || image->height > maxSide ||
+        pixels > maxPixels) {
         std::snprintf(message, JMSG_LENGTH_MAX, "JPEG of %dx%d pixels is empty, too large or implausible for its data",
             image->width, image->height);
         jpeg_destroy_decompress(&cinfo);
@@ -70,7 +72,8 @@ bool decodeInto(const unsigned char* bytes, size_t size, int maxSide, size_t max
         return false;
     }
     while (cinfo.output_scanline < cinfo.output_height) {
-        JSAMPROW row = reinterpret_cast<JSAMPROW>(image->rgba8.data() + size_t(cinfo.output_scanline) * cinfo.output_width);
+        JSAMPROW row =
+            reinterpret_cast<JSAMPROW>(image->rgba8.data() + size_t(cinfo.output_scanline) * cinfo.output_width);
         jpeg_read_scanlines(&cinfo, &row, 1);
     }
     jpeg_finish_decompress(&cinfo);
@@ -87,7 +90,8 @@ bool looksLikeJpeg(const unsigned char* bytes, size_t size) {
     return at < size && bytes[at] == 0xD8;
 }
 
-TextureImage decodeJpeg(const unsigned char* bytes, size_t size, const std::string& source, int maxSide, size_t maxPixels) {
+TextureImage decodeJpeg(
+    const unsigned char* bytes, size_t size, const std::string& source, int maxSide, size_t maxPixels) {
     TextureImage image;
     image.source = source;
     char message[JMSG_LENGTH_MAX] = {};

@@ -16,6 +16,7 @@ bool looksLikeJpeg(const unsigned char* bytes, size_t size);
 // Decodes to 8-bit RGBA (alpha 255). Throws std::runtime_error("SOURCE: cannot decode image
 // (...)") on corrupt data, and on images with a side over maxSide or more pixels than maxPixels
 // (judged from the header, before anything is allocated for the pixels).
-TextureImage decodeJpeg(const unsigned char* bytes, size_t size, const std::string& source, int maxSide, size_t maxPixels);
+TextureImage decodeJpeg(
+    const unsigned char* bytes, size_t size, const std::string& source, int maxSide, size_t maxPixels);
 
 } // namespace pt

@@ -20,7 +20,9 @@ namespace {
 // files are rejected.
 void checkPnmHeader(const unsigned char* bytes, size_t size, const std::string& source) {
     if (size < 2 || bytes[0] != 'P' || (bytes[1] != '5' && bytes[1] != '6')) return;
-    auto space = [](unsigned char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\v' || c == '\f' || c == '\r'; };
+    auto space = [](unsigned char c) {
+        return c == ' ' || c == '\t' || c == '\n' || c == '\v' || c == '\f' || c == '\r';
+    };
     constexpr int kMaxDigits = 8; // the largest side allowed, 16384, has 5
     size_t i = 2;
     long values[3] = {};
@@ -31,7 +33,8 @@ void checkPnmHeader(const unsigned char* bytes, size_t size, const std::string& 
             while (i < size && bytes[i] != '\n' && bytes[i] != '\r') ++i;
         }
         for (int digits = 0; i < size && bytes[i] >= '0' && bytes[i] <= '9'; ++i) {
-            if (++digits > kMaxDigits) fail(source, "PNM header number with more than " + std::to_string(kMaxDigits) + " digits");
+            if (++digits > kMaxDigits)
+                fail(source, "PNM header number with more than " + std::to_string(kMaxDigits) + " digits");
             value = value * 10 + (bytes[i] - '0');
         }
     }
@@ -57,14 +60,16 @@ void checkHdrRunLengths(const unsigned char* bytes, size_t size, const std::stri
     if (std::sscanf(line().c_str(), "-Y %d +X %d", &height, &width) != 2) return;
     if (width < 8 || width >= 32768 || height <= 0) return; // stored flat: read to the end, no loop
     for (int y = 0; y < height; ++y) {
-        if (at + 4 > size) fail(source, "Radiance HDR data ends at scanline " + std::to_string(y) + " of " + std::to_string(height));
+        if (at + 4 > size)
+            fail(source, "Radiance HDR data ends at scanline " + std::to_string(y) + " of " + std::to_string(height));
         if (bytes[at] != 2 || bytes[at + 1] != 2 || (bytes[at + 2] & 0x80)) return; // not run-length encoded
         at += 4;
         for (int channel = 0; channel < 4; ++channel)
             for (int x = 0; x < width;) {
                 if (at >= size) fail(source, "Radiance HDR data ends inside scanline " + std::to_string(y));
                 int count = bytes[at++];
-                if (count == 0) fail(source, "Radiance HDR run of length 0 in scanline " + std::to_string(y) + " (corrupt data)");
+                if (count == 0)
+                    fail(source, "Radiance HDR run of length 0 in scanline " + std::to_string(y) + " (corrupt data)");
                 if (count > 128) {
                     count -= 128;
                     ++at; // the repeated value
@@ -85,11 +90,13 @@ void checkPngChunkLengths(const unsigned char* bytes, size_t size, const std::st
     if (size < 8 || std::memcmp(bytes, kSignature, 8) != 0) return;
     size_t at = 8;
     while (size - at >= 8) {
-        const uint32_t length = uint32_t(bytes[at]) << 24 | uint32_t(bytes[at + 1]) << 16 | uint32_t(bytes[at + 2]) << 8 | bytes[at + 3];
+        const uint32_t length =
+            uint32_t(bytes[at]) << 24 | uint32_t(bytes[at + 1]) << 16 | uint32_t(bytes[at + 2]) << 8 | bytes[at + 3];
         const size_t left = size - at - 8;
         if (length > left)
-            fail(source, "cannot decode image (PNG chunk at byte " + std::to_string(at) + " claims " + std::to_string(length) +
-                             " bytes but only " + std::to_string(left) + " follow: truncated or corrupt file)");
+            fail(source, "cannot decode image (PNG chunk at byte " + std::to_string(at) + " claims " +
+                             std::to_string(length) + " bytes but only " + std::to_string(left) +
+                             " follow: truncated or corrupt file)");
         if (std::memcmp(bytes + at + 4, "IEND", 4) == 0) return;
         at += 8 + size_t(length) + std::min<size_t>(4, left - length); // the CRC, when present
     }
@@ -99,8 +106,11 @@ void checkPngChunkLengths(const unsigned char* bytes, size_t size, const std::st
 
 void rejectInputsStbImageMishandles(const unsigned char* bytes, size_t size, const std::string& source) {
     checkPnmHeader(bytes, size, source);
-    const auto startsWith = [&](const char* text) { return size >= std::strlen(text) && std::memcmp(bytes, text, std::strlen(text)) == 0; };
-    if (startsWith("#?RADIANCE\n") || startsWith("#?RGBE\n")) checkHdrRunLengths(bytes, size, source); // stb_image's test
+    const auto startsWith = [&](const char* text) {
+        return size >= std::strlen(text) && std::memcmp(bytes, text, std::strlen(text)) == 0;
+    };
+    if (startsWith("#?RADIANCE\n") || startsWith("#?RGBE\n"))
+        checkHdrRunLengths(bytes, size, source); // stb_image's test
     checkPngChunkLengths(bytes, size, source);
 }
 

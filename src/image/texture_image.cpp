@@ -55,10 +55,12 @@ constexpr size_t kAlwaysPlausiblePixels = 1 << 16;
 // The width and height in a PNG's IHDR chunk (big-endian, right after the signature), clamped to
 // INT_MAX; nothing when the data does not start like a PNG.
 std::optional<std::pair<int, int>> declaredPngSize(const unsigned char* bytes, size_t size) {
-    static const unsigned char kSignature[] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n', 0, 0, 0, 13, 'I', 'H', 'D', 'R'};
+    static const unsigned char kSignature[] = {
+        0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n', 0, 0, 0, 13, 'I', 'H', 'D', 'R'};
     if (size < 24 || std::memcmp(bytes, kSignature, sizeof(kSignature)) != 0) return std::nullopt;
     auto read = [&](size_t at) {
-        const uint32_t v = uint32_t(bytes[at]) << 24 | uint32_t(bytes[at + 1]) << 16 | uint32_t(bytes[at + 2]) << 8 | bytes[at + 3];
+        const uint32_t v =
+            uint32_t(bytes[at]) << 24 | uint32_t(bytes[at + 1]) << 16 | uint32_t(bytes[at + 2]) << 8 | bytes[at + 3];
         return static_cast<int>(std::min<uint32_t>(v, std::numeric_limits<int>::max()));
     };
     return std::pair{read(16), read(20)};
@@ -74,7 +76,8 @@ TextureImage decodeTextureImage(const unsigned char* bytes, size_t size, const s
     if (size == 0) fail(source, "image data is empty");
     if (size > static_cast<size_t>(std::numeric_limits<int>::max())) fail(source, "image data is larger than 2 GiB");
     const int length = static_cast<int>(size);
-    if (looksLikeJpeg(bytes, size)) return decodeJpeg(bytes, size, source, kMaxTextureSide, kMaxPixelsPerByte * size + kAlwaysPlausiblePixels);
+    if (looksLikeJpeg(bytes, size))
+        return decodeJpeg(bytes, size, source, kMaxTextureSide, kMaxPixelsPerByte * size + kAlwaysPlausiblePixels);
     rejectInputsStbImageMishandles(bytes, size, source);
     int width = 0, height = 0, channels = 0;
     if (!stbi_info_from_memory(bytes, length, &width, &height, &channels)) {
@@ -86,8 +89,8 @@ TextureImage decodeTextureImage(const unsigned char* bytes, size_t size, const s
     checkSize(width, height, source);
     const size_t pixels = static_cast<size_t>(width) * static_cast<size_t>(height);
     if (pixels > kMaxPixelsPerByte * size + kAlwaysPlausiblePixels)
-        fail(source, "image header claims " + std::to_string(width) + "x" + std::to_string(height) + " pixels but the data is only " +
-                         std::to_string(size) + " bytes (corrupt or hostile header)");
+        fail(source, "image header claims " + std::to_string(width) + "x" + std::to_string(height) +
+                         " pixels but the data is only " + std::to_string(size) + " bytes (corrupt or hostile header)");
     TextureImage image;
     image.source = source;
     image.width = width;
@@ -98,7 +101,8 @@ TextureImage decodeTextureImage(const unsigned char* bytes, size_t size, const s
         image.rgbaF.resize(pixels);
         std::memcpy(image.rgbaF.data(), data.get(), pixels * sizeof(glm::vec4));
     } else {
-        std::unique_ptr<unsigned char, StbFree> data(stbi_load_from_memory(bytes, length, &width, &height, &channels, 4));
+        std::unique_ptr<unsigned char, StbFree> data(
+            stbi_load_from_memory(bytes, length, &width, &height, &channels, 4));
         if (!data) fail(source, std::string("cannot decode image (") + stbi_failure_reason() + ")");
         // RGBA bytes in memory order are one little-endian uint with R in the low byte,
         // which is what the kernel's unpackUnorm4x8 expects.
@@ -111,7 +115,8 @@ TextureImage decodeTextureImage(const unsigned char* bytes, size_t size, const s
 TextureImage loadTextureImage(const std::filesystem::path& path) {
     const std::string source = path.string();
     std::string ext = path.extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    std::transform(
+        ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
     if (ext == ".exr") {
         const Image exr = readExr(path); // its errors name the file already
         checkSize(exr.width, exr.height, source);
@@ -135,7 +140,8 @@ TextureImage loadTextureImage(const std::filesystem::path& path) {
     case FileProblem::NotRegularFile: fail(source, "not a regular file");
     case FileProblem::OutOfMemory: throw std::bad_alloc();
     case FileProblem::ReadFailed:
-        fail(source, "read failed (" + (file.reason.empty() ? std::string("the file shrank while being read") : file.reason) + ")");
+        fail(source, "read failed (" +
+                         (file.reason.empty() ? std::string("the file shrank while being read") : file.reason) + ")");
     default: fail(source, "cannot open image file"); // CannotOpen, SizeUnknown
     }
     return decodeTextureImage(file.bytes.data(), file.bytes.size(), source);
@@ -143,7 +149,9 @@ TextureImage loadTextureImage(const std::filesystem::path& path) {
 
 Image loadRadianceImage(const std::filesystem::path& path) {
     TextureImage t = loadTextureImage(path);
-    if (t.rgbaF.empty()) fail(path.string(), "an environment map needs high dynamic range (OpenEXR or Radiance .hdr), not an 8-bit image");
+    if (t.rgbaF.empty())
+        fail(path.string(),
+            "an environment map needs high dynamic range (OpenEXR or Radiance .hdr), not an 8-bit image");
     Image image;
     image.width = t.width;
     image.height = t.height;

@@ -17,9 +17,9 @@ namespace pt {
 // An image a texture reads: 8-bit RGBA (packed, as in the file) or float RGBA.
 struct TextureImage {
     int width = 0, height = 0;
-    std::vector<uint32_t> rgba8;   // row 0 at the top; R in the low byte
-    std::vector<glm::vec4> rgbaF;  // used instead when the file is HDR
-    std::string source;            // file name, for messages
+    std::vector<uint32_t> rgba8;  // row 0 at the top; R in the low byte
+    std::vector<glm::vec4> rgbaF; // used instead when the file is HDR
+    std::string source;           // file name, for messages
 };
 
 // Largest texture side accepted: a hostile header must not make us allocate gigabytes.

@@ -48,7 +48,7 @@ void addEntry(const LightEntry& entry, LightTable& table, std::vector<double>& p
 // Emissive triangles or spheres: each gets its entry (or NO_LIGHT) in its lightIndex.
 template <class Primitive, class MakeEntry>
 void addPrimitiveEmitters(std::span<Primitive> primitives, std::span<const Material> materials, MakeEntry makeEntry,
-                          LightTable& table, std::vector<double>& power) {
+    LightTable& table, std::vector<double>& power) {
     for (uint32_t i = 0; i < primitives.size(); ++i) {
         Primitive& primitive = primitives[i];
         primitive.lightIndex = NO_LIGHT;

@@ -42,7 +42,8 @@ std::optional<LightEntry> sphereLight(const gpu::GpuSphere& sphere, uint32_t ind
     if (!(det > 0.0)) return std::nullopt;
     // Area estimate for the power only: 4 pi times the squared geometric-mean radius.
     const double area = 4.0 * kLightPi * std::pow(det, 2.0 / 3.0);
-    std::optional<LightEntry> e = areaEmitter(LIGHT_SPHERE, index, static_cast<float>(det), lambertianEmitterPower(m, area));
+    std::optional<LightEntry> e =
+        areaEmitter(LIGHT_SPHERE, index, static_cast<float>(det), lambertianEmitterPower(m, area));
     if (!e) return std::nullopt;
     e->light.position = glm::vec3(sphere.objectToWorld[0].w, sphere.objectToWorld[1].w, sphere.objectToWorld[2].w);
     double radius = 0.0;

@@ -7,7 +7,8 @@
 
 namespace pt {
 
-Checkpointer::Checkpointer(std::filesystem::path path, double intervalSeconds, ImageMetadata metadata, double priorSeconds)
+Checkpointer::Checkpointer(
+    std::filesystem::path path, double intervalSeconds, ImageMetadata metadata, double priorSeconds)
     : path_(std::move(path)), interval_(intervalSeconds), metadata_(std::move(metadata)), priorSeconds_(priorSeconds) {}
 
 void Checkpointer::snapshot(const Renderer& renderer, double seconds) {

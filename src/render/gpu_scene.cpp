@@ -3,7 +3,8 @@
 namespace pt {
 namespace {
 
-template <class T> GpuBuffer makeBuffer(VulkanContext& ctx, const std::vector<T>& data, const char* name) {
+template <class T>
+GpuBuffer makeBuffer(VulkanContext& ctx, const std::vector<T>& data, const char* name) {
     GpuBuffer buffer(ctx, sizeof(T) * data.size(), name);
     buffer.upload(data.data(), sizeof(T) * data.size());
     return buffer;
@@ -11,7 +12,8 @@ template <class T> GpuBuffer makeBuffer(VulkanContext& ctx, const std::vector<T>
 
 } // namespace
 
-GpuScene::GpuScene(VulkanContext& context, const FlatScene& scene, gpu::GpuSceneParams params, VkDeviceSize accumulationBytes) {
+GpuScene::GpuScene(
+    VulkanContext& context, const FlatScene& scene, gpu::GpuSceneParams params, VkDeviceSize accumulationBytes) {
     triangles_ = makeBuffer(context, scene.triangles, "triangles");
     shading_ = makeBuffer(context, scene.shading, "shading");
     nodes_ = makeBuffer(context, scene.nodes, "bvh nodes");

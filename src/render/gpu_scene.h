@@ -11,15 +11,16 @@ class GpuScene {
 public:
     // `params` holds everything but the buffer addresses, which this fills in; `accumulationBytes`
     // sizes the accumulation buffer (0 for none), zero-filled.
-    GpuScene(VulkanContext& context, const FlatScene& scene, gpu::GpuSceneParams params, VkDeviceSize accumulationBytes);
+    GpuScene(
+        VulkanContext& context, const FlatScene& scene, gpu::GpuSceneParams params, VkDeviceSize accumulationBytes);
 
     VkDeviceAddress paramsAddress() const { return params_.address(); }
     const GpuBuffer& accumulation() const { return accumulation_; }
     GpuBuffer& accumulation() { return accumulation_; }
 
 private:
-    GpuBuffer triangles_, shading_, nodes_, spheres_, sphereNodes_, materials_, lights_, lightCdf_, envTexels_, envMarginal_,
-        envConditional_, textures_, texels_, motions_, tangents_, accumulation_, params_;
+    GpuBuffer triangles_, shading_, nodes_, spheres_, sphereNodes_, materials_, lights_, lightCdf_, envTexels_,
+        envMarginal_, envConditional_, textures_, texels_, motions_, tangents_, accumulation_, params_;
 };
 
 } // namespace pt

@@ -28,9 +28,12 @@ ProgressiveResult renderProgressively(Renderer& renderer, const ProgressiveTarge
         const uint32_t doneHere = done - resumedSpp; // a resumed render's speed is this run's
         const double secondsPerSpp = doneHere > 0 ? result.seconds / doneHere : 0.0;
         uint32_t pass;
-        if (target.passSpp > 0) pass = target.passSpp;
-        else if (doneHere == 0) pass = 1;
-        else pass = static_cast<uint32_t>(std::clamp(0.5 / std::max(secondsPerSpp, 1e-9), 1.0, 4096.0));
+        if (target.passSpp > 0)
+            pass = target.passSpp;
+        else if (doneHere == 0)
+            pass = 1;
+        else
+            pass = static_cast<uint32_t>(std::clamp(0.5 / std::max(secondsPerSpp, 1e-9), 1.0, 4096.0));
         if (target.targetError > 0 && result.lastEstimate <= 0) {
             // No estimate yet: reach the fewest samples it needs first. A pass sized by speed
             // alone is hundreds of spp on a GPU, and would overshoot the target many times over.
@@ -60,7 +63,8 @@ ProgressiveResult renderProgressively(Renderer& renderer, const ProgressiveTarge
                 *errorLog << line.str() << std::flush;
             }
         }
-        progress.update(spp, result.seconds, pixels * (spp - resumedSpp) / std::max(result.seconds, 1e-9) * 1e-6, lastRelMse);
+        progress.update(
+            spp, result.seconds, pixels * (spp - resumedSpp) / std::max(result.seconds, 1e-9) * 1e-6, lastRelMse);
         // The estimate needs a variance: a few samples per pixel at least.
         if (target.targetError > 0 && spp >= kMinTargetErrorSpp) {
             const Renderer::Readback r = renderer.read();

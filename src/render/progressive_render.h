@@ -26,8 +26,8 @@ struct ProgressiveTarget {
 struct ProgressiveResult {
     double seconds = 0; // render time of the passes (excludes relMSE evaluation)
     double lastRelMse = -1;
-    double lastEstimate = -1;     // estimatedRelMse after the last pass (target-error renders)
-    bool targetReached = false;   // targetError was met (not a cap)
+    double lastEstimate = -1;   // estimatedRelMse after the last pass (target-error renders)
+    bool targetReached = false; // targetError was met (not a cap)
 };
 
 // `errorLog` receives "spp,seconds,relmse" lines (without header) when `reference` is given.

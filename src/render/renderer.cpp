@@ -1,8 +1,8 @@
 #include "render/renderer.h"
 
-#include "pt_copy_words_spv.h" // generated: shaders/viewer/copy_words.comp
+#include "pt_copy_words_spv.h"           // generated: shaders/viewer/copy_words.comp
 #include "pt_render_light_tracing_spv.h" // generated: the same with -DPT_LIGHT_TRACING
-#include "pt_render_spv.h" // generated: the SPIR-V of shaders/integrator/render.comp
+#include "pt_render_spv.h"               // generated: the SPIR-V of shaders/integrator/render.comp
 
 #include <algorithm>
 #include <cmath>
@@ -55,7 +55,6 @@ gpu::GpuCamera toGpuCamera(const Camera& camera, int width, int height) {
     return c;
 }
 
-
 Renderer::Renderer(VulkanContext& context, const FlatScene& scene, const FeatureSet& features,
     const IntegratorSettings& settings, const Camera& camera, const FilmSettings& film)
     : context_(context), film_(film), camera_(camera), features_(supportedFeatures(context, features)) {
@@ -84,7 +83,9 @@ VkDeviceSize Renderer::bytesPerPixel() const {
     return kAccumulationBytesPerPixel + (features_.lightTracing ? kSplatBytesPerPixel : 0);
 }
 
-VkDeviceSize Renderer::splatOffset() const { return VkDeviceSize(film_.width) * film_.height * kAccumulationBytesPerPixel; }
+VkDeviceSize Renderer::splatOffset() const {
+    return VkDeviceSize(film_.width) * film_.height * kAccumulationBytesPerPixel;
+}
 
 void Renderer::addSamples(uint32_t count, uint32_t tileSize) {
     if (count == 0) return;
@@ -109,7 +110,8 @@ uint32_t Renderer::tileCount(uint32_t tileSize) const {
     return ((w + tw - 1) / tw) * ((h + th - 1) / th);
 }
 
-void Renderer::recordTiles(VkCommandBuffer cmd, uint32_t count, uint32_t tileSize, uint32_t firstTile, uint32_t endTile) {
+void Renderer::recordTiles(
+    VkCommandBuffer cmd, uint32_t count, uint32_t tileSize, uint32_t firstTile, uint32_t endTile) {
     const uint32_t w = static_cast<uint32_t>(film_.width);
     const uint32_t h = static_cast<uint32_t>(film_.height);
     const uint32_t tw = tileSize ? std::min(tileSize, w) : w;
@@ -140,7 +142,8 @@ void Renderer::recordTiles(VkCommandBuffer cmd, uint32_t count, uint32_t tileSiz
         push.sampleClamp = sampleClamp_;
         push.rayCounts = rayCounts_ ? rayCounts_->address() : 0;
         pipeline_->bindAndPush(cmd, &push, sizeof(push));
-        vkCmdDispatch(cmd, (push.tileSize.x + localSize_ - 1) / localSize_, (push.tileSize.y + localSize_ - 1) / localSize_, 1);
+        vkCmdDispatch(
+            cmd, (push.tileSize.x + localSize_ - 1) / localSize_, (push.tileSize.y + localSize_ - 1) / localSize_, 1);
     }
 }
 
@@ -224,10 +227,12 @@ void Renderer::setIntegrator(const IntegratorSettings& settings, const FeatureSe
     const auto constants = wanted.constants(localSize_, localSize_);
     const auto current = features_.constants(localSize_, localSize_);
     const bool same = std::equal(constants.begin(), constants.end(), current.begin(), current.end(),
-        [](const SpecializationConstant& a, const SpecializationConstant& b) { return a.id == b.id && a.value == b.value; });
+        [](const SpecializationConstant& a, const SpecializationConstant& b) {
+            return a.id == b.id && a.value == b.value;
+        });
     if (!same) {
-        auto fresh = std::make_unique<ComputePipeline>(context_, renderKernel(wanted),
-            static_cast<uint32_t>(sizeof(gpu::GpuRenderPush)), constants, "render");
+        auto fresh = std::make_unique<ComputePipeline>(
+            context_, renderKernel(wanted), static_cast<uint32_t>(sizeof(gpu::GpuRenderPush)), constants, "render");
         vkDeviceWaitIdle(context_.device());
         pipeline_ = std::move(fresh);
         features_ = wanted;
@@ -267,8 +272,8 @@ void Renderer::loadState(const AccumulationState& state) {
                                  " but the render is " + std::to_string(film_.width) + "x" +
                                  std::to_string(film_.height));
     if (state.spp != state.samples.count())
-        throw std::runtime_error("saved state has gaps in its sample range " + state.samples.describe() +
-                                 " and cannot be continued");
+        throw std::runtime_error(
+            "saved state has gaps in its sample range " + state.samples.describe() + " and cannot be continued");
     if (state.hasSplats() != features_.lightTracing)
         throw std::runtime_error(std::string("saved state was rendered with light tracing ") +
                                  (state.hasSplats() ? "on" : "off") + " but this render has it " +

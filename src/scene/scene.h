@@ -54,10 +54,10 @@ struct Material {
     std::optional<uint32_t> baseColorTexture; // rgb: baseColor, a: opacity
     std::optional<uint32_t> specularTexture;  // the course's replace_ks
     std::optional<uint32_t> metallicRoughnessTexture;
-    std::optional<uint32_t> normalTexture;    // tangent-space normal map, or heights if bumpMap
+    std::optional<uint32_t> normalTexture; // tangent-space normal map, or heights if bumpMap
     std::optional<uint32_t> emissiveTexture;
-    float normalScale = 1.0f; // normal map strength; the course's BumpFactor for bump maps
-    bool bumpMap = false;     // normalTexture holds heights (the course's bump_normal)
+    float normalScale = 1.0f;    // normal map strength; the course's BumpFactor for bump maps
+    bool bumpMap = false;        // normalTexture holds heights (the course's bump_normal)
     bool normalMapYDown = false; // the map's +y runs down the image (the course's), not up (glTF)
     bool blendBaseColor = false; // the course's blend_kd: kd = (kd + texel) / 2
     bool unlit = false;          // the course's replace_all: the base colour is shown unshaded
@@ -118,9 +118,9 @@ struct TonemapSettings {
     float key = 0.18f;        // Photographic: key value
     float burnPercent = 0.0f; // Photographic: percentage of pixels allowed to burn out
     float saturation = 1.0f;
-    float scale = 1.0f;       // Clamp: multiplies the radiance first (the course's classic images use 0..255)
-    float gamma = 1.0f;       // display gamma; ignored when srgb
-    bool srgb = true;         // the sRGB transfer curve instead of a power
+    float scale = 1.0f; // Clamp: multiplies the radiance first (the course's classic images use 0..255)
+    float gamma = 1.0f; // display gamma; ignored when srgb
+    bool srgb = true;   // the sRGB transfer curve instead of a power
 };
 
 // Settings a camera may carry for its own image (the course format has them per camera);
@@ -146,7 +146,7 @@ struct Camera {
     // Image-plane window (left, right, bottom, top) at unit distance along forward, for
     // off-centre frusta; when absent the window is symmetric from yfov and the image aspect.
     std::optional<glm::vec4> window;
-    float apertureSize = 0.0f;  // thin lens: 0 = pinhole
+    float apertureSize = 0.0f; // thin lens: 0 = pinhole
     float focusDistance = 0.0f;
     CameraRenderSettings settings;
 };
@@ -186,11 +186,11 @@ struct PunctualLight {
 // radiance map, or a constant colour. Direction d maps to u = (1 + atan2(d.x, -d.z) / pi) / 2,
 // v = acos(d.y) / pi (the CENG795 course's convention; +y is up).
 struct Environment {
-    Image image;                 // linear RGB; empty for a constant environment
-    glm::vec3 colour{1.0f};      // the constant radiance when image is empty
-    float scale = 1.0f;          // multiplies the radiance
+    Image image;                  // linear RGB; empty for a constant environment
+    glm::vec3 colour{1.0f};       // the constant radiance when image is empty
+    float scale = 1.0f;           // multiplies the radiance
     float rotationDegrees = 0.0f; // about +y
-    std::string source;          // file name, for messages
+    std::string source;           // file name, for messages
 };
 
 struct Scene {

@@ -10,7 +10,8 @@ namespace pt {
 // break the line or drive the terminal) and its length is bounded.
 class SceneError : public std::runtime_error {
 public:
-    SceneError(const std::string& file, const std::string& problem) : std::runtime_error(file + ": " + printable(problem)) {}
+    SceneError(const std::string& file, const std::string& problem)
+        : std::runtime_error(file + ": " + printable(problem)) {}
 
 private:
     static std::string printable(std::string text) {

@@ -14,7 +14,8 @@ Scene loadScene(const std::filesystem::path& path) {
     std::error_code ec;
     if (std::filesystem::is_directory(path, ec)) throw SceneError(path.string(), "is a directory, not a scene file");
     std::string ext = path.extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    std::transform(
+        ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
     if (ext == ".gltf" || ext == ".glb") return loadGltfFile(path);
     if (ext == ".xml") return loadCeng795File(path);
     throw SceneError(path.string(), "unknown scene format '" + ext + "' (expected .gltf, .glb or the course's .xml)");

@@ -73,7 +73,8 @@ void CameraController::orbit(glm::vec2 drag) {
     const glm::vec3 target = this->target();
     // Dragging right turns the scene to the right: the camera goes left about the up axis.
     glm::vec3 f = rotate(forward_, worldUp_, -drag.x * kRadiansPerPixel);
-    const glm::vec3 r = glm::length(glm::cross(f, worldUp_)) > 1e-6f ? glm::normalize(glm::cross(f, worldUp_)) : right();
+    const glm::vec3 r =
+        glm::length(glm::cross(f, worldUp_)) > 1e-6f ? glm::normalize(glm::cross(f, worldUp_)) : right();
     f = rotate(f, r, -drag.y * kRadiansPerPixel);
     setForward(f);
     position_ = target - distance_ * forward_;
@@ -116,20 +117,31 @@ std::string CameraController::gltfSnippet() const {
     // glTF cameras look down their local -z with +y up.
     const glm::vec3 r = glm::normalize(glm::cross(c.forward, c.up));
     const glm::quat q = glm::quat_cast(glm::mat3(r, c.up, -c.forward));
-    return "{\"name\": \"pt view camera\", \"camera\": 0, \"translation\": [" + vec(c.position, ", ") + "], \"rotation\": [" +
-           fmt(q.x) + ", " + fmt(q.y) + ", " + fmt(q.z) + ", " + fmt(q.w) + "]}   // camera 0: {\"type\": \"perspective\", " +
-           "\"perspective\": {\"yfov\": " + fmt(c.yfov) + ", \"znear\": 0.01}}";
+    return "{\"name\": \"pt view camera\", \"camera\": 0, \"translation\": [" + vec(c.position, ", ") +
+           "], \"rotation\": [" + fmt(q.x) + ", " + fmt(q.y) + ", " + fmt(q.z) + ", " + fmt(q.w) +
+           "]}   // camera 0: {\"type\": \"perspective\", " + "\"perspective\": {\"yfov\": " + fmt(c.yfov) +
+           ", \"znear\": 0.01}}";
 }
 
 std::string CameraController::courseXmlSnippet(int width, int height) const {
     const Camera c = camera();
     return "<Camera id=\"1\" type=\"lookAt\">\n"
-           "    <Position>" + vec(c.position, " ") + "</Position>\n"
-           "    <GazePoint>" + vec(target(), " ") + "</GazePoint>\n"
-           "    <Up>" + vec(c.up, " ") + "</Up>\n"
-           "    <FovY>" + fmt(glm::degrees(c.yfov)) + "</FovY>\n"
+           "    <Position>" +
+           vec(c.position, " ") +
+           "</Position>\n"
+           "    <GazePoint>" +
+           vec(target(), " ") +
+           "</GazePoint>\n"
+           "    <Up>" +
+           vec(c.up, " ") +
+           "</Up>\n"
+           "    <FovY>" +
+           fmt(glm::degrees(c.yfov)) +
+           "</FovY>\n"
            "    <NearDistance>1</NearDistance>\n"
-           "    <ImageResolution>" + std::to_string(width) + " " + std::to_string(height) + "</ImageResolution>\n"
+           "    <ImageResolution>" +
+           std::to_string(width) + " " + std::to_string(height) +
+           "</ImageResolution>\n"
            "</Camera>";
 }
 

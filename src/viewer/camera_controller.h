@@ -16,10 +16,10 @@ public:
     // past the centre, and the speeds.
     CameraController(const Camera& start, glm::vec3 centre, float radius);
 
-    void orbit(glm::vec2 dragPixels);                    // about the target
-    void pan(glm::vec2 dragPixels, int viewportHeight);  // target and camera together
-    void dolly(float clicks);                            // towards the target (positive) or away
-    void look(glm::vec2 dragPixels);                     // turn in place (fly mode)
+    void orbit(glm::vec2 dragPixels);                   // about the target
+    void pan(glm::vec2 dragPixels, int viewportHeight); // target and camera together
+    void dolly(float clicks);                           // towards the target (positive) or away
+    void look(glm::vec2 dragPixels);                    // turn in place (fly mode)
     // Moves by `axes` (right, up, forward) times the fly speed times `seconds`.
     void fly(glm::vec3 axes, float seconds);
     void scaleSpeed(float factor) { speed_ *= factor; }

@@ -63,8 +63,8 @@ float acesFit(float x) {
     return (x * (2.51f * x + 0.03f)) / (x * (2.43f * x + 0.59f) + 0.14f);
 }
 
-void writeDisplayPng(const std::filesystem::path& path, const Image& mean, DisplayOperator op, const TonemapSettings& scene,
-    float exposureStops) {
+void writeDisplayPng(const std::filesystem::path& path, const Image& mean, DisplayOperator op,
+    const TonemapSettings& scene, float exposureStops) {
     if (op != DisplayOperator::Aces) {
         writeTonemappedPng(path, mean, settingsFor(op, scene), exposureStops);
         return;

@@ -13,9 +13,22 @@ namespace {
 // Name -> (number of numeric arguments, or -1 for the command's own check).
 const std::map<std::string, int>& numericArity() {
     static const std::map<std::string, int> m = {
-        {"wait", 1}, {"wait-spp", 1}, {"orbit", 2}, {"pan", 2}, {"dolly", 1}, {"look", 2}, {"move", 3},
-        {"resize", 2}, {"exposure", 1}, {"max-depth", 1}, {"clamp", 1}, {"stats", 0}, {"report", 0},
-        {"print-camera", 0}, {"quit", 0}, {"reset-view", 0},
+        {"wait", 1},
+        {"wait-spp", 1},
+        {"orbit", 2},
+        {"pan", 2},
+        {"dolly", 1},
+        {"look", 2},
+        {"move", 3},
+        {"resize", 2},
+        {"exposure", 1},
+        {"max-depth", 1},
+        {"clamp", 1},
+        {"stats", 0},
+        {"report", 0},
+        {"print-camera", 0},
+        {"quit", 0},
+        {"reset-view", 0},
     };
     return m;
 }
@@ -75,12 +88,15 @@ std::vector<ScriptCommand> parseScript(const std::string& text, const std::strin
         for (size_t i = 0; i < numericCount; ++i) {
             char* end = nullptr;
             const double v = std::strtod(c.args[i].c_str(), &end);
-            if (end == c.args[i].c_str() || *end != '\0' || !std::isfinite(v)) fail("'" + c.args[i] + "' is not a number");
+            if (end == c.args[i].c_str() || *end != '\0' || !std::isfinite(v))
+                fail("'" + c.args[i] + "' is not a number");
             c.numbers.push_back(v);
         }
-        if ((c.name == "wait" || c.name == "wait-spp" || c.name == "repeat") && (c.numbers[0] < 0 || c.numbers[0] > 1e7))
+        if ((c.name == "wait" || c.name == "wait-spp" || c.name == "repeat") &&
+            (c.numbers[0] < 0 || c.numbers[0] > 1e7))
             fail("count out of range");
-        if (c.name == "resize" && (c.numbers[0] < 1 || c.numbers[1] < 1 || c.numbers[0] > 16384 || c.numbers[1] > 16384))
+        if (c.name == "resize" &&
+            (c.numbers[0] < 1 || c.numbers[1] < 1 || c.numbers[0] > 16384 || c.numbers[1] > 16384))
             fail("size out of range");
         commands.push_back(std::move(c));
     }

@@ -62,7 +62,8 @@ void Swapchain::recreate(int width, int height) {
     vkDeviceWaitIdle(context_.device());
 
     VkSurfaceCapabilitiesKHR caps;
-    vkCheck(vkGetPhysicalDeviceSurfaceCapabilitiesKHR(gpu, surface, &caps), "reading the window surface's capabilities");
+    vkCheck(
+        vkGetPhysicalDeviceSurfaceCapabilitiesKHR(gpu, surface, &caps), "reading the window surface's capabilities");
     if (!(caps.supportedUsageFlags & VK_IMAGE_USAGE_TRANSFER_DST_BIT))
         throw NoDisplayError("the window surface does not accept copies (no TRANSFER_DST usage)");
     uint32_t count = 0;
@@ -71,7 +72,8 @@ void Swapchain::recreate(int width, int height) {
     vkGetPhysicalDeviceSurfaceFormatsKHR(gpu, surface, &count, formats.data());
     VkSurfaceFormatKHR chosen{VK_FORMAT_UNDEFINED, VK_COLOR_SPACE_SRGB_NONLINEAR_KHR};
     for (const auto& f : formats)
-        if (f.colorSpace == VK_COLOR_SPACE_SRGB_NONLINEAR_KHR && formatRank(f.format) > formatRank(chosen.format)) chosen = f;
+        if (f.colorSpace == VK_COLOR_SPACE_SRGB_NONLINEAR_KHR && formatRank(f.format) > formatRank(chosen.format))
+            chosen = f;
     if (formatRank(chosen.format) == 0) throw NoDisplayError("the window surface offers no 8-bit RGBA or BGRA format");
     vkGetPhysicalDeviceSurfacePresentModesKHR(gpu, surface, &count, nullptr);
     std::vector<VkPresentModeKHR> modes(count);
@@ -82,8 +84,10 @@ void Swapchain::recreate(int width, int height) {
 
     VkExtent2D extent = caps.currentExtent;
     if (extent.width == UINT32_MAX) {
-        extent.width = std::clamp(static_cast<uint32_t>(std::max(width, 1)), caps.minImageExtent.width, caps.maxImageExtent.width);
-        extent.height = std::clamp(static_cast<uint32_t>(std::max(height, 1)), caps.minImageExtent.height, caps.maxImageExtent.height);
+        extent.width =
+            std::clamp(static_cast<uint32_t>(std::max(width, 1)), caps.minImageExtent.width, caps.maxImageExtent.width);
+        extent.height = std::clamp(
+            static_cast<uint32_t>(std::max(height, 1)), caps.minImageExtent.height, caps.maxImageExtent.height);
     }
     uint32_t imageCount = caps.minImageCount + 1;
     if (caps.maxImageCount > 0) imageCount = std::min(imageCount, caps.maxImageCount);
@@ -98,9 +102,10 @@ void Swapchain::recreate(int width, int height) {
     info.imageUsage = VK_IMAGE_USAGE_TRANSFER_DST_BIT;
     info.imageSharingMode = VK_SHARING_MODE_EXCLUSIVE;
     info.preTransform = caps.currentTransform;
-    info.compositeAlpha = (caps.supportedCompositeAlpha & VK_COMPOSITE_ALPHA_OPAQUE_BIT_KHR)
-                              ? VK_COMPOSITE_ALPHA_OPAQUE_BIT_KHR
-                              : static_cast<VkCompositeAlphaFlagBitsKHR>(caps.supportedCompositeAlpha & -caps.supportedCompositeAlpha);
+    info.compositeAlpha =
+        (caps.supportedCompositeAlpha & VK_COMPOSITE_ALPHA_OPAQUE_BIT_KHR)
+            ? VK_COMPOSITE_ALPHA_OPAQUE_BIT_KHR
+            : static_cast<VkCompositeAlphaFlagBitsKHR>(caps.supportedCompositeAlpha & -caps.supportedCompositeAlpha);
     info.presentMode = mode;
     info.clipped = VK_TRUE;
     info.oldSwapchain = swapchain_;
@@ -117,7 +122,8 @@ void Swapchain::recreate(int width, int height) {
     vkGetSwapchainImagesKHR(context_.device(), swapchain_, &count, images_.data());
     VkSemaphoreCreateInfo semaphoreInfo{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
     rendered_.resize(count);
-    for (auto& s : rendered_) vkCheck(vkCreateSemaphore(context_.device(), &semaphoreInfo, nullptr, &s), "creating a semaphore");
+    for (auto& s : rendered_)
+        vkCheck(vkCreateSemaphore(context_.device(), &semaphoreInfo, nullptr, &s), "creating a semaphore");
 }
 
 bool Swapchain::acquire(VkSemaphore signal, uint32_t* imageIndex) {

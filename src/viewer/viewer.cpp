@@ -42,8 +42,8 @@ CameraController makeController(const FlatScene& flat, const Camera& camera) {
 } // namespace
 
 Session::Session(Window& window, VulkanContext& context, const FlatScene& flat, const ViewerConfig& config)
-    : window_(window), context_(context), flat_(flat), config_(config), controller_(makeController(flat, config.job.camera)),
-      settings_(config.job.settings), ev_(config.exposure) {
+    : window_(window), context_(context), flat_(flat), config_(config),
+      controller_(makeController(flat, config.job.camera)), settings_(config.job.settings), ev_(config.exposure) {
     if (config.job.tonemap.op == TonemapSettings::Operator::Photographic) op_ = DisplayOperator::Photographic;
     windowSize_ = window.framebufferSize();
     if (windowSize_.x <= 0 || windowSize_.y <= 0) windowSize_ = glm::ivec2(config.job.width, config.job.height);
@@ -106,7 +106,7 @@ bool Session::workLeft() const {
 
 bool Session::needFrame() const {
     const bool scriptActive = config_.scripted && (scriptNext_ < config_.script.size() || waitFrames_ > 0 ||
-                                                     waitSpp_ >= 0 || repeatLeft_ > 0 || waitResize_ > 0);
+                                                      waitSpp_ >= 0 || repeatLeft_ > 0 || waitResize_ > 0);
     return workLeft() || displayDirty_ || cameraDirty_ || integratorDirty_ || clampDirty_ || sizeDirty_ || scriptActive;
 }
 
@@ -186,7 +186,8 @@ void Session::planWork(uint32_t& count, uint32_t& firstTile, uint32_t& endTile) 
         passTileSize_ = 0;
         passCount_ = 1;
         if (scale_ == 1 && passMs <= config_.frameBudgetMs)
-            passCount_ = static_cast<uint32_t>(std::clamp(std::floor(config_.frameBudgetMs / passMs), 1.0, double(config_.sppCap - spp)));
+            passCount_ = static_cast<uint32_t>(
+                std::clamp(std::floor(config_.frameBudgetMs / passMs), 1.0, double(config_.sppCap - spp)));
         else if (scale_ == 1)
             passTileSize_ = config_.tileSize;
         passTiles_ = renderer_->tileCount(passTileSize_);
@@ -243,7 +244,8 @@ void Session::resizeWindow(glm::ivec2 size) {
 
 void Session::updatePhotographicTerms(bool force) {
     if (op_ != DisplayOperator::Photographic || renderer_->samplesPerPixel() == 0) return;
-    if (!force && (passActive_ || (termsSpp_ != 0 && std::chrono::duration<double>(Clock::now() - termsTime_).count() < 0.5)))
+    if (!force &&
+        (passActive_ || (termsSpp_ != 0 && std::chrono::duration<double>(Clock::now() - termsTime_).count() < 0.5)))
         return;
     if (!force && termsSpp_ == renderer_->samplesPerPixel()) return;
     terms_ = photographicTerms(renderer_->read().mean, settingsFor(op_, config_.job.tonemap), ev_);
@@ -262,10 +264,10 @@ void Session::recordDisplay(uint32_t image, uint32_t endTile) {
     push.tileSize = passTileSize_ ? passTileSize_ : std::max(push.filmSize.x, push.filmSize.y);
     push.tilesX = (push.filmSize.x + push.tileSize - 1) / push.tileSize;
     const bool debug = debugView_ != 0;
-    push.op = debug ? DISPLAY_TONEMAP_CLAMP
-                    : op_ == DisplayOperator::Photographic ? DISPLAY_TONEMAP_PHOTOGRAPHIC
-                    : op_ == DisplayOperator::Aces         ? DISPLAY_TONEMAP_ACES
-                                                           : DISPLAY_TONEMAP_CLAMP;
+    push.op = debug                                  ? DISPLAY_TONEMAP_CLAMP
+              : op_ == DisplayOperator::Photographic ? DISPLAY_TONEMAP_PHOTOGRAPHIC
+              : op_ == DisplayOperator::Aces         ? DISPLAY_TONEMAP_ACES
+                                                     : DISPLAY_TONEMAP_CLAMP;
     const TonemapSettings tm = settingsFor(op_, config_.job.tonemap);
     push.flags = (debug || tm.srgb ? DISPLAY_FLAG_SRGB : 0u) | (swapchain_->bgra() ? DISPLAY_FLAG_BGRA : 0u);
     push.exposure = debug ? 1.0f : std::exp2(ev_);
@@ -294,7 +296,8 @@ void Session::frame() {
     planWork(count, firstTile, endTile);
 
     const bool passEnds = count > 0 && endTile >= passTiles_;
-    const bool show = displayDirty_ || scale_ > 1 || passEnds || count == 0 || msSince(lastShown_) >= kRefineDisplayIntervalMs;
+    const bool show =
+        displayDirty_ || scale_ > 1 || passEnds || count == 0 || msSince(lastShown_) >= kRefineDisplayIntervalMs;
     uint32_t image = 0;
     if (show && !swapchain_->acquire(acquired_, &image)) {
         resizeWindow(fb);
@@ -313,7 +316,8 @@ void Session::frame() {
     if (timeTiles) {
         for (uint32_t t = firstTile; t < endTile; ++t) {
             renderer_->recordTiles(cmd_, count, passTileSize_, t, t + 1);
-            vkCmdWriteTimestamp(cmd_, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queries_, kQueryFirstTile + (t - firstTile));
+            vkCmdWriteTimestamp(
+                cmd_, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queries_, kQueryFirstTile + (t - firstTile));
         }
     } else if (count > 0) {
         renderer_->recordTiles(cmd_, count, passTileSize_, firstTile, endTile);
@@ -387,16 +391,20 @@ int Session::run() {
     auto last = Clock::now();
     while (!quit_ && !window_.shouldClose()) {
         const glm::ivec2 fb = window_.framebufferSize();
-        if (needFrame() && fb.x > 0 && fb.y > 0) window_.pollEvents();
-        else window_.waitEvents(); // idle: done, paused, minimised or nothing changed
+        if (needFrame() && fb.x > 0 && fb.y > 0)
+            window_.pollEvents();
+        else
+            window_.waitEvents(); // idle: done, paused, minimised or nothing changed
         const auto now = Clock::now();
         const float seconds = std::min(std::chrono::duration<float>(now - last).count(), 0.1f);
         last = now;
         handleInput(window_.takeInput(), seconds);
         if (config_.scripted) stepScript();
         if (quit_) break;
-        if (needFrame()) frame();
-        else updateTitle(true);
+        if (needFrame())
+            frame();
+        else
+            updateTitle(true);
     }
     vkDeviceWaitIdle(context_.device());
     return status_;

@@ -34,9 +34,17 @@ const char* debugViewName(uint32_t v) {
 // Script names of keys: letters and digits as themselves, plus these.
 const std::map<std::string, int>& namedKeys() {
     static const std::map<std::string, int> m = {
-        {"escape", GLFW_KEY_ESCAPE}, {"space", GLFW_KEY_SPACE}, {"minus", GLFW_KEY_MINUS}, {"equal", GLFW_KEY_EQUAL},
-        {"comma", GLFW_KEY_COMMA}, {"period", GLFW_KEY_PERIOD}, {"left_bracket", GLFW_KEY_LEFT_BRACKET},
-        {"right_bracket", GLFW_KEY_RIGHT_BRACKET}, {"f1", GLFW_KEY_F1}, {"f5", GLFW_KEY_F5}, {"f6", GLFW_KEY_F6},
+        {"escape", GLFW_KEY_ESCAPE},
+        {"space", GLFW_KEY_SPACE},
+        {"minus", GLFW_KEY_MINUS},
+        {"equal", GLFW_KEY_EQUAL},
+        {"comma", GLFW_KEY_COMMA},
+        {"period", GLFW_KEY_PERIOD},
+        {"left_bracket", GLFW_KEY_LEFT_BRACKET},
+        {"right_bracket", GLFW_KEY_RIGHT_BRACKET},
+        {"f1", GLFW_KEY_F1},
+        {"f5", GLFW_KEY_F5},
+        {"f6", GLFW_KEY_F6},
     };
     return m;
 }
@@ -71,8 +79,9 @@ const char* kHelp =
 
 std::string Session::settingsText() const {
     std::string s = std::string(settings_.nee ? "nee" : "no-nee") + " " + (settings_.mis ? "mis" : "no-mis") + " " +
-                    (settings_.rr ? "rr" : "no-rr") + " " + (settings_.sampling == DirectionSampling::Cosine ? "cosine" : "uniform") +
-                    " depth " + std::to_string(settings_.maxDepth) + (settings_.classic ? " classic" : "");
+                    (settings_.rr ? "rr" : "no-rr") + " " +
+                    (settings_.sampling == DirectionSampling::Cosine ? "cosine" : "uniform") + " depth " +
+                    std::to_string(settings_.maxDepth) + (settings_.classic ? " classic" : "");
     if (clamp_ > 0.0f) s += " | clamp " + fixed(clamp_, 0) + " (BIASED)";
     if (debugView_ != 0) s += " | view " + std::string(debugViewName(debugView_));
     return s;
@@ -81,8 +90,10 @@ std::string Session::settingsText() const {
 void Session::handleInput(const Input& input, float seconds) {
     for (const KeyPress& k : input.keys) handleKey(k.key, k.mods);
     if (input.leftDrag != glm::vec2(0.0f)) {
-        if (fly_) controller_.look(input.leftDrag);
-        else controller_.orbit(input.leftDrag);
+        if (fly_)
+            controller_.look(input.leftDrag);
+        else
+            controller_.orbit(input.leftDrag);
         cameraDirty_ = true;
     }
     if (input.panDrag != glm::vec2(0.0f)) controller_.pan(input.panDrag, windowSize_.y), cameraDirty_ = true;
@@ -117,13 +128,18 @@ void Session::handleKey(int key, int mods) {
     case GLFW_KEY_M: settings_.mis = !settings_.mis, integratorDirty_ = true; break;
     case GLFW_KEY_L: settings_.rr = !settings_.rr, integratorDirty_ = true; break;
     case GLFW_KEY_U:
-        settings_.sampling = settings_.sampling == DirectionSampling::Cosine ? DirectionSampling::Uniform : DirectionSampling::Cosine;
+        settings_.sampling =
+            settings_.sampling == DirectionSampling::Cosine ? DirectionSampling::Uniform : DirectionSampling::Cosine;
         integratorDirty_ = true;
         break;
     case GLFW_KEY_MINUS:
-    case GLFW_KEY_KP_SUBTRACT: settings_.maxDepth = std::max(1u, settings_.maxDepth - 1), integratorDirty_ = true; break;
+    case GLFW_KEY_KP_SUBTRACT:
+        settings_.maxDepth = std::max(1u, settings_.maxDepth - 1), integratorDirty_ = true;
+        break;
     case GLFW_KEY_EQUAL:
-    case GLFW_KEY_KP_ADD: settings_.maxDepth = std::min(kMaxDepthLimit, settings_.maxDepth + 1), integratorDirty_ = true; break;
+    case GLFW_KEY_KP_ADD:
+        settings_.maxDepth = std::min(kMaxDepthLimit, settings_.maxDepth + 1), integratorDirty_ = true;
+        break;
     case GLFW_KEY_COMMA: ev_ -= kEvStep, displayDirty_ = true, updatePhotographicTerms(true); break;
     case GLFW_KEY_PERIOD: ev_ += kEvStep, displayDirty_ = true, updatePhotographicTerms(true); break;
     case GLFW_KEY_T:
@@ -136,8 +152,10 @@ void Session::handleKey(int key, int mods) {
         size_t i = 0;
         while (i < std::size(kClampLevels) && kClampLevels[i] != clamp_) ++i;
         clamp_ = kClampLevels[(i + 1) % std::size(kClampLevels)];
-        if (clamp_ > 0.0f) std::fprintf(stderr, "pt: view: firefly clamp at %g: BIASED (energy above it is dropped)\n", clamp_);
-        else std::fprintf(stderr, "pt: view: firefly clamp off\n");
+        if (clamp_ > 0.0f)
+            std::fprintf(stderr, "pt: view: firefly clamp at %g: BIASED (energy above it is dropped)\n", clamp_);
+        else
+            std::fprintf(stderr, "pt: view: firefly clamp off\n");
         clampDirty_ = true;
         break;
     }
@@ -147,11 +165,15 @@ void Session::handleKey(int key, int mods) {
         break;
     case GLFW_KEY_P: printCamera(); break;
     case GLFW_KEY_SPACE: paused_ = !paused_, displayDirty_ = true; break;
-    case GLFW_KEY_F5: save(config_.outputDir / (config_.sceneStem + "-view-" + std::to_string(++saveCounter_) + ".exr")); break;
+    case GLFW_KEY_F5:
+        save(config_.outputDir / (config_.sceneStem + "-view-" + std::to_string(++saveCounter_) + ".exr"));
+        break;
     case GLFW_KEY_S:
         if (ctrl) save(config_.outputDir / (config_.sceneStem + "-view-" + std::to_string(++saveCounter_) + ".exr"));
         break;
-    case GLFW_KEY_F6: screenshot(config_.outputDir / (config_.sceneStem + "-window-" + std::to_string(++saveCounter_) + ".png")); break;
+    case GLFW_KEY_F6:
+        screenshot(config_.outputDir / (config_.sceneStem + "-window-" + std::to_string(++saveCounter_) + ".png"));
+        break;
     case GLFW_KEY_F1:
     case GLFW_KEY_H: std::fputs(kHelp, stdout), std::fflush(stdout); break;
     default: break;
@@ -162,10 +184,11 @@ void Session::handleKey(int key, int mods) {
 
 void Session::stepScript() {
     if (waitResize_ > 0) {
-        if (window_.framebufferSize() == resizeTarget_ && windowSize_ == resizeTarget_) waitResize_ = 0;
+        if (window_.framebufferSize() == resizeTarget_ && windowSize_ == resizeTarget_)
+            waitResize_ = 0;
         else if (--waitResize_ == 0) {
-            std::fprintf(stderr, "pt: error: script: the window did not resize to %dx%d (it is %dx%d)\n", resizeTarget_.x,
-                resizeTarget_.y, windowSize_.x, windowSize_.y);
+            std::fprintf(stderr, "pt: error: script: the window did not resize to %dx%d (it is %dx%d)\n",
+                resizeTarget_.x, resizeTarget_.y, windowSize_.x, windowSize_.y);
             status_ = 1;
             quit_ = true;
         }
@@ -182,7 +205,8 @@ void Session::stepScript() {
     }
     if (waitSpp_ >= 0) {
         const uint32_t target = std::min<uint32_t>(static_cast<uint32_t>(waitSpp_), config_.sppCap);
-        if (scale_ > 1 || passActive_ || renderer_->samplesPerPixel() < target || cameraDirty_ || integratorDirty_ || clampDirty_ || sizeDirty_)
+        if (scale_ > 1 || passActive_ || renderer_->samplesPerPixel() < target || cameraDirty_ || integratorDirty_ ||
+            clampDirty_ || sizeDirty_)
             return;
         waitSpp_ = -1;
     }
@@ -213,12 +237,18 @@ void Session::stepScript() {
 
 void Session::runCommand(const ScriptCommand& c) {
     const auto& n = c.numbers;
-    if (c.name == "orbit") controller_.orbit(glm::vec2(n[0], n[1])), cameraDirty_ = true;
-    else if (c.name == "pan") controller_.pan(glm::vec2(n[0], n[1]), windowSize_.y), cameraDirty_ = true;
-    else if (c.name == "dolly") controller_.dolly(static_cast<float>(n[0])), cameraDirty_ = true;
-    else if (c.name == "look") controller_.look(glm::vec2(n[0], n[1])), cameraDirty_ = true;
-    else if (c.name == "move") controller_.fly(glm::vec3(n[0], n[1], n[2]), 1.0f), cameraDirty_ = true;
-    else if (c.name == "reset-view") handleKey(GLFW_KEY_R, 0);
+    if (c.name == "orbit")
+        controller_.orbit(glm::vec2(n[0], n[1])), cameraDirty_ = true;
+    else if (c.name == "pan")
+        controller_.pan(glm::vec2(n[0], n[1]), windowSize_.y), cameraDirty_ = true;
+    else if (c.name == "dolly")
+        controller_.dolly(static_cast<float>(n[0])), cameraDirty_ = true;
+    else if (c.name == "look")
+        controller_.look(glm::vec2(n[0], n[1])), cameraDirty_ = true;
+    else if (c.name == "move")
+        controller_.fly(glm::vec3(n[0], n[1], n[2]), 1.0f), cameraDirty_ = true;
+    else if (c.name == "reset-view")
+        handleKey(GLFW_KEY_R, 0);
     else if (c.name == "key") {
         int mods = 0;
         const int key = keyFromName(c.args[0], mods);
@@ -239,7 +269,7 @@ void Session::runCommand(const ScriptCommand& c) {
         integratorDirty_ = true;
     } else if (c.name == "tonemap") {
         op_ = c.args[0] == "photographic" ? DisplayOperator::Photographic
-            : c.args[0] == "aces"         ? DisplayOperator::Aces
+              : c.args[0] == "aces"       ? DisplayOperator::Aces
                                           : DisplayOperator::Srgb;
         displayDirty_ = true;
         updatePhotographicTerms(true);
@@ -256,12 +286,18 @@ void Session::runCommand(const ScriptCommand& c) {
         resizeTarget_ = glm::ivec2(static_cast<int>(n[0]), static_cast<int>(n[1]));
         window_.requestSize(resizeTarget_.x, resizeTarget_.y);
         waitResize_ = 200;
-    } else if (c.name == "save") save(c.args[0]);
-    else if (c.name == "screenshot") screenshot(c.args[0]);
-    else if (c.name == "print-camera") printCamera();
-    else if (c.name == "stats") printStats();
-    else if (c.name == "report") printReport();
-    else if (c.name == "quit") quit_ = true;
+    } else if (c.name == "save")
+        save(c.args[0]);
+    else if (c.name == "screenshot")
+        screenshot(c.args[0]);
+    else if (c.name == "print-camera")
+        printCamera();
+    else if (c.name == "stats")
+        printStats();
+    else if (c.name == "report")
+        printReport();
+    else if (c.name == "quit")
+        quit_ = true;
 }
 
 // ---- Output ----
@@ -283,10 +319,10 @@ void Session::save(const fs::path& requested) {
         meta["integrator"] = settings_.describe();
         meta["features"] = renderer_->features().describe();
         meta["scene"] = config_.sceneSource;
-        meta["camera"] = "position " + fixed(cam.position.x, 6) + " " + fixed(cam.position.y, 6) + " " + fixed(cam.position.z, 6) +
-                         " forward " + fixed(cam.forward.x, 6) + " " + fixed(cam.forward.y, 6) + " " + fixed(cam.forward.z, 6) +
-                         " up " + fixed(cam.up.x, 6) + " " + fixed(cam.up.y, 6) + " " + fixed(cam.up.z, 6) + " yfov " +
-                         fixed(cam.yfov, 6);
+        meta["camera"] = "position " + fixed(cam.position.x, 6) + " " + fixed(cam.position.y, 6) + " " +
+                         fixed(cam.position.z, 6) + " forward " + fixed(cam.forward.x, 6) + " " +
+                         fixed(cam.forward.y, 6) + " " + fixed(cam.forward.z, 6) + " up " + fixed(cam.up.x, 6) + " " +
+                         fixed(cam.up.y, 6) + " " + fixed(cam.up.z, 6) + " yfov " + fixed(cam.yfov, 6);
         meta["dropped_samples"] = std::to_string(r.droppedSamples);
         meta["viewer"] = "pt view" + std::string(scale_ > 1 ? " (preview resolution)" : "");
         if (clamp_ > 0.0f) meta["sample_clamp"] = fixed(clamp_, 3) + " (biased)";
@@ -297,7 +333,8 @@ void Session::save(const fs::path& requested) {
         writeExr(variance, r.varianceOfMean, meta);
         fs::path png = exr;
         png.replace_extension(".png");
-        writeDisplayPng(png, r.mean, debugView_ ? DisplayOperator::Srgb : op_, config_.job.tonemap, debugView_ ? 0.0f : ev_);
+        writeDisplayPng(
+            png, r.mean, debugView_ ? DisplayOperator::Srgb : op_, config_.job.tonemap, debugView_ ? 0.0f : ev_);
         std::fprintf(stderr, "pt: view: saved %s (and .var.exr, .png): %u spp, %dx%d\n", exr.string().c_str(),
             renderer_->samplesPerPixel(), r.mean.width, r.mean.height);
     } catch (const std::exception& e) {
@@ -338,7 +375,8 @@ void Session::printCamera() const {
 void Session::printStats() {
     const double seconds = std::chrono::duration<double>(Clock::now() - stats_.start).count();
     const double mpaths = stats_.renderMs > 0 ? stats_.pathSamples / stats_.renderMs * 1e-3 : 0.0;
-    std::printf("pt: view: stats frames=%llu seconds=%.3f fps=%.2f frame_ms_mean=%.2f frame_ms_max=%.2f mpaths_per_s=%.3f spp=%u\n",
+    std::printf("pt: view: stats frames=%llu seconds=%.3f fps=%.2f frame_ms_mean=%.2f frame_ms_max=%.2f "
+                "mpaths_per_s=%.3f spp=%u\n",
         static_cast<unsigned long long>(stats_.frames), seconds, stats_.frames / std::max(seconds, 1e-9),
         stats_.frames ? stats_.sumMs / stats_.frames : 0.0, stats_.maxMs, mpaths, renderer_->samplesPerPixel());
     std::fflush(stdout);
@@ -358,11 +396,14 @@ void Session::updateTitle(bool force) {
     std::string t = "pt view: " + config_.sceneStem + " | " + std::to_string(renderer_->samplesPerPixel()) + " spp";
     if (scale_ > 1) t += " (preview 1/" + std::to_string(scale_) + ")";
     if (passActive_ && passTiles_ > 1) t += " +" + std::to_string(100 * passTilesDone_ / passTiles_) + "%";
-    t += " | " + fixed(lastGpuMs_, 1) + " ms/frame GPU, " + fixed(lastFrameMs_, 1) + " wall | " + fixed(1e-3 / costMs_, 2) +
-         " M paths/s | " + settingsText() + " | " + (debugView_ ? "srgb" : operatorName(op_)) + " EV " + fixed(ev_, 1);
+    t += " | " + fixed(lastGpuMs_, 1) + " ms/frame GPU, " + fixed(lastFrameMs_, 1) + " wall | " +
+         fixed(1e-3 / costMs_, 2) + " M paths/s | " + settingsText() + " | " +
+         (debugView_ ? "srgb" : operatorName(op_)) + " EV " + fixed(ev_, 1);
     if (fly_) t += " | fly x" + fixed(controller_.speed(), 2);
-    if (paused_) t += " | paused";
-    else if (!workLeft()) t += " | done";
+    if (paused_)
+        t += " | paused";
+    else if (!workLeft())
+        t += " | done";
     window_.setTitle(t);
 }
 

@@ -87,7 +87,7 @@ private:
     std::vector<double> tileMs_;
     glm::uvec3 tileMsKey_{0};
     Clock::time_point changeTime_ = Clock::now(); // of the last change that restarted accumulation
-    double renderSeconds_ = 0; // wall time of frames since then
+    double renderSeconds_ = 0;                    // wall time of frames since then
 
     // Presentation.
     std::unique_ptr<Swapchain> swapchain_;

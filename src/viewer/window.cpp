@@ -22,8 +22,8 @@ bool isSet(const char* name) {
 } // namespace
 
 bool Input::any() const {
-    return leftDrag != glm::vec2(0.0f) || panDrag != glm::vec2(0.0f) || rightDrag != glm::vec2(0.0f) || scroll != 0.0f ||
-           !keys.empty();
+    return leftDrag != glm::vec2(0.0f) || panDrag != glm::vec2(0.0f) || rightDrag != glm::vec2(0.0f) ||
+           scroll != 0.0f || !keys.empty();
 }
 
 std::string missingDisplayReason() {
@@ -66,7 +66,8 @@ std::vector<std::string> Window::requiredInstanceExtensions() {
 VkSurfaceKHR Window::createSurface(VkInstance instance) {
     VkSurfaceKHR surface = VK_NULL_HANDLE;
     VkResult result = glfwCreateWindowSurface(instance, window_, nullptr, &surface);
-    if (result != VK_SUCCESS) throw NoDisplayError("cannot create a Vulkan surface for the window (" + describeVkResult(result) + ")");
+    if (result != VK_SUCCESS)
+        throw NoDisplayError("cannot create a Vulkan surface for the window (" + describeVkResult(result) + ")");
     return surface;
 }
 
@@ -95,8 +96,10 @@ void Window::onCursor(GLFWwindow* w, double x, double y) {
     const glm::vec2 delta = self->haveCursor_ ? glm::vec2(p - self->cursor_) : glm::vec2(0.0f);
     self->cursor_ = p;
     self->haveCursor_ = true;
-    const bool shift = glfwGetKey(w, GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS || glfwGetKey(w, GLFW_KEY_RIGHT_SHIFT) == GLFW_PRESS;
-    if (glfwGetMouseButton(w, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS) (shift ? self->input_.panDrag : self->input_.leftDrag) += delta;
+    const bool shift =
+        glfwGetKey(w, GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS || glfwGetKey(w, GLFW_KEY_RIGHT_SHIFT) == GLFW_PRESS;
+    if (glfwGetMouseButton(w, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS)
+        (shift ? self->input_.panDrag : self->input_.leftDrag) += delta;
     if (glfwGetMouseButton(w, GLFW_MOUSE_BUTTON_MIDDLE) == GLFW_PRESS) self->input_.panDrag += delta;
     if (glfwGetMouseButton(w, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS) self->input_.rightDrag += delta;
 }

@@ -26,8 +26,8 @@ struct KeyPress {
 
 // Input since the previous takeInput(): drags in window pixels (x right, y down).
 struct Input {
-    glm::vec2 leftDrag{0.0f};   // without shift
-    glm::vec2 panDrag{0.0f};    // middle button, or shift + left
+    glm::vec2 leftDrag{0.0f}; // without shift
+    glm::vec2 panDrag{0.0f};  // middle button, or shift + left
     glm::vec2 rightDrag{0.0f};
     float scroll = 0.0f;        // wheel clicks, positive away from the user
     std::vector<KeyPress> keys; // presses and auto-repeats

@@ -29,8 +29,7 @@ struct Tri {
     glm::vec3 v0, v1, v2;
 };
 
-Aabb triBounds(const Tri& t)
-{
+Aabb triBounds(const Tri& t) {
     Aabb b;
     b.grow(t.v0);
     b.grow(t.v1);
@@ -38,16 +37,14 @@ Aabb triBounds(const Tri& t)
     return b;
 }
 
-std::vector<Aabb> boundsOf(const std::vector<Tri>& tris)
-{
+std::vector<Aabb> boundsOf(const std::vector<Tri>& tris) {
     std::vector<Aabb> b(tris.size());
     for (size_t i = 0; i < tris.size(); ++i) b[i] = triBounds(tris[i]);
     return b;
 }
 
 // Small triangles (vertex offsets within +-size) with centres uniform in [0,1]^3.
-std::vector<Tri> randomTris(size_t n, uint32_t seed, float size)
-{
+std::vector<Tri> randomTris(size_t n, uint32_t seed, float size) {
     std::mt19937 rng(seed);
     std::uniform_real_distribution<float> u(0.0f, 1.0f), o(-size, size);
     std::vector<Tri> tris(n);
@@ -60,20 +57,15 @@ std::vector<Tri> randomTris(size_t n, uint32_t seed, float size)
     return tris;
 }
 
-bool sameBox(const glm::vec3& alo, const glm::vec3& ahi, const Aabb& b)
-{
-    return alo == b.lo && ahi == b.hi;
-}
+bool sameBox(const glm::vec3& alo, const glm::vec3& ahi, const Aabb& b) { return alo == b.lo && ahi == b.hi; }
 
-double nodeArea(const BvhNode& n)
-{
+double nodeArea(const BvhNode& n) {
     const glm::dvec3 d = glm::dvec3(n.hi) - glm::dvec3(n.lo);
     return 2.0 * (d.x * d.y + d.y * d.z + d.z * d.x);
 }
 
 // Same definition as documented for Bvh::sahCost.
-double sahOf(const pt::BvhNodeArray& nodes, size_t primCount, const BvhBuildOptions& o)
-{
+double sahOf(const pt::BvhNodeArray& nodes, size_t primCount, const BvhBuildOptions& o) {
     double sum = 0.0;
     size_t interior = 0;
     for (const BvhNode& n : nodes) {
@@ -89,8 +81,7 @@ double sahOf(const pt::BvhNodeArray& nodes, size_t primCount, const BvhBuildOpti
 }
 
 // Checks every structural property of the tree; returns the number of leaves.
-size_t checkStructure(const Bvh& bvh, const std::vector<Aabb>& prims, const BvhBuildOptions& opt)
-{
+size_t checkStructure(const Bvh& bvh, const std::vector<Aabb>& prims, const BvhBuildOptions& opt) {
     const size_t n = prims.size();
     if (n == 0) {
         EXPECT_TRUE(bvh.nodes.empty());
@@ -111,7 +102,7 @@ size_t checkStructure(const Bvh& bvh, const std::vector<Aabb>& prims, const BvhB
     EXPECT_EQ(dupPrims, 0u) << "primitive listed twice in primOrder";
 
     std::vector<uint8_t> covered(n, 0), visited(bvh.nodes.size(), 0);
-    std::vector<std::pair<uint32_t, int>> stack{ { 0u, 0 } };
+    std::vector<std::pair<uint32_t, int>> stack{{0u, 0}};
     size_t leaves = 0, failures = 0;
     uint32_t nextPair = 1; // depth-first layout: children pairs in preorder of their parents
     int maxDepth = 0;
@@ -138,14 +129,14 @@ size_t checkStructure(const Bvh& bvh, const std::vector<Aabb>& prims, const BvhB
             }
             nextPair = l + 2;
             Aabb u;
-            u.grow(Aabb{ bvh.nodes[l].lo, bvh.nodes[l].hi });
-            u.grow(Aabb{ bvh.nodes[l + 1].lo, bvh.nodes[l + 1].hi });
+            u.grow(Aabb{bvh.nodes[l].lo, bvh.nodes[l].hi});
+            u.grow(Aabb{bvh.nodes[l + 1].lo, bvh.nodes[l + 1].hi});
             if (!sameBox(nd.lo, nd.hi, u)) {
                 ADD_FAILURE() << "interior node " << idx << " is not the tight union of its children";
                 ++failures;
             }
-            stack.push_back({ l + 1, depth + 1 });
-            stack.push_back({ l, depth + 1 });
+            stack.push_back({l + 1, depth + 1});
+            stack.push_back({l, depth + 1});
         } else {
             ++leaves;
             maxDepth = std::max(maxDepth, depth);
@@ -173,8 +164,7 @@ size_t checkStructure(const Bvh& bvh, const std::vector<Aabb>& prims, const BvhB
         }
     }
     EXPECT_EQ(std::count(covered.begin(), covered.end(), 1), std::ptrdiff_t(n)) << "leaves do not cover [0,N)";
-    EXPECT_EQ(std::count(visited.begin(), visited.end(), 1), std::ptrdiff_t(bvh.nodes.size()))
-        << "unreachable nodes";
+    EXPECT_EQ(std::count(visited.begin(), visited.end(), 1), std::ptrdiff_t(bvh.nodes.size())) << "unreachable nodes";
     EXPECT_EQ(bvh.nodes.size(), 2 * leaves - 1);
     EXPECT_EQ(bvh.maxDepth, maxDepth);
     EXPECT_NEAR(bvh.sahCost, sahOf(bvh.nodes, n, opt), 1e-9 * std::max(1.0, bvh.sahCost));
@@ -194,8 +184,7 @@ struct Hit {
 
 // Möller-Trumbore without epsilons (det == 0 is the only rejection), accepting t > 0. Brute force
 // and BVH traversal use this same function, so equal inputs give bit-equal t.
-bool intersectTri(const Ray& r, const Tri& tri, float& t)
-{
+bool intersectTri(const Ray& r, const Tri& tri, float& t) {
     const glm::vec3 e1 = tri.v1 - tri.v0, e2 = tri.v2 - tri.v0;
     const glm::vec3 p = glm::cross(r.d, e2);
     const float det = glm::dot(e1, p);
@@ -212,8 +201,7 @@ bool intersectTri(const Ray& r, const Tri& tri, float& t)
 }
 
 // Closest hit, ties on t broken towards the smaller primitive index (so the answer is unique).
-void consider(const Ray& r, const std::vector<Tri>& tris, uint32_t prim, Hit& h)
-{
+void consider(const Ray& r, const std::vector<Tri>& tris, uint32_t prim, Hit& h) {
     float t;
     if (intersectTri(r, tris[prim], t) && (t < h.t || (t == h.t && prim < h.prim))) {
         h.t = t;
@@ -221,8 +209,7 @@ void consider(const Ray& r, const std::vector<Tri>& tris, uint32_t prim, Hit& h)
     }
 }
 
-Hit bruteForce(const Ray& r, const std::vector<Tri>& tris)
-{
+Hit bruteForce(const Ray& r, const std::vector<Tri>& tris) {
     Hit h;
     for (uint32_t i = 0; i < tris.size(); ++i) consider(r, tris, i, h);
     return h;
@@ -237,8 +224,7 @@ Hit bruteForce(const Ray& r, const std::vector<Tri>& tris)
 // The interval is compared with a small relative slack so that rounding differences between the
 // box test and the triangle test cannot drop a hit that lies on a box face (the structure test
 // separately checks that the boxes are exact).
-bool slab(const BvhNode& n, const Ray& r, const glm::vec3& invD, float tMax, float& tNear)
-{
+bool slab(const BvhNode& n, const Ray& r, const glm::vec3& invD, float tMax, float& tNear) {
     float t0 = 0.0f, t1 = tMax;
     for (int a = 0; a < 3; ++a) {
         float tn = (n.lo[a] - r.o[a]) * invD[a];
@@ -251,8 +237,7 @@ bool slab(const BvhNode& n, const Ray& r, const glm::vec3& invD, float tMax, flo
     return t0 <= t1 + 1e-5f * std::fabs(t1) + 1e-6f;
 }
 
-Hit traverse(const Bvh& bvh, const std::vector<Tri>& tris, const Ray& r, size_t* nodesVisited = nullptr)
-{
+Hit traverse(const Bvh& bvh, const std::vector<Tri>& tris, const Ray& r, size_t* nodesVisited = nullptr) {
     Hit h;
     if (bvh.nodes.empty()) return h;
     const glm::vec3 invD = 1.0f / r.d;
@@ -292,8 +277,7 @@ Hit traverse(const Bvh& bvh, const std::vector<Tri>& tris, const Ray& r, size_t*
 
 // Returns how many rays hit something; every ray must match brute force exactly. The brute force
 // reference runs on all cores (it dominates the test time).
-size_t expectSameHits(const Bvh& bvh, const std::vector<Tri>& tris, const std::vector<Ray>& rays)
-{
+size_t expectSameHits(const Bvh& bvh, const std::vector<Tri>& tris, const std::vector<Ray>& rays) {
     std::vector<Hit> reference(rays.size());
     const size_t workers = std::max(1u, std::thread::hardware_concurrency());
     std::vector<std::thread> pool;
@@ -311,16 +295,15 @@ size_t expectSameHits(const Bvh& bvh, const std::vector<Tri>& tris, const std::v
         if (a.prim != b.prim || !(a.t == b.t || (std::isinf(a.t) && std::isinf(b.t)))) {
             if (++mismatches <= 5)
                 ADD_FAILURE() << "ray " << i << " o=(" << rays[i].o.x << "," << rays[i].o.y << "," << rays[i].o.z
-                              << ") d=(" << rays[i].d.x << "," << rays[i].d.y << "," << rays[i].d.z
-                              << "): bvh prim " << a.prim << " t " << a.t << ", brute prim " << b.prim << " t " << b.t;
+                              << ") d=(" << rays[i].d.x << "," << rays[i].d.y << "," << rays[i].d.z << "): bvh prim "
+                              << a.prim << " t " << a.t << ", brute prim " << b.prim << " t " << b.t;
         }
     }
     EXPECT_EQ(mismatches, 0u);
     return hits;
 }
 
-std::vector<Ray> randomRays(size_t n, uint32_t seed)
-{
+std::vector<Ray> randomRays(size_t n, uint32_t seed) {
     std::mt19937 rng(seed);
     std::uniform_real_distribution<float> u(0.0f, 1.0f), wide(-0.5f, 1.5f);
     std::vector<Ray> rays(n);
@@ -335,14 +318,17 @@ std::vector<Ray> randomRays(size_t n, uint32_t seed)
 
 // The 6 axis directions, written with signed zeros so that 1/d covers +inf and -inf.
 const glm::vec3 kAxisDirs[] = {
-    { 1.0f, 0.0f, 0.0f }, { -1.0f, -0.0f, 0.0f }, { 0.0f, 1.0f, -0.0f },
-    { -0.0f, -1.0f, 0.0f }, { 0.0f, -0.0f, 1.0f }, { -0.0f, 0.0f, -1.0f },
+    {1.0f, 0.0f, 0.0f},
+    {-1.0f, -0.0f, 0.0f},
+    {0.0f, 1.0f, -0.0f},
+    {-0.0f, -1.0f, 0.0f},
+    {0.0f, -0.0f, 1.0f},
+    {-0.0f, 0.0f, -1.0f},
 };
 
 // ---- Tests ------------------------------------------------------------------------------------
 
-TEST(Aabb, BasicOperations)
-{
+TEST(Aabb, BasicOperations) {
     Aabb b;
     EXPECT_TRUE(b.empty());
     EXPECT_EQ(b.surfaceArea(), 0.0f);
@@ -359,46 +345,43 @@ TEST(Aabb, BasicOperations)
     EXPECT_EQ(c.hi, b.hi);
 }
 
-TEST(Bvh, ZeroPrimitives)
-{
+TEST(Bvh, ZeroPrimitives) {
     const Bvh bvh = pt::buildBvh({});
     EXPECT_TRUE(bvh.nodes.empty());
     EXPECT_TRUE(bvh.primOrder.empty());
     EXPECT_EQ(bvh.sahCost, 0.0);
     EXPECT_EQ(bvh.maxDepth, 0);
-    EXPECT_EQ(traverse(bvh, {}, Ray{ glm::vec3(0), glm::vec3(1, 0, 0) }).prim, kNoPrim);
+    EXPECT_EQ(traverse(bvh, {}, Ray{glm::vec3(0), glm::vec3(1, 0, 0)}).prim, kNoPrim);
 }
 
-TEST(Bvh, OnePrimitive)
-{
-    const std::vector<Tri> tris{ Tri{ { 0, 0, 0 }, { 1, 0, 0 }, { 0, 1, 0 } } };
+TEST(Bvh, OnePrimitive) {
+    const std::vector<Tri> tris{Tri{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}};
     const std::vector<Aabb> prims = boundsOf(tris);
     const Bvh bvh = pt::buildBvh(prims);
     ASSERT_EQ(bvh.nodes.size(), 1u);
     EXPECT_EQ(bvh.nodes[0].count, 1u);
     EXPECT_EQ(bvh.nodes[0].leftOrFirst, 0u);
-    EXPECT_EQ(bvh.primOrder, std::vector<uint32_t>{ 0 });
+    EXPECT_EQ(bvh.primOrder, std::vector<uint32_t>{0});
     EXPECT_EQ(bvh.maxDepth, 0);
     EXPECT_DOUBLE_EQ(bvh.sahCost, 1.0);
     checkStructure(bvh, prims, {});
-    const Hit h = traverse(bvh, tris, Ray{ { 0.25f, 0.25f, 1.0f }, { 0, 0, -1 } });
+    const Hit h = traverse(bvh, tris, Ray{{0.25f, 0.25f, 1.0f}, {0, 0, -1}});
     EXPECT_EQ(h.prim, 0u);
     EXPECT_EQ(h.t, 1.0f);
 
     // A single point primitive: zero root area.
-    const std::vector<Aabb> point{ Aabb{ glm::vec3(1), glm::vec3(1) } };
+    const std::vector<Aabb> point{Aabb{glm::vec3(1), glm::vec3(1)}};
     const Bvh p = pt::buildBvh(point);
     ASSERT_EQ(p.nodes.size(), 1u);
     EXPECT_EQ(p.nodes[0].count, 1u);
     checkStructure(p, point, {});
 }
 
-TEST(Bvh, StructureForVariousOptions)
-{
+TEST(Bvh, StructureForVariousOptions) {
     const std::vector<Aabb> prims = boundsOf(randomTris(20000, 1, 0.02f));
-    for (int bins : { 1, 2, 8, 16, 32, 128, 1000 }) // 1 and 1000 are clamped to [2, 128]
-        for (int maxLeaf : { 1, 4, 8 })
-            for (float isect : { 0.25f, 1.0f, 8.0f }) {
+    for (int bins : {1, 2, 8, 16, 32, 128, 1000}) // 1 and 1000 are clamped to [2, 128]
+        for (int maxLeaf : {1, 4, 8})
+            for (float isect : {0.25f, 1.0f, 8.0f}) {
                 SCOPED_TRACE("bins " + std::to_string(bins) + " maxLeaf " + std::to_string(maxLeaf) + " isect " +
                              std::to_string(isect));
                 BvhBuildOptions o;
@@ -412,10 +395,9 @@ TEST(Bvh, StructureForVariousOptions)
             }
 }
 
-TEST(Bvh, SmallCountsAllMaxLeafSizes)
-{
+TEST(Bvh, SmallCountsAllMaxLeafSizes) {
     for (size_t n = 1; n <= 40; ++n)
-        for (int maxLeaf : { 1, 2, 4, 7 }) {
+        for (int maxLeaf : {1, 2, 4, 7}) {
             const std::vector<Aabb> prims = boundsOf(randomTris(n, uint32_t(100 + n), 0.1f));
             BvhBuildOptions o;
             o.maxLeafSize = maxLeaf;
@@ -424,8 +406,7 @@ TEST(Bvh, SmallCountsAllMaxLeafSizes)
         }
 }
 
-TEST(Bvh, ClosestHitMatchesBruteForceOnRandomRays)
-{
+TEST(Bvh, ClosestHitMatchesBruteForceOnRandomRays) {
     const std::vector<Tri> tris = randomTris(2000, 7, 0.05f);
     const Bvh bvh = pt::buildBvh(boundsOf(tris));
     const std::vector<Ray> rays = randomRays(100000, 8);
@@ -433,8 +414,7 @@ TEST(Bvh, ClosestHitMatchesBruteForceOnRandomRays)
     EXPECT_GT(hits, rays.size() / 5) << "too few hits for the test to mean much";
 }
 
-TEST(Bvh, ClosestHitAxisAlignedRaysAndOriginsOnBoxPlanes)
-{
+TEST(Bvh, ClosestHitAxisAlignedRaysAndOriginsOnBoxPlanes) {
     const std::vector<Tri> tris = randomTris(2000, 11, 0.05f);
     const Bvh bvh = pt::buildBvh(boundsOf(tris));
     std::mt19937 rng(12);
@@ -442,7 +422,7 @@ TEST(Bvh, ClosestHitAxisAlignedRaysAndOriginsOnBoxPlanes)
     std::uniform_int_distribution<size_t> pickNode(0, bvh.nodes.size() - 1);
     std::vector<Ray> rays;
     // Axis-aligned directions with random origins.
-    for (int i = 0; i < 12000; ++i) rays.push_back(Ray{ glm::vec3(u(rng), u(rng), u(rng)), kAxisDirs[i % 6] });
+    for (int i = 0; i < 12000; ++i) rays.push_back(Ray{glm::vec3(u(rng), u(rng), u(rng)), kAxisDirs[i % 6]});
     // Origins with one, two or three coordinates exactly on a node's box planes; axis-aligned and
     // random directions. These make (plane - o) == 0, i.e. 0 * inf in the slab test.
     for (int i = 0; i < 24000; ++i) {
@@ -453,24 +433,24 @@ TEST(Bvh, ClosestHitAxisAlignedRaysAndOriginsOnBoxPlanes)
             if (mask & (1 << a)) o[a] = (rng() & 1) ? n.lo[a] : n.hi[a];
         glm::vec3 d = (i % 2) ? kAxisDirs[(i / 2) % 6] : glm::vec3(u(rng), u(rng), u(rng)) - o;
         if (glm::dot(d, d) == 0.0f) d = glm::vec3(1, 0, 0);
-        rays.push_back(Ray{ o, d });
+        rays.push_back(Ray{o, d});
     }
     const size_t hits = expectSameHits(bvh, tris, rays);
     EXPECT_GT(hits, rays.size() / 20);
 }
 
-TEST(Bvh, FlatAxisAlignedGeometry)
-{
+TEST(Bvh, FlatAxisAlignedGeometry) {
     // Every triangle lies in one of a few planes z = const, so every box (leaf and, for the
     // single-plane part, interior) has zero thickness.
     std::mt19937 rng(21);
     std::uniform_real_distribution<float> u(0.0f, 1.0f), o(-0.05f, 0.05f);
-    const float planes[] = { 0.25f, 0.5f, 0.75f };
+    const float planes[] = {0.25f, 0.5f, 0.75f};
     std::vector<Tri> tris(2000);
     for (size_t i = 0; i < tris.size(); ++i) {
         const float z = planes[i % 3];
         const glm::vec3 c(u(rng), u(rng), z);
-        tris[i] = Tri{ c + glm::vec3(o(rng), o(rng), 0), c + glm::vec3(o(rng), o(rng), 0), c + glm::vec3(o(rng), o(rng), 0) };
+        tris[i] =
+            Tri{c + glm::vec3(o(rng), o(rng), 0), c + glm::vec3(o(rng), o(rng), 0), c + glm::vec3(o(rng), o(rng), 0)};
     }
     const std::vector<Aabb> prims = boundsOf(tris);
     BvhBuildOptions opt;
@@ -482,9 +462,9 @@ TEST(Bvh, FlatAxisAlignedGeometry)
         const float z = (i % 4 == 3) ? u(rng) : planes[i % 3];
         const glm::vec3 org(u(rng), u(rng), z);
         switch (i % 3) {
-        case 0: rays.push_back(Ray{ org, kAxisDirs[i % 6] }); break; // in-plane or through planes
-        case 1: rays.push_back(Ray{ glm::vec3(org.x, org.y, (i & 1) ? 1.5f : -0.5f), kAxisDirs[(i & 1) ? 5 : 4] }); break;
-        default: rays.push_back(Ray{ org, glm::vec3(u(rng) - 0.5f, u(rng) - 0.5f, u(rng) - 0.5f) }); break;
+        case 0: rays.push_back(Ray{org, kAxisDirs[i % 6]}); break; // in-plane or through planes
+        case 1: rays.push_back(Ray{glm::vec3(org.x, org.y, (i & 1) ? 1.5f : -0.5f), kAxisDirs[(i & 1) ? 5 : 4]}); break;
+        default: rays.push_back(Ray{org, glm::vec3(u(rng) - 0.5f, u(rng) - 0.5f, u(rng) - 0.5f)}); break;
         }
     }
     const size_t hits = expectSameHits(bvh, tris, rays);
@@ -501,8 +481,7 @@ TEST(Bvh, FlatAxisAlignedGeometry)
     expectSameHits(flat, one, rays);
 }
 
-TEST(Bvh, DegeneratePointAndLineBounds)
-{
+TEST(Bvh, DegeneratePointAndLineBounds) {
     // Points on a line: every box has zero area, so all SAH costs tie; depth must stay logarithmic.
     std::mt19937 rng(31);
     std::uniform_real_distribution<float> u(0.0f, 1.0f);
@@ -520,12 +499,11 @@ TEST(Bvh, DegeneratePointAndLineBounds)
     checkStructure(b, pts, opt);
 }
 
-TEST(Bvh, ManyIdenticalTriangles)
-{
+TEST(Bvh, ManyIdenticalTriangles) {
     // 2000 copies of one triangle plus random ones: all copies are hit at the same t, and the
     // traversal must still report the smallest index, i.e. reach every copy's leaf.
     std::vector<Tri> tris = randomTris(1000, 41, 0.05f);
-    const Tri same{ { 0.3f, 0.3f, 0.5f }, { 0.7f, 0.3f, 0.5f }, { 0.3f, 0.7f, 0.5f } };
+    const Tri same{{0.3f, 0.3f, 0.5f}, {0.7f, 0.3f, 0.5f}, {0.3f, 0.7f, 0.5f}};
     tris.insert(tris.end(), 2000, same);
     std::mt19937 rng(42);
     std::shuffle(tris.begin(), tris.end(), rng);
@@ -538,14 +516,13 @@ TEST(Bvh, ManyIdenticalTriangles)
     std::vector<Ray> rays;
     for (int i = 0; i < 5000; ++i) {
         const glm::vec3 p(u(rng), u(rng), 0.5f);
-        rays.push_back(Ray{ p + glm::vec3(0, 0, (i & 1) ? 1.0f : -1.0f), kAxisDirs[(i & 1) ? 5 : 4] });
+        rays.push_back(Ray{p + glm::vec3(0, 0, (i & 1) ? 1.0f : -1.0f), kAxisDirs[(i & 1) ? 5 : 4]});
     }
     expectSameHits(bvh, tris, rays);
 }
 
-TEST(Bvh, MillionIdenticalTriangles)
-{
-    const Tri t{ { 0, 0, 0 }, { 1, 0, 0 }, { 0, 1, 0 } };
+TEST(Bvh, MillionIdenticalTriangles) {
+    const Tri t{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
     const std::vector<Aabb> prims(1000000, triBounds(t));
     BvhBuildOptions opt;
     opt.threads = 2;
@@ -559,15 +536,14 @@ TEST(Bvh, MillionIdenticalTriangles)
     EXPECT_EQ(std::memcmp(one.nodes.data(), bvh.nodes.data(), one.nodes.size() * sizeof(BvhNode)), 0);
 }
 
-TEST(Bvh, DeterministicAcrossThreadCounts)
-{
+TEST(Bvh, DeterministicAcrossThreadCounts) {
     // Big enough that the top phase bins in parallel and there are many subtree tasks.
     const std::vector<Aabb> prims = boundsOf(randomTris(300000, 51, 0.01f));
     BvhBuildOptions opt;
     opt.threads = 1;
     const Bvh ref = pt::buildBvh(prims, opt);
     checkStructure(ref, prims, opt);
-    for (int threads : { 2, 3, 4, 0 }) {
+    for (int threads : {2, 3, 4, 0}) {
         SCOPED_TRACE("threads " + std::to_string(threads));
         opt.threads = threads;
         const Bvh b = pt::buildBvh(prims, opt);
@@ -579,8 +555,7 @@ TEST(Bvh, DeterministicAcrossThreadCounts)
     }
 }
 
-TEST(Bvh, BigLeavesAtTheTopLevels)
-{
+TEST(Bvh, BigLeavesAtTheTopLevels) {
     // Leaves bigger than the builder's task size are made by its top (level-by-level) phase:
     // here the root splits two far-apart clusters and each 10,000-primitive cluster is one leaf
     // (splitting costs at least traversalCost = 1, more than 10,000 * intersectCost).
@@ -612,9 +587,8 @@ TEST(Bvh, BigLeavesAtTheTopLevels)
 }
 
 // Reference object-median build (split the centroid range at the median of the widest axis).
-void medianBuild(pt::BvhNodeArray& nodes, std::vector<uint32_t>& order, const std::vector<Aabb>& prims,
-                 uint32_t slot, uint32_t begin, uint32_t end, int maxLeaf)
-{
+void medianBuild(pt::BvhNodeArray& nodes, std::vector<uint32_t>& order, const std::vector<Aabb>& prims, uint32_t slot,
+    uint32_t begin, uint32_t end, int maxLeaf) {
     Aabb b, cb;
     for (uint32_t i = begin; i < end; ++i) {
         b.grow(prims[order[i]]);
@@ -631,7 +605,7 @@ void medianBuild(pt::BvhNodeArray& nodes, std::vector<uint32_t>& order, const st
     const int axis = (e.x >= e.y && e.x >= e.z) ? 0 : (e.y >= e.z ? 1 : 2);
     const uint32_t mid = begin + (end - begin) / 2;
     std::nth_element(order.begin() + begin, order.begin() + mid, order.begin() + end,
-                     [&](uint32_t a, uint32_t c) { return prims[a].centroid()[axis] < prims[c].centroid()[axis]; });
+        [&](uint32_t a, uint32_t c) { return prims[a].centroid()[axis] < prims[c].centroid()[axis]; });
     const uint32_t left = uint32_t(nodes.size());
     nodes.push_back({});
     nodes.push_back({});
@@ -641,8 +615,7 @@ void medianBuild(pt::BvhNodeArray& nodes, std::vector<uint32_t>& order, const st
     medianBuild(nodes, order, prims, left + 1, mid, end, maxLeaf);
 }
 
-TEST(Bvh, SahNoWorseThanMedianSplit)
-{
+TEST(Bvh, SahNoWorseThanMedianSplit) {
     // Uniform small triangles, and a clustered scene with a few big triangles where SAH matters more.
     std::vector<Tri> uniform = randomTris(50000, 61, 0.01f);
     std::vector<Tri> clustered = randomTris(45000, 62, 0.002f);
@@ -653,7 +626,7 @@ TEST(Bvh, SahNoWorseThanMedianSplit)
     }
     const std::vector<Tri> big = randomTris(5000, 63, 0.3f);
     clustered.insert(clustered.end(), big.begin(), big.end());
-    for (const auto* tris : { &uniform, &clustered }) {
+    for (const auto* tris : {&uniform, &clustered}) {
         const std::vector<Aabb> prims = boundsOf(*tris);
         BvhBuildOptions opt;
         const Bvh sah = pt::buildBvh(prims, opt);
@@ -668,12 +641,11 @@ TEST(Bvh, SahNoWorseThanMedianSplit)
     }
 }
 
-TEST(Bvh, BuildSpeedMillionRandomTriangles)
-{
+TEST(Bvh, BuildSpeedMillionRandomTriangles) {
     // Timing print only (no assertion: the machine may be shared). Best of two builds.
     const std::vector<Aabb> prims = boundsOf(randomTris(1000000, 71, 0.01f));
     BvhBuildOptions opt;
-    for (int threads : { 1, 2 }) {
+    for (int threads : {1, 2}) {
         opt.threads = threads;
         Bvh bvh = pt::buildBvh(prims, opt);
         double best = bvh.buildSeconds;
@@ -682,8 +654,9 @@ TEST(Bvh, BuildSpeedMillionRandomTriangles)
             best = std::min(best, bvh.buildSeconds);
             checkStructure(bvh, prims, opt);
         }
-        std::printf("  [speed] 1M random triangles, threads=%d: %.1f ms, %.2f M prims/s, SAH %.2f, %zu nodes, depth %d\n",
-                    threads, best * 1e3, 1e-6 * double(prims.size()) / best, bvh.sahCost, bvh.nodes.size(), bvh.maxDepth);
+        std::printf(
+            "  [speed] 1M random triangles, threads=%d: %.1f ms, %.2f M prims/s, SAH %.2f, %zu nodes, depth %d\n",
+            threads, best * 1e3, 1e-6 * double(prims.size()) / best, bvh.sahCost, bvh.nodes.size(), bvh.maxDepth);
     }
 }
 

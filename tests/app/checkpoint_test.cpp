@@ -18,8 +18,8 @@ namespace pt::test {
 namespace {
 
 // Many one-sample passes, a checkpoint after each: slow enough to be interrupted mid-way.
-const std::vector<std::string> kRender = {"render", "--width", "32", "--height", "24", "--max-depth", "4", "--pass-spp",
-    "1", "-q"};
+const std::vector<std::string> kRender = {
+    "render", "--width", "32", "--height", "24", "--max-depth", "4", "--pass-spp", "1", "-q"};
 
 // The render every test resumes to: seed 9, 300 spp, unless `more` says otherwise.
 std::vector<std::string> with(const std::vector<std::string>& more) {
@@ -34,7 +34,8 @@ std::vector<std::string> with(const std::vector<std::string>& more) {
 std::string errorLines(const std::string& err) {
     std::string lines;
     size_t count = 0, start = 0;
-    while ((start = err.find("pt: error: ", start)) != std::string::npos) ++count, lines += err.substr(start, err.find('\n', start) - start), ++start;
+    while ((start = err.find("pt: error: ", start)) != std::string::npos)
+        ++count, lines += err.substr(start, err.find('\n', start) - start), ++start;
     return std::to_string(count) + ": " + lines;
 }
 
@@ -56,10 +57,11 @@ protected:
     void interruptAndResume(int signal, int expectedStatus, const std::string& name) {
         const fs::path checkpoint = dir_ / (name + ".ckpt.exr");
         bool sent = false;
-        const PtRun first = runPt(dir_, with({"-o", name + ".exr", "--checkpoint", checkpoint.string(), "--checkpoint-every", "0"}),
-            {}, [&](pid_t pid, double) {
-                if (!sent && fs::exists(checkpoint)) sent = ::kill(pid, signal) == 0;
-            });
+        const PtRun first =
+            runPt(dir_, with({"-o", name + ".exr", "--checkpoint", checkpoint.string(), "--checkpoint-every", "0"}), {},
+                [&](pid_t pid, double) {
+                    if (!sent && fs::exists(checkpoint)) sent = ::kill(pid, signal) == 0;
+                });
         ASSERT_TRUE(sent) << "the render finished before a checkpoint appeared\n" << first.describe();
         ASSERT_EQ(first.status, expectedStatus) << first.describe();
         EXPECT_FALSE(first.signaled);
@@ -99,8 +101,9 @@ TEST_F(Checkpoint, DeviceLostSavesProgressThenResumesBitIdentically) {
     renderUninterrupted();
     const fs::path checkpoint = dir_ / "lost.ckpt.exr";
     // The 40th submission and every later one report VK_ERROR_DEVICE_LOST.
-    const PtRun lost = runPt(dir_, with({"-o", "lost.exr", "--checkpoint", checkpoint.string(), "--checkpoint-every", "0"}),
-        {{"PT_FAULT", "device-lost@40"}});
+    const PtRun lost =
+        runPt(dir_, with({"-o", "lost.exr", "--checkpoint", checkpoint.string(), "--checkpoint-every", "0"}),
+            {{"PT_FAULT", "device-lost@40"}});
     EXPECT_EQ(lost.status, 1) << lost.describe();
     EXPECT_EQ(errorLines(lost.err).substr(0, 2), "1:") << lost.err;
     EXPECT_NE(lost.err.find("device lost"), std::string::npos) << lost.err;

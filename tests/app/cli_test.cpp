@@ -80,11 +80,11 @@ protected:
 };
 
 // Exited (not killed by a signal, not timed out) with status `expected`.
-#define EXPECT_EXIT_STATUS(r, expected)                                                                         \
-    do {                                                                                                        \
-        EXPECT_FALSE((r).signaled) << (r);                                                                      \
-        EXPECT_FALSE((r).timedOut) << (r);                                                                      \
-        EXPECT_EQ((r).status, (expected)) << (r);                                                               \
+#define EXPECT_EXIT_STATUS(r, expected)                                                                                \
+    do {                                                                                                               \
+        EXPECT_FALSE((r).signaled) << (r);                                                                             \
+        EXPECT_FALSE((r).timedOut) << (r);                                                                             \
+        EXPECT_EQ((r).status, (expected)) << (r);                                                                      \
     } while (0)
 
 // ---------------------------------------------------------------------------------------------
@@ -159,10 +159,10 @@ TEST(CliCorpus, AtLeastFortyKindsAcrossTheFormats) {
 using pt::test::corpusParamName;
 
 INSTANTIATE_TEST_SUITE_P(Corpus, MalformedCorpus, ::testing::ValuesIn(corpusFiles()), corpusParamName);
-INSTANTIATE_TEST_SUITE_P(XmlCorpus, MalformedXmlCorpus, ::testing::ValuesIn(pt::test::malformedCorpusFiles("malformed_xml")),
-    corpusParamName);
-INSTANTIATE_TEST_SUITE_P(PlyCorpus, MalformedPlyCorpus, ::testing::ValuesIn(pt::test::malformedCorpusFiles("malformed_ply")),
-    corpusParamName);
+INSTANTIATE_TEST_SUITE_P(XmlCorpus, MalformedXmlCorpus,
+    ::testing::ValuesIn(pt::test::malformedCorpusFiles("malformed_xml")), corpusParamName);
+INSTANTIATE_TEST_SUITE_P(PlyCorpus, MalformedPlyCorpus,
+    ::testing::ValuesIn(pt::test::malformedCorpusFiles("malformed_ply")), corpusParamName);
 
 // ---------------------------------------------------------------------------------------------
 // Successful renders
@@ -203,8 +203,8 @@ TEST_F(CliTest, DefaultSceneWritesExrWithMetadataAndPng) {
 
 TEST_F(CliTest, SeedAndSppReachTheMetadata) {
     const fs::path exr = dir_ / "sub" / "dir" / "seeded.exr";
-    const PtRun r = run({"render", "-o", exr.string(), "--spp", "3", "--seed", "7", "--width", "8", "--height", "4",
-        "--quiet"});
+    const PtRun r =
+        run({"render", "-o", exr.string(), "--spp", "3", "--seed", "7", "--width", "8", "--height", "4", "--quiet"});
     EXPECT_EXIT_STATUS(r, 0);
     ASSERT_TRUE(fs::exists(exr)) << r; // parent directories are created
     pt::ImageMetadata meta;
@@ -234,7 +234,8 @@ TEST_F(CliTest, DevicesListsAtLeastOneDevice) {
     int devices = 0;
     for (std::string line; std::getline(s, line);) {
         // "<index>: <name> (<type>, <driver>, Vulkan x.y)"
-        if (line.empty() || !std::isdigit(static_cast<unsigned char>(line[0])) || line.find(": ") == std::string::npos) continue;
+        if (line.empty() || !std::isdigit(static_cast<unsigned char>(line[0])) || line.find(": ") == std::string::npos)
+            continue;
         if (line.find("llvmpipe") != std::string::npos || line.find("GPU") != std::string::npos) ++devices;
     }
     EXPECT_GE(devices, 1) << r;
@@ -314,8 +315,8 @@ TEST_F(CliTest, UnknownSceneExtension) {
 }
 
 TEST_F(CliTest, AbsurdResolutionFailsFastWithoutAllocating) {
-    const PtRun r =
-        run({"render", "--spp", "1", "--width", "100000", "--height", "100000", "-o", (dir_ / "x.exr").string()}, {}, 10);
+    const PtRun r = run(
+        {"render", "--spp", "1", "--width", "100000", "--height", "100000", "-o", (dir_ / "x.exr").string()}, {}, 10);
     EXPECT_EXIT_STATUS(r, 1);
     EXPECT_LT(r.seconds, 2.0) << r;
     const std::string line = r.errorLine();
@@ -326,8 +327,8 @@ TEST_F(CliTest, AbsurdResolutionFailsFastWithoutAllocating) {
 
 TEST_F(CliTest, ReferenceOfTheWrongSize) {
     const std::string ref = kDiffuseReference.string(); // 256x256
-    const PtRun r =
-        run({"render", "--reference", ref, "--spp", "1", "--width", "32", "--height", "32", "-o", (dir_ / "x.exr").string()});
+    const PtRun r = run({"render", "--reference", ref, "--spp", "1", "--width", "32", "--height", "32", "-o",
+        (dir_ / "x.exr").string()});
     EXPECT_EXIT_STATUS(r, 1);
     const std::string line = r.errorLine();
     EXPECT_NE(line.find(ref), std::string::npos) << line;
@@ -337,8 +338,8 @@ TEST_F(CliTest, ReferenceOfTheWrongSize) {
 
 TEST_F(CliTest, MissingReference) {
     const std::string ref = (dir_ / "nothere.exr").string();
-    const PtRun r =
-        run({"render", "--reference", ref, "--spp", "1", "--width", "8", "--height", "8", "-o", (dir_ / "x.exr").string()});
+    const PtRun r = run(
+        {"render", "--reference", ref, "--spp", "1", "--width", "8", "--height", "8", "-o", (dir_ / "x.exr").string()});
     EXPECT_EXIT_STATUS(r, 1);
     const std::string line = r.errorLine();
     EXPECT_NE(line.find(ref), std::string::npos) << line;
@@ -347,8 +348,8 @@ TEST_F(CliTest, MissingReference) {
 
 TEST_F(CliTest, ReferenceThatIsNotAnExr) {
     const std::string ref = kDiffuseScene.string();
-    const PtRun r =
-        run({"render", "--reference", ref, "--spp", "1", "--width", "8", "--height", "8", "-o", (dir_ / "x.exr").string()});
+    const PtRun r = run(
+        {"render", "--reference", ref, "--spp", "1", "--width", "8", "--height", "8", "-o", (dir_ / "x.exr").string()});
     EXPECT_EXIT_STATUS(r, 1);
     EXPECT_NE(r.errorLine().find(ref), std::string::npos);
     EXPECT_TRUE(outputs().empty());
@@ -394,8 +395,8 @@ TEST_F(CliTest, OutputMustBeExr) {
 }
 
 TEST_F(CliTest, CameraOutOfRange) {
-    const PtRun r =
-        run({"render", "--camera", "5", "--spp", "1", "--width", "8", "--height", "8", "-o", (dir_ / "x.exr").string()});
+    const PtRun r = run(
+        {"render", "--camera", "5", "--spp", "1", "--width", "8", "--height", "8", "-o", (dir_ / "x.exr").string()});
     EXPECT_EXIT_STATUS(r, 1);
     const std::string line = r.errorLine();
     EXPECT_NE(lower(line).find("camera"), std::string::npos) << line;
@@ -449,7 +450,8 @@ TEST_F(CliTest, HelpExitsZero) {
 // Vulkan failures are one clear line too: no driver at all, and a --device nothing matches.
 TEST_F(CliTest, NoVulkanDriverIsAClearError) {
     const PtRun r = run({"render", "--spp", "1", "--width", "8", "--height", "8", "-o", (dir_ / "x.exr").string()},
-        {{"VK_ICD_FILENAMES", (dir_ / "no-such-icd.json").string()}, {"VK_DRIVER_FILES", (dir_ / "no-such-icd.json").string()}});
+        {{"VK_ICD_FILENAMES", (dir_ / "no-such-icd.json").string()},
+            {"VK_DRIVER_FILES", (dir_ / "no-such-icd.json").string()}});
     EXPECT_EXIT_STATUS(r, 1);
     const std::string line = lower(r.errorLine());
     EXPECT_NE(line.find("vulkan"), std::string::npos) << line;
@@ -470,7 +472,8 @@ TEST_F(CliTest, UnmatchedDeviceIsAClearError) {
 // nothing emitting says so instead of silently writing a black image.
 TEST_F(CliTest, UnsupportedFeaturesAreListedInOneWarning) {
     const std::string scene = (kTests / "data" / "cli" / "unsupported_features.gltf").string();
-    const PtRun r = run({"render", scene, "--spp", "1", "--width", "8", "--height", "8", "-o", (dir_ / "x.exr").string()});
+    const PtRun r =
+        run({"render", scene, "--spp", "1", "--width", "8", "--height", "8", "-o", (dir_ / "x.exr").string()});
     EXPECT_EXIT_STATUS(r, 0);
     std::vector<std::string> notSupported, noLight;
     std::istringstream lines(r.err);
@@ -548,7 +551,7 @@ std::vector<std::map<std::string, std::string>> readCsv(const fs::path& path) {
 
 TEST_F(CliTest, BenchWritesCsvPlotAndContactSheets) {
     const PtRun r = run({"bench", "--width", "32", "--height", "32", "--budgets", "0.8,0.2", "--configs",
-                                "nee+is+rr,none,nee+is+rr+sobol", "--reference-spp", "256", "-o", "bench"},
+                            "nee+is+rr,none,nee+is+rr+sobol", "--reference-spp", "256", "-o", "bench"},
         {}, 120);
     EXPECT_EXIT_STATUS(r, 0);
     const fs::path dir = dir_ / "bench";
@@ -607,7 +610,7 @@ TEST_F(CliTest, BenchRejectsBadBudget) {
 TEST_F(CliTest, TargetErrorStopsNearTheTrueError) {
     // The estimate needs no reference; the reference here only checks it.
     const PtRun r = run({"render", kDiffuseScene.string(), "--target-error", "0.02", "--reference",
-                                kDiffuseReference.string(), "-o", "t.exr", "--quiet"},
+                            kDiffuseReference.string(), "-o", "t.exr", "--quiet"},
         {}, 120);
     EXPECT_EXIT_STATUS(r, 0);
     EXPECT_NE(r.err.find("(target 0.02 reached)"), std::string::npos) << r;
@@ -647,6 +650,6 @@ TEST_F(CliTest, VarianceChannelsMatchTheSpreadOfSeeds) {
     ASSERT_GT(ratios.size(), 1000u);
     std::nth_element(ratios.begin(), ratios.begin() + ratios.size() / 2, ratios.end());
     const double median = ratios[ratios.size() / 2];
-    EXPECT_GT(median, 0.3); // a variance twice too large gives 0.23
+    EXPECT_GT(median, 0.3);  // a variance twice too large gives 0.23
     EXPECT_LT(median, 0.65); // half as large, 0.9
 }

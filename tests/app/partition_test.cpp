@@ -95,7 +95,8 @@ TEST_F(Partition, MergeOfAPartitionEqualsTheSingleRenderUpToOneUlp) {
 // caustics are light traced) merge to the single render, and resuming needs the same setting.
 TEST_F(Partition, LightTracedPartsMergeToTheSingleRender) {
     const std::string glass = std::string(PT_TEST_DATA_DIR) + "/references/cbox-glass-mirror/scene.gltf";
-    const std::vector<std::string> scene = {"render", glass, "--width", "24", "--height", "24", "--max-depth", "8", "-q"};
+    const std::vector<std::string> scene = {
+        "render", glass, "--width", "24", "--height", "24", "--max-depth", "8", "-q"};
     auto renderGlass = [&](const std::vector<std::string>& more) {
         const PtRun r = runPt(dir_, with(scene, more));
         ASSERT_EQ(r.status, 0) << r.describe();

@@ -45,7 +45,8 @@ pid_t findChunkWorker() {
         if (name.find_first_not_of("0123456789") != std::string::npos) continue;
         const pid_t pid = static_cast<pid_t>(std::stol(name));
         const std::string cmd = commandLine(pid);
-        if (cmd.rfind(std::string(PT_BINARY) + " render", 0) != 0 || cmd.find("--samples") == std::string::npos) continue;
+        if (cmd.rfind(std::string(PT_BINARY) + " render", 0) != 0 || cmd.find("--samples") == std::string::npos)
+            continue;
         const pid_t parent = parentOf(pid);
         if (parent > 1 && commandLine(parent).rfind("ray::", 0) == 0) return parent;
     }

@@ -83,7 +83,8 @@ void setSplats(AccumulationState& s, double sum, double sumSquares) {
     for (size_t p = 0; p < s.pixels(); ++p)
         for (uint32_t c = 0; c < 3; ++c) {
             s.splats[SPLAT_WORDS_PER_PIXEL * p + SPLAT_SUM + c] = uint64_t(std::llround(sum * SPLAT_SUM_SCALE));
-            s.splats[SPLAT_WORDS_PER_PIXEL * p + SPLAT_SUM_SQUARES + c] = uint64_t(std::llround(sumSquares * SPLAT_SQUARE_SCALE));
+            s.splats[SPLAT_WORDS_PER_PIXEL * p + SPLAT_SUM_SQUARES + c] =
+                uint64_t(std::llround(sumSquares * SPLAT_SQUARE_SCALE));
         }
 }
 
@@ -142,7 +143,8 @@ TEST(Splats, ACorruptSplatChannelIsRefusedByName) {
         "state.sum_lo.B", "state.sum_sq.R", "state.sum_sq.G", "state.sum_sq.B", "state.sum_sq_lo.R",
         "state.sum_sq_lo.G", "state.sum_sq_lo.B", "state.dropped"};
     for (int word = 0; word < int(SPLAT_WORDS_PER_PIXEL); ++word)
-        for (int piece = 0; piece < 3; ++piece) names.push_back("state.splat." + std::to_string(word) + "." + std::to_string(piece));
+        for (int piece = 0; piece < 3; ++piece)
+            names.push_back("state.splat." + std::to_string(word) + "." + std::to_string(piece));
     ImageMetadata meta;
     ExrChannels channels = readExrChannels(path, names, &meta);
     channels.channels[13 + 4].values[1] = 0.5f; // state.splat.1.1

@@ -21,9 +21,8 @@ pt::Image constantImage(int w, int h, float r, float g, float b) {
 TEST(Metrics, RelMseAndMseByHand) {
     // Values exactly representable in float so the expectation is exact.
     pt::Image x{2, 1, {1, 2, 3, 0.25f, /**/ 0, 0, 0.5f, 7}};
-    pt::Image ref{2, 1, {1, 1, 1, 99, /**/ 0.5f, 0, 0, -3}};  // alpha ignored
-    const double expectedRel =
-        (0.0 + 1.0 / 1.01 + 4.0 / 1.01 + 0.25 / 0.26 + 0.0 + 0.25 / 0.01) / 6.0;
+    pt::Image ref{2, 1, {1, 1, 1, 99, /**/ 0.5f, 0, 0, -3}}; // alpha ignored
+    const double expectedRel = (0.0 + 1.0 / 1.01 + 4.0 / 1.01 + 0.25 / 0.26 + 0.0 + 0.25 / 0.01) / 6.0;
     EXPECT_NEAR(pt::relMse(x, ref), expectedRel, 1e-12);
     const double expectedMse = (0 + 1 + 4 + 0.25 + 0 + 0.25) / 6.0;
     EXPECT_NEAR(pt::mse(x, ref), expectedMse, 1e-12);
@@ -62,7 +61,7 @@ TEST(Metrics, BlockStatsDropsPartialBlocks) {
     EXPECT_DOUBLE_EQ(s.mean[0], (0 + 1 + 10 + 11) / 4.0);
     EXPECT_DOUBLE_EQ(s.mean[1], 1.0);
     EXPECT_DOUBLE_EQ(s.mean[2], 0.5);
-    EXPECT_DOUBLE_EQ(s.varOfMean[0], 16.0 / 16.0);        // sum 4*4 / n^2
+    EXPECT_DOUBLE_EQ(s.varOfMean[0], 16.0 / 16.0); // sum 4*4 / n^2
     EXPECT_DOUBLE_EQ(s.varOfMean[1], (0 + 1 + 0 + 1) / 16.0);
     // Block 1 covers x 2..3.
     EXPECT_DOUBLE_EQ(s.mean[3], (2 + 3 + 12 + 13) / 4.0);
@@ -93,19 +92,18 @@ Noisy noisyRender(int w, int h, std::mt19937& rng, float shift) {
     return r;
 }
 
-constexpr int kW = 128, kH = 128, kBlock = 8;  // 256 blocks x 3 = 768 dof
+constexpr int kW = 128, kH = 128, kBlock = 8; // 256 blocks x 3 = 768 dof
 
 TEST(Metrics, IndependentNoisyImagesAgree) {
     std::mt19937 rng(2024);
     const Noisy a = noisyRender(kW, kH, rng, 0.0f);
     const Noisy b = noisyRender(kW, kH, rng, 0.0f);
     const pt::AgreementResult r =
-        pt::compareBlocks(pt::blockStats(a.mean, &a.var, kBlock),
-                          pt::blockStats(b.mean, &b.var, kBlock));
+        pt::compareBlocks(pt::blockStats(a.mean, &a.var, kBlock), pt::blockStats(b.mean, &b.var, kBlock));
     EXPECT_EQ(r.dof, 768);
     EXPECT_GE(r.chi2PerDof, 0.7);
     EXPECT_LE(r.chi2PerDof, 1.3);
-    EXPECT_LT(std::abs(r.meanZ), 0.2);  // 1/sqrt(768) = 0.036 expected spread
+    EXPECT_LT(std::abs(r.meanZ), 0.2); // 1/sqrt(768) = 0.036 expected spread
     EXPECT_LT(r.maxAbsZ, 5.0);
     EXPECT_LT(r.meanRelDiff, 0.05);
 }
@@ -117,10 +115,9 @@ TEST(Metrics, NoisyImageAgreesWithExactReference) {
     pt::Image exact = constantImage(kW, kH, 0, 0, 0);
     for (int y = 0; y < kH; ++y)
         for (int x = 0; x < kW; ++x)
-            for (int c = 0; c < 3; ++c)
-                exact.at(x, y)[c] = 0.2f + 0.5f * x / kW + 0.1f * c + 0.3f * y / kH;
-    const pt::AgreementResult r = pt::compareBlocks(pt::blockStats(a.mean, &a.var, kBlock),
-                                                    pt::blockStats(exact, nullptr, kBlock));
+            for (int c = 0; c < 3; ++c) exact.at(x, y)[c] = 0.2f + 0.5f * x / kW + 0.1f * c + 0.3f * y / kH;
+    const pt::AgreementResult r =
+        pt::compareBlocks(pt::blockStats(a.mean, &a.var, kBlock), pt::blockStats(exact, nullptr, kBlock));
     EXPECT_GE(r.chi2PerDof, 0.7);
     EXPECT_LE(r.chi2PerDof, 1.3);
 }
@@ -132,37 +129,33 @@ TEST(Metrics, ShiftedMeanIsDetected) {
     const Noisy a = noisyRender(kW, kH, rng, 0.0f);
     const Noisy b = noisyRender(kW, kH, rng, 5.0f / kBlock);
     const pt::AgreementResult r =
-        pt::compareBlocks(pt::blockStats(a.mean, &a.var, kBlock),
-                          pt::blockStats(b.mean, &b.var, kBlock));
+        pt::compareBlocks(pt::blockStats(a.mean, &a.var, kBlock), pt::blockStats(b.mean, &b.var, kBlock));
     EXPECT_GT(r.chi2PerDof, 10.0);
-    EXPECT_LT(r.meanZ, -3.0);  // a is below b: sign tells the direction
+    EXPECT_LT(r.meanZ, -3.0); // a is below b: sign tells the direction
 }
 
 TEST(Metrics, BlackBlocksAreSkippedAndNanFails) {
     const pt::Image black = constantImage(16, 16, 0, 0, 0);
-    const pt::AgreementResult r = pt::compareBlocks(pt::blockStats(black, &black, 4),
-                                                    pt::blockStats(black, &black, 4));
+    const pt::AgreementResult r = pt::compareBlocks(pt::blockStats(black, &black, 4), pt::blockStats(black, &black, 4));
     EXPECT_EQ(r.dof, 0);
     EXPECT_EQ(r.chi2PerDof, 0.0);
 
     pt::Image withNan = constantImage(16, 16, 1, 1, 1);
     const pt::Image var = constantImage(16, 16, 0.1f, 0.1f, 0.1f);
     withNan.at(3, 3)[1] = std::numeric_limits<float>::quiet_NaN();
-    const pt::AgreementResult n = pt::compareBlocks(pt::blockStats(withNan, &var, 4),
-                                                    pt::blockStats(withNan, &var, 4));
-    EXPECT_FALSE(n.chi2PerDof <= 1.3);  // NaN must not pass a threshold test
+    const pt::AgreementResult n = pt::compareBlocks(pt::blockStats(withNan, &var, 4), pt::blockStats(withNan, &var, 4));
+    EXPECT_FALSE(n.chi2PerDof <= 1.3); // NaN must not pass a threshold test
     EXPECT_TRUE(std::isinf(n.maxAbsZ));
 }
 
 TEST(Metrics, CompareBlocksRejectsBadInput) {
     const pt::Image a = constantImage(16, 16, 1, 1, 1);
-    EXPECT_THROW(pt::compareBlocks(pt::blockStats(a, nullptr, 4), pt::blockStats(a, nullptr, 4)),
-                 std::invalid_argument);
-    EXPECT_THROW(pt::compareBlocks(pt::blockStats(a, &a, 4), pt::blockStats(a, &a, 8)),
-                 std::invalid_argument);
+    EXPECT_THROW(
+        pt::compareBlocks(pt::blockStats(a, nullptr, 4), pt::blockStats(a, nullptr, 4)), std::invalid_argument);
+    EXPECT_THROW(pt::compareBlocks(pt::blockStats(a, &a, 4), pt::blockStats(a, &a, 8)), std::invalid_argument);
 }
 
-}  // namespace
+} // namespace
 
 namespace {
 
@@ -176,7 +169,8 @@ struct SyntheticRender {
     pt::Image truth, mean, var;
 };
 
-template <class Draw> SyntheticRender syntheticRender(int n, Draw draw) {
+template <class Draw>
+SyntheticRender syntheticRender(int n, Draw draw) {
     const int w = 64, h = 64;
     SyntheticRender r;
     r.truth = pt::Image{w, h, std::vector<float>(w * h * 4)};
@@ -208,9 +202,8 @@ double estimateOverTruth(const SyntheticRender& r) {
 TEST(Metrics, EstimatedRelMseTracksTheTrueOneWithoutAReference) {
     std::mt19937 rng(11);
     for (int n : {4, 16, 64, 256}) {
-        const double ratio = estimateOverTruth(syntheticRender(n, [&](double mu) {
-            return std::exponential_distribution<double>(1.0 / mu)(rng);
-        }));
+        const double ratio = estimateOverTruth(
+            syntheticRender(n, [&](double mu) { return std::exponential_distribution<double>(1.0 / mu)(rng); }));
         std::printf("exponential, %d spp: estimated / true relMSE %.3f\n", n, ratio);
         EXPECT_LT(ratio, 1.5) << n << " spp";
         EXPECT_GT(ratio, 1.0 / 1.5) << n << " spp";

@@ -78,8 +78,7 @@ void expectMagenta(const std::vector<uint8_t>& rgb, std::size_t i) {
 
 TEST(Tonemap, ClampSrgbMatchesWritePngValues) {
     // Same table as image_io_test's PngTonemapAndNanMarker: Clamp + sRGB is writePng.
-    const auto rgb = pt::tonemapToRgb8(greyRow({0.0f, 1.0f, 0.5f, 0.002f, -1.0f, 10.0f, 0.2f}),
-                                       clampOp(true));
+    const auto rgb = pt::tonemapToRgb8(greyRow({0.0f, 1.0f, 0.5f, 0.002f, -1.0f, 10.0f, 0.2f}), clampOp(true));
     ASSERT_EQ(rgb.size(), 7u * 3);
     const int expected[] = {0, 255, 188, 7, 0, 255, 124};
     for (int i = 0; i < 7; ++i) expectGrey(rgb, i, expected[i]);
@@ -108,8 +107,8 @@ TEST(Tonemap, Gamma22VersusSrgbCurve) {
 TEST(Tonemap, ClampExposureAndLayout) {
     // Distinct pixels in a 2x2 image check row-major, top-row-first order; +1 stop doubles.
     Image im{2, 2,
-             {0.1f, 0.0f, 0.0f, 1.0f, 0.0f, 0.2f, 0.0f, 1.0f,   // top row
-              0.0f, 0.0f, 0.3f, 1.0f, 0.4f, 0.4f, 0.4f, 1.0f}}; // bottom row
+        {0.1f, 0.0f, 0.0f, 1.0f, 0.0f, 0.2f, 0.0f, 1.0f,      // top row
+            0.0f, 0.0f, 0.3f, 1.0f, 0.4f, 0.4f, 0.4f, 1.0f}}; // bottom row
     const auto rgb = pt::tonemapToRgb8(im, clampOp(false), 1.0f);
     const std::vector<uint8_t> expected = {51, 0, 0, 0, 102, 0, 0, 0, 153, 204, 204, 204};
     EXPECT_EQ(rgb, expected);
@@ -137,11 +136,10 @@ TEST(Tonemap, DeltaKeepsBlackPixelsFinite) {
 TEST(Tonemap, ConstantImageMapsToKeyOverOnePlusKey) {
     // L_avg = delta + Y, so L = key * Y/(Y + delta) ~ key and Ld ~ key/(1+key), at any level.
     for (float level : {0.3f, 1.0f, 50.0f}) {
-        for (auto [key, expected] : {std::pair{0.18f, 39},   // 38.90
-                                     std::pair{0.5f, 85},    // 84.99
-                                     std::pair{2.0f, 170}}) { // 169.99
-            const auto rgb = pt::tonemapToRgb8(constant(3, 2, level, level, level),
-                                               photographic(key));
+        for (auto [key, expected] : {std::pair{0.18f, 39}, // 38.90
+                 std::pair{0.5f, 85},                      // 84.99
+                 std::pair{2.0f, 170}}) {                  // 169.99
+            const auto rgb = pt::tonemapToRgb8(constant(3, 2, level, level, level), photographic(key));
             for (std::size_t i = 0; i < 6; ++i) expectGrey(rgb, i, expected);
         }
     }
@@ -226,8 +224,7 @@ TEST(Tonemap, SaturationRestoresColour) {
     EXPECT_EQ(px(s05, 0, 2), 55);
     // s = 0 gives grey at the mapped luminance, even for a zero channel (0^0 = 1).
     expectGrey(pt::tonemapToRgb8(im, photographic(0.5f, 0.0f, 0.0f)), 0, 85);
-    expectGrey(pt::tonemapToRgb8(constant(1, 1, 0.9f, 0.0f, 0.0f), photographic(0.5f, 0, 0)), 0,
-               85);
+    expectGrey(pt::tonemapToRgb8(constant(1, 1, 0.9f, 0.0f, 0.0f), photographic(0.5f, 0, 0)), 0, 85);
 }
 
 TEST(Tonemap, NonFinitePixelsAreMagentaAndIgnored) {
@@ -236,9 +233,8 @@ TEST(Tonemap, NonFinitePixelsAreMagentaAndIgnored) {
     const Image clean = greyRow({0.01f, 1.0f, 0.3f, 2.0f});
     Image dirty = greyRow({0.01f, 1.0f, 0.3f, 2.0f, kNaN, kInf, -kInf, 1.0f});
     dirty.at(7, 0)[1] = kNaN; // one bad channel is enough
-    for (const TonemapSettings& s :
-         {photographic(0.18f), photographic(0.18f, 1.0f), photographic(0.18f, 50.0f, 0.5f),
-          clampOp(true), clampOp(false, 2.2f)}) {
+    for (const TonemapSettings& s : {photographic(0.18f), photographic(0.18f, 1.0f), photographic(0.18f, 50.0f, 0.5f),
+             clampOp(true), clampOp(false, 2.2f)}) {
         const auto a = pt::tonemapToRgb8(clean, s);
         const auto b = pt::tonemapToRgb8(dirty, s);
         for (std::size_t i = 0; i < 4; ++i)
@@ -253,9 +249,8 @@ TEST(Tonemap, NonFinitePixelsAreMagentaAndIgnored) {
 
 TEST(Tonemap, AllBlackImageStaysBlack) {
     const Image black = constant(4, 3, 0.0f, 0.0f, 0.0f);
-    for (const TonemapSettings& s :
-         {photographic(0.18f), photographic(0.18f, 1.0f), photographic(0.18f, 100.0f, 0.5f),
-          photographic(0.18f, 0.0f, 0.0f), clampOp(true), clampOp(false, 2.2f)}) {
+    for (const TonemapSettings& s : {photographic(0.18f), photographic(0.18f, 1.0f), photographic(0.18f, 100.0f, 0.5f),
+             photographic(0.18f, 0.0f, 0.0f), clampOp(true), clampOp(false, 2.2f)}) {
         for (float exposure : {0.0f, 5.0f}) {
             const auto rgb = pt::tonemapToRgb8(black, s, exposure);
             ASSERT_EQ(rgb.size(), 4u * 3 * 3);
@@ -267,12 +262,9 @@ TEST(Tonemap, AllBlackImageStaysBlack) {
 TEST(Tonemap, NegativeChannelsClampToZero) {
     // (0.5, -0.5, -2) tone maps as (0.5, 0, 0); an all-negative pixel is black. Both images
     // also have a mid-grey pixel so L_avg is the same.
-    const Image neg{3, 1, {0.5f, -0.5f, -2.0f, 1.0f, -1.0f, -1.0f, -1.0f, 1.0f,
-                           0.4f, 0.4f, 0.4f, 1.0f}};
-    const Image pos{3, 1, {0.5f, 0.0f, 0.0f, 1.0f, 0.0f, 0.0f, 0.0f, 1.0f,
-                           0.4f, 0.4f, 0.4f, 1.0f}};
-    for (const TonemapSettings& s : {photographic(0.18f), photographic(0.18f, 1.0f, 0.7f),
-                                     clampOp(true)})
+    const Image neg{3, 1, {0.5f, -0.5f, -2.0f, 1.0f, -1.0f, -1.0f, -1.0f, 1.0f, 0.4f, 0.4f, 0.4f, 1.0f}};
+    const Image pos{3, 1, {0.5f, 0.0f, 0.0f, 1.0f, 0.0f, 0.0f, 0.0f, 1.0f, 0.4f, 0.4f, 0.4f, 1.0f}};
+    for (const TonemapSettings& s : {photographic(0.18f), photographic(0.18f, 1.0f, 0.7f), clampOp(true)})
         EXPECT_EQ(pt::tonemapToRgb8(neg, s), pt::tonemapToRgb8(pos, s));
 }
 
@@ -300,8 +292,7 @@ TEST(Tonemap, RejectsBadArguments) {
     EXPECT_THROW(pt::tonemapToRgb8(ok, photographic(0.18f, -1.0f)), std::invalid_argument);
     EXPECT_THROW(pt::tonemapToRgb8(ok, photographic(0.18f, 101.0f)), std::invalid_argument);
     EXPECT_THROW(pt::tonemapToRgb8(ok, photographic(0.18f, kNaN)), std::invalid_argument);
-    EXPECT_THROW(pt::tonemapToRgb8(ok, photographic(0.18f, 0.0f, -0.5f)),
-                 std::invalid_argument);
+    EXPECT_THROW(pt::tonemapToRgb8(ok, photographic(0.18f, 0.0f, -0.5f)), std::invalid_argument);
     // Key, burn and saturation are not looked at by Clamp.
     TonemapSettings c = photographic(0.0f, -5.0f, -1.0f);
     c.op = TonemapSettings::Operator::Clamp;
@@ -321,8 +312,7 @@ protected:
         fs::remove_all(dir_, ignored);
     }
     std::size_t entries() const {
-        return static_cast<std::size_t>(
-            std::distance(fs::directory_iterator(dir_), fs::directory_iterator()));
+        return static_cast<std::size_t>(std::distance(fs::directory_iterator(dir_), fs::directory_iterator()));
     }
     fs::path dir_;
 };
@@ -369,15 +359,15 @@ TEST_F(TonemapPngTest, ErrorsNameThePathAndLeaveNoFile) {
     const Image ok = greyRow({0.5f});
     const fs::path missingDir = dir_ / "no" / "such" / "dir.png";
     expectPathError([&] { pt::writeTonemappedPng(missingDir, ok, clampOp(true)); }, missingDir,
-                    "cannot write (No such file or directory)");
+        "cannot write (No such file or directory)");
 
     const fs::path bad = dir_ / "bad.png";
-    expectPathError([&] { pt::writeTonemappedPng(bad, ok, photographic(-1.0f)); }, bad,
-                    "key value");
-    expectPathError([&] { pt::writeTonemappedPng(bad, Image{}, clampOp(true)); }, bad,
-                    "empty image");
+    expectPathError([&] { pt::writeTonemappedPng(bad, ok, photographic(-1.0f)); }, bad, "key value");
+    expectPathError([&] { pt::writeTonemappedPng(bad, Image{}, clampOp(true)); }, bad, "empty image");
     expectPathError(
-        [&] { pt::writeTonemappedPng(bad, Image{2, 2, std::vector<float>(3)}, clampOp(true)); },
+        [&] {
+            pt::writeTonemappedPng(bad, Image{2, 2, std::vector<float>(3)}, clampOp(true));
+        },
         bad, "pixel buffer");
     EXPECT_EQ(entries(), 0u);
 
@@ -385,8 +375,7 @@ TEST_F(TonemapPngTest, ErrorsNameThePathAndLeaveNoFile) {
     const fs::path keep = dir_ / "keep.png";
     pt::writeTonemappedPng(keep, ok, clampOp(true));
     const auto size = fs::file_size(keep);
-    expectPathError([&] { pt::writeTonemappedPng(keep, ok, clampOp(false, -2.0f)); }, keep,
-                    "gamma");
+    expectPathError([&] { pt::writeTonemappedPng(keep, ok, clampOp(false, -2.0f)); }, keep, "gamma");
     EXPECT_EQ(fs::file_size(keep), size);
     EXPECT_EQ(entries(), 1u);
 }

@@ -30,8 +30,8 @@ TEST(FeatureTable, ConstantIdsAreUniqueAndClearOfTheWorkgroupSize) {
 
 TEST(FeatureTable, TheCornellBoxNeedsTrianglesDiffuseAndEmitters) {
     const FlatScene box = flattenScene(loadDefaultScene());
-    EXPECT_EQ(computeFeatures(box, IntegratorSettings{}).describe(),
-              "triangles diffuse emitters nee mis rr cosine-sampling");
+    EXPECT_EQ(
+        computeFeatures(box, IntegratorSettings{}).describe(), "triangles diffuse emitters nee mis rr cosine-sampling");
     IntegratorSettings classic;
     classic.classic = true; // the course's ray tracer samples lights everywhere, no MIS or roulette
     EXPECT_EQ(computeFeatures(box, classic).describe(), "classic triangles diffuse emitters nee cosine-sampling");

@@ -11,7 +11,8 @@
 namespace pt::test {
 
 inline int fuzzEntry(FuzzTarget target, const uint8_t* data, size_t size) {
-    const std::string problem = fuzzOneInput(target, std::string_view(reinterpret_cast<const char*>(data), size), PT_FUZZ_DATA_DIR);
+    const std::string problem =
+        fuzzOneInput(target, std::string_view(reinterpret_cast<const char*>(data), size), PT_FUZZ_DATA_DIR);
     if (!problem.empty()) {
         std::fprintf(stderr, "fuzz_%s: loader contract broken: %s\n", fuzzTargetName(target), problem.c_str());
         std::abort();

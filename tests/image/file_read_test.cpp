@@ -61,7 +61,8 @@ TEST_F(FileRead, MissingFilesAndPathsThroughAFileAreNotFoundWithTheSystemsReason
     EXPECT_EQ(through.problem, FileProblem::NotFound);
     EXPECT_EQ(through.reason, "Not a directory");
     EXPECT_EQ(pt::describeFileProblem(missing), "file not found");
-    EXPECT_EQ(message([&] { pt::readInputFile(dir_ / "none.bin"); }), (dir_ / "none.bin").string() + ": file not found");
+    EXPECT_EQ(
+        message([&] { pt::readInputFile(dir_ / "none.bin"); }), (dir_ / "none.bin").string() + ": file not found");
 }
 
 TEST_F(FileRead, DirectoriesDevicesFifosAndSocketsAreRefused) {
@@ -81,7 +82,8 @@ TEST_F(FileRead, StreamedDevicesAreReadToTheirEndWithinTheLimit) {
     ASSERT_TRUE(null);
     EXPECT_FALSE(null.regular);
     EXPECT_TRUE(null.bytes.empty());
-    EXPECT_EQ(pt::tryReadInputFile("/dev/null", {.refuseEmpty = true, .streamNonRegular = true}).problem, FileProblem::Empty);
+    EXPECT_EQ(
+        pt::tryReadInputFile("/dev/null", {.refuseEmpty = true, .streamNonRegular = true}).problem, FileProblem::Empty);
     const pt::FileRead zero = pt::tryReadInputFile("/dev/zero", {.maxBytes = 100000, .streamNonRegular = true});
     EXPECT_EQ(zero.problem, FileProblem::TooLarge);
     EXPECT_TRUE(zero.bytes.empty());
@@ -140,11 +142,14 @@ TEST_F(FileRead, UnreadableFilesAndFoldersWithoutSearchPermission) {
 TEST_F(FileRead, ReadersKeepTheirOwnWords) {
     const fs::path fifo = dir_ / "fifo.png";
     ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
-    EXPECT_EQ(message([&] { pt::loadTextureImage(dir_ / "none.png"); }), (dir_ / "none.png").string() + ": cannot open image file (not found)");
+    EXPECT_EQ(message([&] { pt::loadTextureImage(dir_ / "none.png"); }),
+        (dir_ / "none.png").string() + ": cannot open image file (not found)");
     EXPECT_EQ(message([&] { pt::loadTextureImage(dir_); }), dir_.string() + ": not a regular file");
     EXPECT_EQ(message([&] { pt::loadTextureImage(fifo); }), fifo.string() + ": not a regular file");
-    EXPECT_EQ(message([&] { pt::loadTextureImage(write("empty.png", "")); }), (dir_ / "empty.png").string() + ": image data is empty");
-    EXPECT_EQ(message([&] { pt::readExr(dir_ / "none.exr"); }), (dir_ / "none.exr").string() + ": cannot open (No such file or directory)");
+    EXPECT_EQ(message([&] { pt::loadTextureImage(write("empty.png", "")); }),
+        (dir_ / "empty.png").string() + ": image data is empty");
+    EXPECT_EQ(message([&] { pt::readExr(dir_ / "none.exr"); }),
+        (dir_ / "none.exr").string() + ": cannot open (No such file or directory)");
     EXPECT_EQ(message([&] { pt::readExr(dir_); }), dir_.string() + ": read failed (Is a directory)");
     EXPECT_EQ(message([&] { pt::readExr("/dev/null"); }), "/dev/null: not an OpenEXR file"); // streamed, empty
 }

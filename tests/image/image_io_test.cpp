@@ -93,10 +93,9 @@ TEST_F(ImageIoTest, ExrRoundTripIsBitExactIncludingMetadata) {
     im.rgba[2] = -0.0f;
     im.rgba[3] = std::numeric_limits<float>::denorm_min();
 
-    const pt::ImageMetadata meta = {{"spp", "1024"},
-                                    {"scene", "scenes/cornell box.gltf"},
-                                    {"render:seed", "42"},  // already namespaced
-                                    {"empty", ""}};
+    const pt::ImageMetadata meta = {{"spp", "1024"}, {"scene", "scenes/cornell box.gltf"},
+        {"render:seed", "42"}, // already namespaced
+        {"empty", ""}};
     const fs::path file = dir_ / "round trip.exr";
     pt::writeExr(file, im, meta);
 
@@ -129,7 +128,7 @@ TEST_F(ImageIoTest, ExrOverwriteReplacesFile) {
 
 // Writes a file with OpenEXR directly, as other tools would.
 void writeForeignExr(const fs::path& file, int w, int h, const std::vector<std::string>& names,
-                     const std::vector<half>& data, Imath::V2i origin = {0, 0}) {
+    const std::vector<half>& data, Imath::V2i origin = {0, 0}) {
     Imath::Box2i dw(origin, origin + Imath::V2i(w - 1, h - 1));
     Imf::Header header(dw, dw);
     for (const auto& n : names) header.channels().insert(n, Imf::Channel(Imf::HALF));
@@ -137,8 +136,7 @@ void writeForeignExr(const fs::path& file, int w, int h, const std::vector<std::
     Imf::FrameBuffer fb;
     const std::size_t nc = names.size();
     for (std::size_t c = 0; c < nc; ++c)
-        fb.insert(names[c], Imf::Slice::Make(Imf::HALF, data.data() + c, dw, nc * sizeof(half),
-                                             nc * sizeof(half) * w));
+        fb.insert(names[c], Imf::Slice::Make(Imf::HALF, data.data() + c, dw, nc * sizeof(half), nc * sizeof(half) * w));
     out.setFrameBuffer(fb);
     out.writePixels(h);
 }
@@ -158,7 +156,7 @@ TEST_F(ImageIoTest, ReadsHalfRgbWithoutAlpha) {
         EXPECT_EQ(p[0], 0.25f * i);
         EXPECT_EQ(p[1], 1.5f);
         EXPECT_EQ(p[2], -3.0f);
-        EXPECT_EQ(p[3], 1.0f);  // absent alpha reads as opaque
+        EXPECT_EQ(p[3], 1.0f); // absent alpha reads as opaque
     }
 }
 
@@ -184,8 +182,7 @@ TEST_F(ImageIoTest, TruncatedExrThrowsNamingFile) {
     ASSERT_GT(bytes.size(), 1000u);
     // Cut inside the magic, the header, the offset table, the pixel data and
     // just before the end.
-    for (std::size_t len : {std::size_t(2), std::size_t(40), std::size_t(400),
-                            bytes.size() / 2, bytes.size() - 1}) {
+    for (std::size_t len : {std::size_t(2), std::size_t(40), std::size_t(400), bytes.size() / 2, bytes.size() - 1}) {
         const fs::path file = dir_ / ("truncated_" + std::to_string(len) + ".exr");
         writeBytes(file, bytes.data(), len);
         expectIoError([&] { pt::readExr(file); }, file);
@@ -228,8 +225,7 @@ TEST_F(ImageIoTest, CorruptedExrNeverCrashes) {
     std::mt19937 rng(11);
     for (int trial = 0; trial < 300; ++trial) {
         std::vector<char> bad = bytes;
-        for (int k = 0; k < 1 + trial % 4; ++k)
-            bad[4 + rng() % (bad.size() - 4)] = static_cast<char>(rng());
+        for (int k = 0; k < 1 + trial % 4; ++k) bad[4 + rng() % (bad.size() - 4)] = static_cast<char>(rng());
         const fs::path file = dir_ / "flipped.exr";
         writeBytes(file, bad.data(), bad.size());
         try {
@@ -245,11 +241,11 @@ TEST_F(ImageIoTest, MissingFileAndDirectoryErrors) {
     expectIoError([&] { pt::readExr(missing); }, missing, "No such file or directory");
 
     const fs::path noDir = dir_ / "no_such_dir" / "x.exr";
-    expectIoError([&] { pt::writeExr(noDir, randomImage(2, 2, 1), {}); }, noDir,
-                  "cannot write (No such file or directory)");
+    expectIoError(
+        [&] { pt::writeExr(noDir, randomImage(2, 2, 1), {}); }, noDir, "cannot write (No such file or directory)");
     const fs::path noDirPng = dir_ / "no_such_dir" / "x.png";
-    expectIoError([&] { pt::writePng(noDirPng, randomImage(2, 2, 1)); }, noDirPng,
-                  "cannot write (No such file or directory)");
+    expectIoError(
+        [&] { pt::writePng(noDirPng, randomImage(2, 2, 1)); }, noDirPng, "cannot write (No such file or directory)");
 }
 
 TEST_F(ImageIoTest, InconsistentImageIsRejected) {
@@ -259,25 +255,25 @@ TEST_F(ImageIoTest, InconsistentImageIsRejected) {
     EXPECT_FALSE(fs::exists(dir_ / "bad.exr"));
     // OpenEXR would silently truncate attribute names over 255 characters.
     const pt::ImageMetadata longKey = {{std::string(300, 'k'), "v"}};
-    expectIoError([&] { pt::writeExr(dir_ / "k.exr", randomImage(2, 2, 1), longKey); },
-                  dir_ / "k.exr", "metadata key too long");
+    expectIoError(
+        [&] { pt::writeExr(dir_ / "k.exr", randomImage(2, 2, 1), longKey); }, dir_ / "k.exr", "metadata key too long");
 }
 
 TEST_F(ImageIoTest, PngTonemapAndNanMarker) {
     const float nan = std::numeric_limits<float>::quiet_NaN();
     const float inf = std::numeric_limits<float>::infinity();
     // Pixel values and the 8-bit result expected after the sRGB OETF.
-    const std::vector<std::pair<float, int>> cases = {
-        {0.0f, 0},     {1.0f, 255},  {0.5f, 188},   // 1.055*0.5^(1/2.4)-0.055 = 0.7354
-        {0.002f, 7},                               // linear toe: 12.92*0.002*255 = 6.6
-        {-1.0f, 0},    {10.0f, 255}, {0.2f, 124}};
+    const std::vector<std::pair<float, int>> cases = {{0.0f, 0}, {1.0f, 255},
+        {0.5f, 188}, // 1.055*0.5^(1/2.4)-0.055 = 0.7354
+        {0.002f, 7}, // linear toe: 12.92*0.002*255 = 6.6
+        {-1.0f, 0}, {10.0f, 255}, {0.2f, 124}};
     const int w = static_cast<int>(cases.size()) + 2;
     pt::Image im{w, 1, std::vector<float>(w * 4, 1.0f)};
     for (int x = 0; x < static_cast<int>(cases.size()); ++x) {
         float* p = im.at(x, 0);
         p[0] = p[1] = p[2] = cases[x].first;
     }
-    im.at(w - 2, 0)[1] = nan;  // one bad channel is enough to flag the pixel
+    im.at(w - 2, 0)[1] = nan; // one bad channel is enough to flag the pixel
     im.at(w - 1, 0)[0] = inf;
 
     const fs::path file = dir_ / "out.png";
@@ -303,14 +299,14 @@ TEST_F(ImageIoTest, PngTonemapAndNanMarker) {
 TEST_F(ImageIoTest, PngExposure) {
     pt::Image im{1, 1, {0.25f, 0.125f, 1.0f, 1.0f}};
     const fs::path file = dir_ / "exposed.png";
-    pt::writePng(file, im, 1.0f);  // x2: 0.5, 0.25, 2 (clamped)
+    pt::writePng(file, im, 1.0f); // x2: 0.5, 0.25, 2 (clamped)
     int pw, ph, comp;
     unsigned char* px = stbi_load(file.c_str(), &pw, &ph, &comp, 3);
     ASSERT_NE(px, nullptr);
     EXPECT_EQ(px[0], 188);
-    EXPECT_EQ(px[1], 137);  // 1.055*0.25^(1/2.4)-0.055 = 0.5371
+    EXPECT_EQ(px[1], 137); // 1.055*0.25^(1/2.4)-0.055 = 0.5371
     EXPECT_EQ(px[2], 255);
     stbi_image_free(px);
 }
 
-}  // namespace
+} // namespace

@@ -16,7 +16,8 @@ namespace fs = std::filesystem;
 namespace {
 
 std::string rgbe(int width, int height, const std::string& pixels) {
-    return "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y " + std::to_string(height) + " +X " + std::to_string(width) + "\n" + pixels;
+    return "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y " + std::to_string(height) + " +X " + std::to_string(width) +
+           "\n" + pixels;
 }
 
 fs::path writeTemp(const std::string& name, const std::string& bytes) {
@@ -27,7 +28,8 @@ fs::path writeTemp(const std::string& name, const std::string& bytes) {
 
 TEST(TextureImage, EightBitImagesArePackedRgbaWithRedInTheLowByte) {
     const std::string ppm = std::string("P6\n2 1\n255\n") + std::string("\x10\x20\x30\xff\x00\x80", 6);
-    const pt::TextureImage t = pt::decodeTextureImage(reinterpret_cast<const unsigned char*>(ppm.data()), ppm.size(), "mem");
+    const pt::TextureImage t =
+        pt::decodeTextureImage(reinterpret_cast<const unsigned char*>(ppm.data()), ppm.size(), "mem");
     ASSERT_EQ(t.width, 2);
     ASSERT_EQ(t.height, 1);
     ASSERT_EQ(t.rgba8.size(), 2u);
@@ -58,16 +60,20 @@ TEST(TextureImage, BadImagesAreErrorsNamingTheSource) {
         return std::string("(no error)");
     };
     const std::string garbage = "not an image at all";
-    EXPECT_NE(message([&] { pt::decodeTextureImage(reinterpret_cast<const unsigned char*>(garbage.data()), garbage.size(), "img 3"); })
-                  .find("img 3: cannot decode image"),
+    EXPECT_NE(message([&] {
+        pt::decodeTextureImage(reinterpret_cast<const unsigned char*>(garbage.data()), garbage.size(), "img 3");
+    }).find("img 3: cannot decode image"),
         std::string::npos);
     // A header claiming 20000 x 20000 pixels is refused before anything is allocated.
     const std::string huge = "P6\n20000 20000\n255\n";
-    EXPECT_NE(message([&] { pt::decodeTextureImage(reinterpret_cast<const unsigned char*>(huge.data()), huge.size(), "big"); })
-                  .find("larger than the 16384 pixels"),
+    EXPECT_NE(message([&] {
+        pt::decodeTextureImage(reinterpret_cast<const unsigned char*>(huge.data()), huge.size(), "big");
+    }).find("larger than the 16384 pixels"),
         std::string::npos);
-    EXPECT_NE(message([&] { pt::decodeTextureImage(nullptr, 0, "empty"); }).find("empty: image data is empty"), std::string::npos);
-    EXPECT_NE(message([] { pt::loadTextureImage("/nonexistent/wall.png"); }).find("/nonexistent/wall.png: cannot open"), std::string::npos);
+    EXPECT_NE(message([&] { pt::decodeTextureImage(nullptr, 0, "empty"); }).find("empty: image data is empty"),
+        std::string::npos);
+    EXPECT_NE(message([] { pt::loadTextureImage("/nonexistent/wall.png"); }).find("/nonexistent/wall.png: cannot open"),
+        std::string::npos);
     const fs::path ldr = writeTemp("ldr.ppm", std::string("P6\n1 1\n255\n\x01\x02\x03", 14));
     EXPECT_NE(message([&] { pt::loadRadianceImage(ldr); }).find("needs high dynamic range"), std::string::npos);
     fs::remove(ldr);
@@ -87,17 +93,21 @@ TEST(TextureImage, CorruptRadianceRunLengthsAreErrorsNotHangs) {
     const std::string header = "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 2 +X 8\n";
     const std::string scanlineStart("\x02\x02\x00\x08", 4);
     // The fuzzer's input (base64 Iz9SQURJQU5DRQpGT1JNQVQ9MzItYml0X3JsZV9yZ2JlCgotWSAgMitYIDgK...).
-    const std::string fuzzed = "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y  2+X 8\n" +
-        std::string("\x02\x02\x00\x08\x88\x28\x88\x32\x88\x3c\x88\x81\x02\x02\x00\x08\x88\x28\x88\x32\x88\x3c\x01\x00", 24);
+    const std::string fuzzed =
+        "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y  2+X 8\n" +
+        std::string(
+            "\x02\x02\x00\x08\x88\x28\x88\x32\x88\x3c\x88\x81\x02\x02\x00\x08\x88\x28\x88\x32\x88\x3c\x01\x00", 24);
     EXPECT_NE(message(fuzzed), "(no error)");
     EXPECT_NE(message(header + scanlineStart + std::string("\x00", 1)).find("sky.hdr: Radiance HDR run of length 0"),
         std::string::npos);
-    EXPECT_NE(message(header + scanlineStart + std::string("\x88\x10", 2)).find("sky.hdr: Radiance HDR data ends inside scanline 0"),
+    EXPECT_NE(message(header + scanlineStart + std::string("\x88\x10", 2))
+                  .find("sky.hdr: Radiance HDR data ends inside scanline 0"),
         std::string::npos);
     // A well-formed run-length file still decodes: two scanlines, each channel one run of 8.
     std::string good = header;
     for (int y = 0; y < 2; ++y) good += scanlineStart + std::string("\x88\x80\x88\x40\x88\x20\x88\x82", 8);
-    const pt::TextureImage image = pt::decodeTextureImage(reinterpret_cast<const unsigned char*>(good.data()), good.size(), "good.hdr");
+    const pt::TextureImage image =
+        pt::decodeTextureImage(reinterpret_cast<const unsigned char*>(good.data()), good.size(), "good.hdr");
     ASSERT_EQ(image.rgbaF.size(), 16u);
     EXPECT_NEAR(image.rgbaF[15].x, 2.0f, 0.02f);
 }

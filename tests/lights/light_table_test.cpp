@@ -94,20 +94,20 @@ void checkInvariants(const LightTable& table, const std::vector<GpuTriangle>& tr
 
 TEST(LightTable, PmfIsProportionalToLuminanceTimesAreaAndDoubledForTwoSided) {
     const std::vector<Material> mats = {
-        diffuse(),                                       // 0
-        emitter(glm::vec3(1.0f), false),                 // 1: luminance 1
-        emitter(glm::vec3(2.0f, 0.5f, 0.25f), true),     // 2: two-sided
-        emitter(glm::vec3(0.0f, 0.0f, 3.0f), false),     // 3: blue only
+        diffuse(),                                              // 0
+        emitter(glm::vec3(1.0f), false),                        // 1: luminance 1
+        emitter(glm::vec3(2.0f, 0.5f, 0.25f), true),            // 2: two-sided
+        emitter(glm::vec3(0.0f, 0.0f, 3.0f), false),            // 3: blue only
         emitter(glm::vec3(18.387f, 13.9873f, 6.75357f), false), // 4: the Cornell box light
     };
     std::vector<GpuTriangle> tris = {
-        rightTriangle(1, 1, 0),            // 0: wall
-        rightTriangle(1, 2, 1),            // 1: area 1
-        rightTriangle(2, 3, 0, 1.0f),      // 2: wall
-        rightTriangle(0.5f, 0.5f, 2),      // 3: area 0.125, two-sided
-        rightTriangle(4, 1, 3, -2.0f),     // 4: area 2, blue
+        rightTriangle(1, 1, 0),                // 0: wall
+        rightTriangle(1, 2, 1),                // 1: area 1
+        rightTriangle(2, 3, 0, 1.0f),          // 2: wall
+        rightTriangle(0.5f, 0.5f, 2),          // 3: area 0.125, two-sided
+        rightTriangle(4, 1, 3, -2.0f),         // 4: area 2, blue
         rightTriangle(0.47f, 0.38f, 4, 0.99f), // 5: ceiling light
-        rightTriangle(1, 1, 1, 5.0f),      // 6: same material as 1, area 0.5
+        rightTriangle(1, 1, 1, 5.0f),          // 6: same material as 1, area 0.5
     };
     const std::vector<double> power = expectedPower(tris, mats);
     double total = 0;
@@ -182,7 +182,8 @@ TEST(LightTable, OnlyZeroAreaEmittersGiveAnEmptyTable) {
 
 TEST(LightTable, NoEmittersGiveAnEmptyTableWithCdfZero) {
     const std::vector<Material> mats = {diffuse(), diffuse(glm::vec3(0.9f, 0.1f, 0.1f))};
-    std::vector<GpuTriangle> tris = {rightTriangle(1, 1, 0), rightTriangle(2, 1, 1, 1.0f), rightTriangle(1, 3, 0, 2.0f)};
+    std::vector<GpuTriangle> tris = {
+        rightTriangle(1, 1, 0), rightTriangle(2, 1, 1, 1.0f), rightTriangle(1, 3, 0, 2.0f)};
     LightTable table = pt::buildLightTable(tris, mats);
     EXPECT_TRUE(table.lights.empty());
     EXPECT_EQ(table.cdf, std::vector<float>{0.0f});
@@ -209,8 +210,8 @@ TEST(LightTable, ManyEmittersKeepTheCdfExactAndNormalised) {
         // Areas over six orders of magnitude; every fourth triangle is a plain wall.
         const float scale = std::pow(10.0f, -3.0f + 3.0f * u(rng));
         const uint32_t material = (i % 4 == 0) ? 0u : 1u + static_cast<uint32_t>(u(rng) * 15.99f);
-        tris.push_back(rightTriangle(scale * (0.1f + u(rng)), scale * (0.1f + u(rng)), material, u(rng),
-            glm::vec3(u(rng), u(rng), 0.0f)));
+        tris.push_back(rightTriangle(
+            scale * (0.1f + u(rng)), scale * (0.1f + u(rng)), material, u(rng), glm::vec3(u(rng), u(rng), 0.0f)));
     }
     const std::vector<double> power = expectedPower(tris, mats);
     double total = 0;

@@ -13,8 +13,8 @@ namespace {
 
 constexpr uint32_t kManySamples = 100000;
 
-Renderer::Readback renderInPasses(const Scene& scene, const IntegratorSettings& s, const Camera& camera, uint32_t spp,
-    uint32_t pass) {
+Renderer::Readback renderInPasses(
+    const Scene& scene, const IntegratorSettings& s, const Camera& camera, uint32_t spp, uint32_t pass) {
     return renderScene(scene, s, camera, 4, 4, spp, pass);
 }
 

@@ -25,8 +25,8 @@ TEST_F(Determinism, SameSeedSameImage) {
 
 TEST_F(Determinism, ChunkingDoesNotChangeTheImage) {
     auto whole = render(3, 12, 0);
-    auto passes = render(3, 5, 0);     // 5 + 5 + 2 samples
-    auto tiles = render(3, 1, 7);      // 12 passes of 1 sample, 7x7-pixel tiles
+    auto passes = render(3, 5, 0); // 5 + 5 + 2 samples
+    auto tiles = render(3, 1, 7);  // 12 passes of 1 sample, 7x7-pixel tiles
     EXPECT_EQ(whole.mean.rgba, passes.mean.rgba);
     EXPECT_EQ(whole.mean.rgba, tiles.mean.rgba);
     EXPECT_EQ(whole.varianceOfMean.rgba, tiles.varianceOfMean.rgba);

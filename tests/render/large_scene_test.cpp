@@ -23,7 +23,8 @@ TEST_F(LargeScene, TriangleBufferOver128MiBRenders) {
     Mesh grid;
     grid.material = 0;
     for (int y = 0; y <= n; ++y)
-        for (int x = 0; x <= n; ++x) grid.positions.push_back(glm::vec3(x / float(n) * 2 - 1, 0.0f, y / float(n) * 2 - 1));
+        for (int x = 0; x <= n; ++x)
+            grid.positions.push_back(glm::vec3(x / float(n) * 2 - 1, 0.0f, y / float(n) * 2 - 1));
     for (int y = 0; y < n; ++y)
         for (int x = 0; x < n; ++x) {
             const uint32_t i = y * (n + 1) + x;

@@ -24,8 +24,8 @@ long residentKiB() {
 class MemoryFlatness : public GpuTest {};
 
 TEST_F(MemoryFlatness, ResidentSetStaysFlatOverManyPasses) {
-    Scene scene = loadGltfFile(testDataDir() / "data" / "gltf_samples" / "TextureSettingsTest" / "glTF" /
-                               "TextureSettingsTest.gltf");
+    Scene scene = loadGltfFile(
+        testDataDir() / "data" / "gltf_samples" / "TextureSettingsTest" / "glTF" / "TextureSettingsTest.gltf");
     Environment sky; // the sample has no light of its own
     sky.colour = glm::vec3(1.0f);
     scene.environment = sky;
@@ -51,8 +51,8 @@ TEST_F(MemoryFlatness, ResidentSetStaysFlatOverManyPasses) {
     std::filesystem::remove_all(dir);
     ASSERT_GT(afterWarmUp, 0) << "no VmRSS in /proc/self/status";
     // 450 passes: 1 MiB of growth would be a leak of over 2 KiB per pass.
-    EXPECT_LT(atEnd - afterWarmUp, 1024) << "RSS grew from " << afterWarmUp << " KiB after " << kWarmUp
-                                         << " passes to " << atEnd << " KiB after " << kPasses;
+    EXPECT_LT(atEnd - afterWarmUp, 1024) << "RSS grew from " << afterWarmUp << " KiB after " << kWarmUp << " passes to "
+                                         << atEnd << " KiB after " << kPasses;
 }
 
 } // namespace

@@ -43,11 +43,13 @@ std::string plyContract(std::string_view bytes) {
 // Image decoding reports std::runtime_error "<source>: <problem>" (texture_image.h).
 std::string textureContract(std::string_view bytes) {
     try {
-        const TextureImage image = decodeTextureImage(reinterpret_cast<const unsigned char*>(bytes.data()), bytes.size(), kDisplayName);
+        const TextureImage image =
+            decodeTextureImage(reinterpret_cast<const unsigned char*>(bytes.data()), bytes.size(), kDisplayName);
         const size_t pixels = static_cast<size_t>(image.width) * static_cast<size_t>(image.height);
         if (image.width <= 0 || image.height <= 0 || image.width > kMaxTextureSide || image.height > kMaxTextureSide)
             return "accepted an image of " + std::to_string(image.width) + "x" + std::to_string(image.height);
-        if (image.rgba8.size() != pixels && image.rgbaF.size() != pixels) return "pixel count differs from the image size";
+        if (image.rgba8.size() != pixels && image.rgbaF.size() != pixels)
+            return "pixel count differs from the image size";
         return "";
     } catch (const std::runtime_error& e) {
         return messageProblem(e.what(), kDisplayName);
@@ -68,12 +70,16 @@ const char* fuzzTargetName(FuzzTarget target) {
     return "?";
 }
 
-std::vector<FuzzTarget> allFuzzTargets() { return {FuzzTarget::Gltf, FuzzTarget::Ceng795, FuzzTarget::Ply, FuzzTarget::TextureImage}; }
+std::vector<FuzzTarget> allFuzzTargets() {
+    return {FuzzTarget::Gltf, FuzzTarget::Ceng795, FuzzTarget::Ply, FuzzTarget::TextureImage};
+}
 
 std::string fuzzOneInput(FuzzTarget target, std::string_view bytes, const std::filesystem::path& dataDir) {
     switch (target) {
-    case FuzzTarget::Gltf: return checkLoadContract(kDisplayName, [&] { return loadGltfMemory(bytes, kDisplayName, dataDir); });
-    case FuzzTarget::Ceng795: return checkLoadContract(kDisplayName, [&] { return loadCeng795Text(bytes, kDisplayName, dataDir); });
+    case FuzzTarget::Gltf:
+        return checkLoadContract(kDisplayName, [&] { return loadGltfMemory(bytes, kDisplayName, dataDir); });
+    case FuzzTarget::Ceng795:
+        return checkLoadContract(kDisplayName, [&] { return loadCeng795Text(bytes, kDisplayName, dataDir); });
     case FuzzTarget::Ply: return plyContract(bytes);
     case FuzzTarget::TextureImage: return textureContract(bytes);
     }

@@ -28,8 +28,8 @@ void GpuTest::TearDown() {
         << "Vulkan validation: " << sharedContext().firstValidationMessage();
 }
 
-std::vector<glm::vec4> runTestKernel(uint32_t mode, uint32_t count, const GpuScene* scene, std::span<const std::byte> inputs,
-    glm::vec3 point, glm::vec3 normal, uint32_t seed, uint32_t materialIndex) {
+std::vector<glm::vec4> runTestKernel(uint32_t mode, uint32_t count, const GpuScene* scene,
+    std::span<const std::byte> inputs, glm::vec3 point, glm::vec3 normal, uint32_t seed, uint32_t materialIndex) {
     VulkanContext& ctx = sharedContext();
     static std::unique_ptr<ComputePipeline> pipeline = std::make_unique<ComputePipeline>(ctx,
         std::span<const uint32_t>(pt_test_kernels_spv), static_cast<uint32_t>(sizeof(gpu::GpuTestPush)),
@@ -67,8 +67,8 @@ Mesh makeIcosphere(int subdivisions, glm::vec3 centre, float radius, uint32_t ma
     std::vector<glm::vec3> v = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t}, {0, -1, -t},
         {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
     std::vector<glm::uvec3> f = {{0, 11, 5}, {0, 5, 1}, {0, 1, 7}, {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
-        {11, 10, 2}, {10, 7, 6}, {7, 1, 8}, {3, 9, 4}, {3, 4, 2}, {3, 2, 6}, {3, 6, 8}, {3, 8, 9}, {4, 9, 5}, {2, 4, 11},
-        {6, 2, 10}, {8, 6, 7}, {9, 8, 1}};
+        {11, 10, 2}, {10, 7, 6}, {7, 1, 8}, {3, 9, 4}, {3, 4, 2}, {3, 2, 6}, {3, 6, 8}, {3, 8, 9}, {4, 9, 5},
+        {2, 4, 11}, {6, 2, 10}, {8, 6, 7}, {9, 8, 1}};
     for (auto& p : v) p = glm::normalize(p);
     for (int s = 0; s < subdivisions; ++s) {
         std::map<std::pair<uint32_t, uint32_t>, uint32_t> mid;
@@ -112,7 +112,8 @@ Renderer::Readback renderScene(const Scene& scene, const IntegratorSettings& set
     Renderer renderer(sharedContext(), flat, computeFeatures(flat, settings), settings, camera,
         FilmSettings{width, height, scene.background});
     const uint32_t pass = passSpp ? passSpp : spp;
-    while (renderer.samplesPerPixel() < spp) renderer.addSamples(std::min(pass, spp - renderer.samplesPerPixel()), tileSize);
+    while (renderer.samplesPerPixel() < spp)
+        renderer.addSamples(std::min(pass, spp - renderer.samplesPerPixel()), tileSize);
     return renderer.read();
 }
 

@@ -17,11 +17,12 @@ Renderer::Readback renderForced(const Scene& scene, const IntegratorSettings& se
     return renderer.read();
 }
 
-Renderer::Readback renderAllModes(const Scene& scene, const IntegratorSettings& settings, const Camera& camera, int size,
-    uint32_t spp, const char* what) {
+Renderer::Readback renderAllModes(const Scene& scene, const IntegratorSettings& settings, const Camera& camera,
+    int size, uint32_t spp, const char* what) {
     for (uint32_t forced : kForcedModes) {
         const auto r = renderForced(scene, settings, camera, size, size, 1, forced);
-        EXPECT_EQ(r.droppedSamples, 0u) << what << ": random numbers forced to " << (forced == FORCED_RANDOM_ZERO ? "0" : "1 - 2^-24");
+        EXPECT_EQ(r.droppedSamples, 0u) << what << ": random numbers forced to "
+                                        << (forced == FORCED_RANDOM_ZERO ? "0" : "1 - 2^-24");
     }
     auto r = renderScene(scene, settings, camera, size, size, spp);
     EXPECT_EQ(r.droppedSamples, 0u) << what;
@@ -50,7 +51,8 @@ ImageStats imageStats(const Renderer::Readback& r, int channel, const std::funct
 }
 
 Scene scaledScene(Scene scene, float scale, glm::vec3 offset) {
-    const glm::mat4 map = glm::mat4(glm::mat3(scale)) + glm::mat4(glm::vec4(0), glm::vec4(0), glm::vec4(0), glm::vec4(offset, 0));
+    const glm::mat4 map =
+        glm::mat4(glm::mat3(scale)) + glm::mat4(glm::vec4(0), glm::vec4(0), glm::vec4(0), glm::vec4(offset, 0));
     for (Mesh& m : scene.meshes)
         for (glm::vec3& p : m.positions) p = scale * p + offset;
     for (Sphere& s : scene.spheres) s.objectToWorld = map * s.objectToWorld;
@@ -83,7 +85,9 @@ glm::vec3 pixelDirection(const gpu::GpuCamera& c, int width, int height, double 
     return glm::normalize(c.forward + u * c.right + v * c.up);
 }
 
-std::filesystem::path hardScenePath(const char* fileName) { return testDataDir().parent_path() / "scenes" / "hard" / fileName; }
+std::filesystem::path hardScenePath(const char* fileName) {
+    return testDataDir().parent_path() / "scenes" / "hard" / fileName;
+}
 
 Scene loadHardScene(const char* file, const IntegratorSettings& s) {
     Scene scene = loadScene(hardScenePath(file));

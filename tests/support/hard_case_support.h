@@ -22,8 +22,8 @@ Renderer::Readback renderForced(const Scene& scene, const IntegratorSettings& se
 
 // renderForced in both forced modes (1 spp each) and with the normal sampler (`spp`), every
 // render expected to keep all its samples; returns the normal render. `what` names the case.
-Renderer::Readback renderAllModes(const Scene& scene, const IntegratorSettings& settings, const Camera& camera, int size,
-    uint32_t spp, const char* what);
+Renderer::Readback renderAllModes(const Scene& scene, const IntegratorSettings& settings, const Camera& camera,
+    int size, uint32_t spp, const char* what);
 
 // Mean of channel `channel` over the pixels `use` accepts (all when empty) and its standard
 // error from the per-pixel variance of the mean.

@@ -17,10 +17,15 @@ bool finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y
 
 std::string meshInconsistency(const Mesh& m, size_t materialCount) {
     const size_t n = m.positions.size();
-    if (m.material >= materialCount) return "mesh '" + m.name + "' has material " + std::to_string(m.material) + " of " + std::to_string(materialCount);
-    if (!m.normals.empty() && m.normals.size() != n) return "mesh '" + m.name + "' has a normal count that differs from its position count";
-    if (!m.uvs.empty() && m.uvs.size() != n) return "mesh '" + m.name + "' has a uv count that differs from its position count";
-    if (!m.tangents.empty() && m.tangents.size() != n) return "mesh '" + m.name + "' has a tangent count that differs from its position count";
+    if (m.material >= materialCount)
+        return "mesh '" + m.name + "' has material " + std::to_string(m.material) + " of " +
+               std::to_string(materialCount);
+    if (!m.normals.empty() && m.normals.size() != n)
+        return "mesh '" + m.name + "' has a normal count that differs from its position count";
+    if (!m.uvs.empty() && m.uvs.size() != n)
+        return "mesh '" + m.name + "' has a uv count that differs from its position count";
+    if (!m.tangents.empty() && m.tangents.size() != n)
+        return "mesh '" + m.name + "' has a tangent count that differs from its position count";
     for (const glm::vec3& p : m.positions)
         if (!finite(p)) return "mesh '" + m.name + "' has a non-finite position";
     for (const glm::uvec3& t : m.triangles)
@@ -31,9 +36,11 @@ std::string meshInconsistency(const Mesh& m, size_t materialCount) {
 
 std::string textureInconsistency(const Scene& s, const std::optional<uint32_t>& t, const std::string& what) {
     if (!t) return "";
-    if (*t >= s.textures.size()) return what + " texture " + std::to_string(*t) + " of " + std::to_string(s.textures.size());
+    if (*t >= s.textures.size())
+        return what + " texture " + std::to_string(*t) + " of " + std::to_string(s.textures.size());
     const Texture& tex = s.textures[*t];
-    if (tex.type == Texture::Type::Image && tex.image >= s.textureImages.size()) return what + " texture refers to a missing image";
+    if (tex.type == Texture::Type::Image && tex.image >= s.textureImages.size())
+        return what + " texture refers to a missing image";
     return "";
 }
 
@@ -51,7 +58,8 @@ std::string sceneInconsistency(const Scene& s) {
     for (const Material& m : s.materials) {
         const std::string name = "material '" + m.name + "'";
         for (const auto& [t, what] : {std::pair{&m.baseColorTexture, "base colour"}, {&m.specularTexture, "specular"},
-                 {&m.metallicRoughnessTexture, "metallic-roughness"}, {&m.normalTexture, "normal"}, {&m.emissiveTexture, "emissive"}})
+                 {&m.metallicRoughnessTexture, "metallic-roughness"}, {&m.normalTexture, "normal"},
+                 {&m.emissiveTexture, "emissive"}})
             if (std::string p = textureInconsistency(s, *t, name + ": " + what); !p.empty()) return p;
         if (!finite(m.baseColor) || !finite(m.emission)) return name + " has a non-finite colour";
     }
@@ -62,9 +70,11 @@ std::string sceneInconsistency(const Scene& s) {
             return "image '" + image.source + "' has a pixel count that differs from its size";
     }
     for (const Camera& c : s.cameras)
-        if (!finite(c.position) || !finite(c.forward) || !finite(c.up) || !std::isfinite(c.yfov)) return "camera '" + c.name + "' is not finite";
+        if (!finite(c.position) || !finite(c.forward) || !finite(c.up) || !std::isfinite(c.yfov))
+            return "camera '" + c.name + "' is not finite";
     for (const PunctualLight& l : s.punctualLights)
-        if (!finite(l.position) || !finite(l.direction) || !finite(l.intensity)) return "a punctual light is not finite";
+        if (!finite(l.position) || !finite(l.direction) || !finite(l.intensity))
+            return "a punctual light is not finite";
     return "";
 }
 
@@ -73,9 +83,11 @@ std::string messageProblem(const std::string& message, const std::string& displa
     if (message.rfind(prefix, 0) != 0) return "the message does not start with '" + prefix + "': " + message;
     const std::string problem = message.substr(prefix.size());
     if (problem.empty()) return "the message names no problem";
-    if (problem.size() > kMaxProblemLength) return "the message is " + std::to_string(problem.size()) + " characters long";
+    if (problem.size() > kMaxProblemLength)
+        return "the message is " + std::to_string(problem.size()) + " characters long";
     for (unsigned char c : problem)
-        if (c < 0x20 && c != '\t') return "the message contains control character " + std::to_string(c) + ": " + message;
+        if (c < 0x20 && c != '\t')
+            return "the message contains control character " + std::to_string(c) + ": " + message;
     return "";
 }
 

@@ -61,7 +61,8 @@ std::vector<std::string> malformedCorpusFiles(const std::string& corpus) {
         const std::string name = e.path().filename().string();
         // Data files the scenes refer to are not cases themselves.
         const std::string ext = e.path().extension().string();
-        if (!e.is_regular_file() || name == "README.md" || name == "make_corpus.py" || ext == ".bin" || ext == ".ply" || ext == ".png")
+        if (!e.is_regular_file() || name == "README.md" || name == "make_corpus.py" || ext == ".bin" || ext == ".ply" ||
+            ext == ".png")
             continue;
         files.push_back(name);
     }

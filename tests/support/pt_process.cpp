@@ -29,7 +29,8 @@ std::string PtRun::describe() const {
 std::ostream& operator<<(std::ostream& os, const PtRun& r) {
     if (!r.launchError.empty()) os << r.launchError << "\n";
     os << (r.signaled ? "killed by signal " + std::to_string(r.signal) : "exit " + std::to_string(r.status))
-       << (r.timedOut ? " (timed out)" : "") << " after " << r.seconds << " s\n--- stderr:\n" << r.err;
+       << (r.timedOut ? " (timed out)" : "") << " after " << r.seconds << " s\n--- stderr:\n"
+       << r.err;
     if (!r.out.empty()) os << "--- stdout:\n" << r.out;
     return os;
 }

@@ -17,7 +17,7 @@
 namespace pt::test {
 
 struct RunOptions {
-    std::filesystem::path dir; // working directory
+    std::filesystem::path dir;              // working directory
     std::map<std::string, std::string> env; // added, replacing any inherited value
     // Removed from the inherited environment: by default the test hooks a developer may have set,
     // so that every run sees only what its test sets.
@@ -25,7 +25,7 @@ struct RunOptions {
     std::filesystem::path stdinFile = "/dev/null";
     std::filesystem::path stdoutFile; // empty: discarded
     std::filesystem::path stderrFile; // empty: dir / ".stderr"
-    double timeoutSeconds = 120; // then killed with SIGKILL, and timedOut set
+    double timeoutSeconds = 120;      // then killed with SIGKILL, and timedOut set
     // Called every few milliseconds until the program exits, with its pid and the seconds since start.
     std::function<void(pid_t, double)> whileRunning;
 };
@@ -36,8 +36,8 @@ struct PtRun {
     int signal = 0;
     int status = -1; // exit status when it exited (not killed by a signal, not timed out)
     bool timedOut = false;
-    double seconds = 0; // wall time
-    std::string out, err; // what it wrote to the captured stdout and stderr
+    double seconds = 0;           // wall time
+    std::string out, err;         // what it wrote to the captured stdout and stderr
     std::string describe() const; // for failure messages
 
     // Lines of stderr that start with "pt: error: ".
@@ -52,13 +52,13 @@ PtRun runProcess(const std::vector<std::string>& argv, const RunOptions& options
 
 // runProcess in `dir` with `env` added to the environment and stderr captured.
 PtRun runProgram(const std::filesystem::path& dir, const std::vector<std::string>& argv,
-    const std::map<std::string, std::string>& env = {},
-    const std::function<void(pid_t, double)>& whileRunning = {}, double timeoutSeconds = 120);
+    const std::map<std::string, std::string>& env = {}, const std::function<void(pid_t, double)>& whileRunning = {},
+    double timeoutSeconds = 120);
 
 // runProgram of the pt binary (PT_BINARY) with `args`.
 PtRun runPt(const std::filesystem::path& dir, const std::vector<std::string>& args,
-    const std::map<std::string, std::string>& env = {},
-    const std::function<void(pid_t, double)>& whileRunning = {}, double timeoutSeconds = 120);
+    const std::map<std::string, std::string>& env = {}, const std::function<void(pid_t, double)>& whileRunning = {},
+    double timeoutSeconds = 120);
 
 // The whole content of a file ("" when it cannot be read).
 std::string readFile(const std::filesystem::path& path);

@@ -76,7 +76,8 @@ TEST(ViewerCamera, SnippetsCarryThePose) {
 }
 
 TEST(ViewerScript, ParsesCommandsAndComments) {
-    auto cmds = parseScript("# a test\nwait 3\norbit 10 -5  # drag\n\nrepeat 4 orbit 1 0\ntoggle nee\nsave out/a.exr\nquit\n", "t");
+    auto cmds = parseScript(
+        "# a test\nwait 3\norbit 10 -5  # drag\n\nrepeat 4 orbit 1 0\ntoggle nee\nsave out/a.exr\nquit\n", "t");
     ASSERT_EQ(cmds.size(), 6u);
     EXPECT_EQ(cmds[1].name, "orbit");
     EXPECT_EQ(cmds[1].numbers, (std::vector<double>{10, -5}));

@@ -73,7 +73,7 @@ protected:
     fs::path dir_;
 };
 
-#define SKIP_WITHOUT_XVFB()                                                                               \
+#define SKIP_WITHOUT_XVFB()                                                                                            \
     if (!onPath("xvfb-run")) GTEST_SKIP() << "xvfb-run is not installed (apt-get install xvfb xauth)"
 
 // Values of "key=value" in the report lines of stdout, in order.
@@ -113,19 +113,18 @@ Png readPng(const fs::path& path) {
 
 TEST_F(ViewerProcess, ScriptedSessionSavesResetsAndResizes) {
     SKIP_WITHOUT_XVFB();
-    const PtRun r = view(
-        "wait-spp 4\n"
-        "report\n"
-        "save out/still.exr\n"
-        "screenshot out/window.png\n"
-        "orbit 40 0\n"
-        "wait 1\n"
-        "report\n"
-        "resize 200 150\n"
-        "wait 2\n"
-        "report\n"
-        "screenshot out/resized.png\n"
-        "quit\n",
+    const PtRun r = view("wait-spp 4\n"
+                         "report\n"
+                         "save out/still.exr\n"
+                         "screenshot out/window.png\n"
+                         "orbit 40 0\n"
+                         "wait 1\n"
+                         "report\n"
+                         "resize 200 150\n"
+                         "wait 2\n"
+                         "report\n"
+                         "screenshot out/resized.png\n"
+                         "quit\n",
         {"--validation", "--width", "128", "--height", "128", "--spp", "64"});
     ASSERT_EQ(r.status, 0) << r; // 3 would mean validation messages
 
@@ -188,13 +187,14 @@ TEST_F(ViewerProcess, DebugViewsSwitchesAndToneMappingRunClean) {
 // the same spp, so the same variance: each side's block variance is estimated from it).
 TEST_F(ViewerProcess, UntouchedViewMatchesHeadlessRender) {
     SKIP_WITHOUT_XVFB();
-    const PtRun v = view("wait-spp 16\nsave out/view.exr\nquit\n", {"--width", "128", "--height", "128", "--spp", "16"});
+    const PtRun v =
+        view("wait-spp 16\nsave out/view.exr\nquit\n", {"--width", "128", "--height", "128", "--spp", "16"});
     ASSERT_EQ(v.status, 0) << v;
-    const PtRun r = run({PT_BINARY, "render", "--width", "128", "--height", "128", "--spp", "16", "--seed", "7", "-q", "-o",
-        "out/render.exr"});
+    const PtRun r = run({PT_BINARY, "render", "--width", "128", "--height", "128", "--spp", "16", "--seed", "7", "-q",
+        "-o", "out/render.exr"});
     ASSERT_EQ(r.status, 0) << r;
-    const PtRun same = run({PT_BINARY, "render", "--width", "128", "--height", "128", "--spp", "16", "-q", "-o",
-        "out/same-seed.exr"});
+    const PtRun same =
+        run({PT_BINARY, "render", "--width", "128", "--height", "128", "--spp", "16", "-q", "-o", "out/same-seed.exr"});
     ASSERT_EQ(same.status, 0) << same;
 
     const pt::Image viewed = pt::readExr(dir_ / "out" / "view.exr");
@@ -207,13 +207,15 @@ TEST_F(ViewerProcess, UntouchedViewMatchesHeadlessRender) {
     EXPECT_LT(a.chi2PerDof, 1.6) << "meanZ " << a.meanZ << ", max |z| " << a.maxAbsZ;
     EXPECT_GT(a.chi2PerDof, 0.4) << "suspiciously equal: were the seeds different?";
     EXPECT_LT(std::abs(a.meanZ), 0.25);
-    std::printf("view vs render: chi2/dof %.3f over %d cells, mean z %.3f, max |z| %.2f\n", a.chi2PerDof, a.dof, a.meanZ,
-        a.maxAbsZ);
+    std::printf("view vs render: chi2/dof %.3f over %d cells, mean z %.3f, max |z| %.2f\n", a.chi2PerDof, a.dof,
+        a.meanZ, a.maxAbsZ);
     // The tolerance can fail: the same comparison flags the render made 10% brighter.
     pt::Image brighter = rendered;
     for (size_t i = 0; i < brighter.rgba.size(); ++i)
         if (i % 4 != 3) brighter.rgba[i] *= 1.1f;
-    EXPECT_GT(pt::compareBlocks(pt::blockStats(viewed, &variance, 8), pt::blockStats(brighter, &variance, 8)).chi2PerDof, 1.6);
+    EXPECT_GT(
+        pt::compareBlocks(pt::blockStats(viewed, &variance, 8), pt::blockStats(brighter, &variance, 8)).chi2PerDof,
+        1.6);
     // With the same seed the samples are the same: the sums match to rounding.
     EXPECT_LT(pt::relMse(viewed, pt::readExr(dir_ / "out" / "same-seed.exr")), 1e-8);
 }

@@ -41,8 +41,8 @@ std::string number(double v) {
 // sampler that converges fastest on every scene measured (bench/RESULTS.md).
 constexpr const char* kReferenceConfig = "nee+is+rr+sobol";
 
-Image renderReference(VulkanContext& context, const FlatScene& flat, const Job& job, const Scene& scene,
-    uint32_t spp, const fs::path& path) {
+Image renderReference(VulkanContext& context, const FlatScene& flat, const Job& job, const Scene& scene, uint32_t spp,
+    const fs::path& path) {
     const IntegratorSettings settings = parseBenchConfig(kReferenceConfig).apply(job.settings);
     Renderer renderer(context, flat, computeFeatures(flat, settings), settings, job.camera,
         FilmSettings{job.width, job.height, scene.background});
@@ -69,7 +69,8 @@ bool runPlotScript(const fs::path& dir) {
     const std::string scriptArg = script.string(), dirArg = dir.string();
     const char* python = std::getenv("PT_PYTHON");
     if (!python || !*python) python = "python3";
-    char* argv[] = {const_cast<char*>(python), const_cast<char*>(scriptArg.c_str()), const_cast<char*>(dirArg.c_str()), nullptr};
+    char* argv[] = {
+        const_cast<char*>(python), const_cast<char*>(scriptArg.c_str()), const_cast<char*>(dirArg.c_str()), nullptr};
     pid_t pid = 0;
     if (posix_spawnp(&pid, python, nullptr, nullptr, argv, environ) != 0) return false;
     int status = 0;
@@ -83,7 +84,8 @@ int runBench(const BenchOptions& b) {
     const RenderOptions& o = b.render;
     if (b.budgets.empty()) throw std::runtime_error("--budgets: no budget given");
     for (double budget : b.budgets)
-        if (!(budget > 0) || !std::isfinite(budget)) throw std::runtime_error("--budgets: " + number(budget) + " is not a positive time");
+        if (!(budget > 0) || !std::isfinite(budget))
+            throw std::runtime_error("--budgets: " + number(budget) + " is not a positive time");
     const std::vector<BenchConfig> configs = b.configs.empty() ? defaultBenchConfigs() : parseBenchConfigs(b.configs);
 
     Scene scene = loadSceneWithOptions(o);
@@ -114,14 +116,16 @@ int runBench(const BenchOptions& b) {
     contextOptions.deviceSubstring = o.device;
     VulkanContext context(contextOptions);
     const std::string device = context.info().name + " (" + context.info().driver + ")";
-    const Image reference = given ? *given : renderReference(context, flat, job, scene, b.referenceSpp, dir / "reference.exr");
+    const Image reference =
+        given ? *given : renderReference(context, flat, job, scene, b.referenceSpp, dir / "reference.exr");
 
     {
         std::ofstream info(dir / "bench_info.txt");
-        info << "scene: " << scene.source << "\ncamera: " << job.camera.name << "\nsize: " << job.width << "x" << job.height
-             << "\ndevice: " << device << "\nreference: "
-             << (given ? b.reference : (dir / "reference.exr").string() + " (made here: " + kReferenceConfig + ", " +
-                                           std::to_string(b.referenceSpp) + " spp)")
+        info << "scene: " << scene.source << "\ncamera: " << job.camera.name << "\nsize: " << job.width << "x"
+             << job.height << "\ndevice: " << device << "\nreference: "
+             << (given ? b.reference
+                       : (dir / "reference.exr").string() + " (made here: " + kReferenceConfig + ", " +
+                             std::to_string(b.referenceSpp) + " spp)")
              << "\nsettings: " << job.settings.describe() << "\n";
     }
     const fs::path csvPath = dir / "bench.csv";
@@ -129,15 +133,16 @@ int runBench(const BenchOptions& b) {
     if (!csv) throw std::runtime_error(csvPath.string() + ": cannot open for writing");
     csv << "config,budget_s,spp,seconds,mpaths_per_s,mrays_per_s,mrays_camera_per_s,mrays_shadow_per_s,"
            "mrays_continuation_per_s,relmse,mse,efficiency,estimated_relmse,dropped_samples,image\n";
-    std::fprintf(stderr, "pt: bench: %s, %dx%d, %zu configurations x %zu budgets on %s\n", scene.source.c_str(), job.width,
-        job.height, configs.size(), b.budgets.size(), device.c_str());
+    std::fprintf(stderr, "pt: bench: %s, %dx%d, %zu configurations x %zu budgets on %s\n", scene.source.c_str(),
+        job.width, job.height, configs.size(), b.budgets.size(), device.c_str());
 
     const double pixels = double(job.width) * job.height;
     for (const BenchConfig& config : configs) {
         const IntegratorSettings settings = config.apply(job.settings);
         FeatureSet features = computeFeatures(flat, settings);
         features.countRays = true;
-        Renderer renderer(context, flat, features, settings, job.camera, FilmSettings{job.width, job.height, scene.background});
+        Renderer renderer(
+            context, flat, features, settings, job.camera, FilmSettings{job.width, job.height, scene.background});
         // Warm up: the first dispatch of a pipeline pays one-off costs (lavapipe finishes
         // compiling there); like Mitsuba's timings, the budgets measure rendering only.
         renderer.addSamples(1);
@@ -166,9 +171,11 @@ int runBench(const BenchOptions& b) {
     std::fprintf(stderr, "pt: bench: wrote %s\n", csvPath.string().c_str());
     if (!b.plot) return 0;
     if (!runPlotScript(dir)) {
-        std::fprintf(stderr, "pt: error: %s: plotting failed: it needs python3 with matplotlib (Debian: apt install "
-                             "python3-matplotlib; another interpreter: PT_PYTHON=/path/to/python); the CSV and "
-                             "images are written\n", (dir / "plot.py").string().c_str());
+        std::fprintf(stderr,
+            "pt: error: %s: plotting failed: it needs python3 with matplotlib (Debian: apt install "
+            "python3-matplotlib; another interpreter: PT_PYTHON=/path/to/python); the CSV and "
+            "images are written\n",
+            (dir / "plot.py").string().c_str());
         return 1;
     }
     std::fprintf(stderr, "pt: bench: wrote %s and %s\n", (dir / "relmse_vs_time.png").string().c_str(),

@@ -24,12 +24,18 @@ BenchConfig parseBenchConfig(const std::string& text) {
     std::istringstream words(text);
     std::string word;
     while (std::getline(words, word, '+')) {
-        if (word == "nee") c.nee = true;
-        else if (word == "is") c.importanceSampling = true;
-        else if (word == "rr") c.rr = true;
-        else if (word == "nomis") noMis = true;
-        else if (word == "sobol") c.sampler = SamplerKind::Sobol;
-        else if (word == "nolt") c.lightTracing = false;
+        if (word == "nee")
+            c.nee = true;
+        else if (word == "is")
+            c.importanceSampling = true;
+        else if (word == "rr")
+            c.rr = true;
+        else if (word == "nomis")
+            noMis = true;
+        else if (word == "sobol")
+            c.sampler = SamplerKind::Sobol;
+        else if (word == "nolt")
+            c.lightTracing = false;
         else
             throw std::invalid_argument("configuration '" + text + "': unknown word '" + word +
                                         "' (words: nee, is, rr, nomis, sobol, nolt, or none)");

@@ -6,8 +6,8 @@
 
 namespace pt {
 
-void renderToBudgets(Renderer& renderer, std::vector<double> budgets,
-    const std::function<void(const BudgetPoint&)>& atBudget) {
+void renderToBudgets(
+    Renderer& renderer, std::vector<double> budgets, const std::function<void(const BudgetPoint&)>& atBudget) {
     using Clock = std::chrono::steady_clock;
     std::sort(budgets.begin(), budgets.end());
     double seconds = 0;
@@ -21,7 +21,8 @@ void renderToBudgets(Renderer& renderer, std::vector<double> budgets,
                 const double secondsPerSpp = seconds / done;
                 const double fits = std::floor((budget - seconds) / std::max(secondsPerSpp, 1e-9));
                 if (fits < 1.0) break;
-                pass = static_cast<uint32_t>(std::clamp(std::min(fits, 0.25 / std::max(secondsPerSpp, 1e-9)), 1.0, 4096.0));
+                pass = static_cast<uint32_t>(
+                    std::clamp(std::min(fits, 0.25 / std::max(secondsPerSpp, 1e-9)), 1.0, 4096.0));
             }
             const auto start = Clock::now();
             renderer.addSamples(pass);

@@ -18,7 +18,7 @@ struct BudgetPoint {
 
 // Calls `atBudget` once per budget (ascending; the renderer holds that budget's samples).
 // A budget too short for one sample still gets one, so every point has an image.
-void renderToBudgets(Renderer& renderer, std::vector<double> budgets,
-    const std::function<void(const BudgetPoint&)>& atBudget);
+void renderToBudgets(
+    Renderer& renderer, std::vector<double> budgets, const std::function<void(const BudgetPoint&)>& atBudget);
 
 } // namespace pt

@@ -18,16 +18,18 @@ std::vector<unsigned char> readPayload(const Context& ctx, pugi::xml_node where,
     const std::filesystem::path path = ctx.resolve(relative);
     const InputFileCheck file = checkInputFile(path);
     if (file.notARegularFile()) ctx.fail(where, "binaryFile " + quote(relative) + " not found");
-    if (file.problem == FileProblem::SizeUnknown) ctx.fail(where, "binaryFile " + quote(relative) + ": cannot read its size");
+    if (file.problem == FileProblem::SizeUnknown)
+        ctx.fail(where, "binaryFile " + quote(relative) + ": cannot read its size");
     const uint64_t size = file.size;
     std::ifstream in(path, std::ios::binary);
     int32_t n = 0;
-    if (!in || size < 4 || !in.read(reinterpret_cast<char*>(&n), 4)) ctx.fail(where, "binaryFile " + quote(relative) + ": missing count");
+    if (!in || size < 4 || !in.read(reinterpret_cast<char*>(&n), 4))
+        ctx.fail(where, "binaryFile " + quote(relative) + ": missing count");
     if (n < 0) ctx.fail(where, "binaryFile " + quote(relative) + ": negative count " + std::to_string(n));
     const uint64_t bytes = static_cast<uint64_t>(n) * elementBytes;
     if (bytes > size - 4)
-        ctx.fail(where, "binaryFile " + quote(relative) + ": count " + std::to_string(n) + " needs " + std::to_string(bytes) +
-                            " bytes, the file has " + std::to_string(size - 4));
+        ctx.fail(where, "binaryFile " + quote(relative) + ": count " + std::to_string(n) + " needs " +
+                            std::to_string(bytes) + " bytes, the file has " + std::to_string(size - 4));
     std::vector<unsigned char> data(bytes);
     if (bytes > 0 && !in.read(reinterpret_cast<char*>(data.data()), static_cast<std::streamsize>(bytes)))
         ctx.fail(where, "binaryFile " + quote(relative) + ": read failed");

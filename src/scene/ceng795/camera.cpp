@@ -18,9 +18,12 @@ void readView(const Context& ctx, pugi::xml_node e, Camera& c) {
     glm::vec3 gaze;
     // lookAt cameras normally give a GazePoint, but the official HW6 Cornell files give a Gaze
     // direction with type="lookAt", so whichever is present wins, regardless of type.
-    if (pugi::xml_node p = e.child("GazePoint")) gaze = vec3(ctx, p) - c.position;
-    else if (pugi::xml_node g = e.child("Gaze")) gaze = vec3(ctx, g);
-    else ctx.fail(e, "missing <Gaze> or <GazePoint>");
+    if (pugi::xml_node p = e.child("GazePoint"))
+        gaze = vec3(ctx, p) - c.position;
+    else if (pugi::xml_node g = e.child("Gaze"))
+        gaze = vec3(ctx, g);
+    else
+        ctx.fail(e, "missing <Gaze> or <GazePoint>");
     const float gazeLength = glm::length(gaze);
     if (!(gazeLength > 0.0f) || !std::isfinite(gazeLength)) ctx.fail(e, "gaze direction is zero");
     c.forward = gaze / gazeLength;
@@ -37,7 +40,8 @@ void readResolution(const Context& ctx, pugi::xml_node e, Camera& c) {
     const std::vector<long long> wh = integers(ctx, r);
     if (wh.size() != 2) ctx.fail(r, "expected width and height");
     for (long long v : wh)
-        if (v < 1 || v > kMaxImageSide) ctx.fail(r, std::to_string(v) + " is out of range [1, " + std::to_string(kMaxImageSide) + "]");
+        if (v < 1 || v > kMaxImageSide)
+            ctx.fail(r, std::to_string(v) + " is out of range [1, " + std::to_string(kMaxImageSide) + "]");
     c.settings.width = static_cast<int>(wh[0]);
     c.settings.height = static_cast<int>(wh[1]);
     c.aspectRatio = static_cast<float>(wh[0]) / static_cast<float>(wh[1]);
@@ -57,7 +61,8 @@ void readNearPlane(const Context& ctx, pugi::xml_node e, pugi::xml_node plane, C
     const double l = v[0] / d, r = v[1] / d, b = v[2] / d, t = v[3] / d;
     if (!(l < r) || !(b < t)) ctx.fail(plane, "needs left < right and bottom < top");
     c.window = glm::vec4(l, r, b, t);
-    if (!std::isfinite(c.window->x) || !std::isfinite(c.window->y) || !std::isfinite(c.window->z) || !std::isfinite(c.window->w))
+    if (!std::isfinite(c.window->x) || !std::isfinite(c.window->y) || !std::isfinite(c.window->z) ||
+        !std::isfinite(c.window->w))
         ctx.fail(plane, "number out of range");
     c.yfov = static_cast<float>(std::atan(t) - std::atan(b));
 }
@@ -87,12 +92,17 @@ void mirrorForLeftHandedness(Context& ctx, Camera& c) {
 
 void readProjection(Context& ctx, pugi::xml_node e, Camera& c) {
     // Whichever is present, regardless of type (2018 files put FovY on type="simple").
-    if (pugi::xml_node plane = e.child("NearPlane")) readNearPlane(ctx, e, plane, c);
-    else if (pugi::xml_node fov = e.child("FovY")) readFovY(ctx, fov, c);
-    else ctx.fail(e, "missing <NearPlane> or <FovY>");
+    if (pugi::xml_node plane = e.child("NearPlane"))
+        readNearPlane(ctx, e, plane, c);
+    else if (pugi::xml_node fov = e.child("FovY"))
+        readFovY(ctx, fov, c);
+    else
+        ctx.fail(e, "missing <NearPlane> or <FovY>");
     const std::string handedness = lowercase(e.attribute("handedness").value());
-    if (handedness == "left") mirrorForLeftHandedness(ctx, c);
-    else if (!handedness.empty() && handedness != "right") ctx.fail(e, "handedness " + quote(handedness) + " is not left or right");
+    if (handedness == "left")
+        mirrorForLeftHandedness(ctx, c);
+    else if (!handedness.empty() && handedness != "right")
+        ctx.fail(e, "handedness " + quote(handedness) + " is not left or right");
 }
 
 void readLens(const Context& ctx, pugi::xml_node e, Camera& c) {
@@ -176,10 +186,14 @@ void readRenderer(Context& ctx, pugi::xml_node e, CameraRenderSettings& s) {
     const std::string params = textOf(e.child("RendererParams"));
     for (std::string_view p : tokens(params)) {
         const std::string word = lowercase(p);
-        if (word == "nexteventestimation") s.nee = true;
-        else if (word == "importancesampling") s.importanceSampling = true;
-        else if (word == "russianroulette") s.russianRoulette = true;
-        else ctx.note("renderer option " + quote(p) + " (ignored)");
+        if (word == "nexteventestimation")
+            s.nee = true;
+        else if (word == "importancesampling")
+            s.importanceSampling = true;
+        else if (word == "russianroulette")
+            s.russianRoulette = true;
+        else
+            ctx.note("renderer option " + quote(p) + " (ignored)");
     }
 }
 
@@ -232,7 +246,8 @@ Camera readCamera(Context& ctx, pugi::xml_node e, size_t index, std::optional<in
 std::vector<Camera> readCameras(Context& ctx, pugi::xml_node scene, std::optional<int> maxDepth) {
     std::vector<Camera> cameras;
     for (pugi::xml_node list : scene.children("Cameras"))
-        for (pugi::xml_node e : list.children("Camera")) cameras.push_back(readCamera(ctx, e, cameras.size(), maxDepth));
+        for (pugi::xml_node e : list.children("Camera"))
+            cameras.push_back(readCamera(ctx, e, cameras.size(), maxDepth));
     return cameras;
 }
 

@@ -66,7 +66,9 @@ std::string textOf(pugi::xml_node node) {
 
 std::vector<std::string_view> tokens(std::string_view text) {
     std::vector<std::string_view> out;
-    auto separator = [](char c) { return c == ',' || c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\f' || c == '\v'; };
+    auto separator = [](char c) {
+        return c == ',' || c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\f' || c == '\v';
+    };
     size_t i = 0;
     while (i < text.size()) {
         while (i < text.size() && separator(text[i])) ++i;
@@ -142,7 +144,8 @@ long long integer(const Context& ctx, pugi::xml_node node, long long lo, long lo
     const std::vector<long long> v = integers(ctx, node);
     if (v.size() != 1) ctx.fail(node, "expected one integer, found " + std::to_string(v.size()) + " values");
     if (v[0] < lo || v[0] > hi)
-        ctx.fail(node, std::to_string(v[0]) + " is out of range [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+        ctx.fail(
+            node, std::to_string(v[0]) + " is out of range [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
     return v[0];
 }
 
@@ -185,7 +188,8 @@ long long integerAttribute(const Context& ctx, pugi::xml_node node, const char* 
 
 std::string lowercase(std::string_view s) {
     std::string out(s);
-    std::transform(out.begin(), out.end(), out.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    std::transform(
+        out.begin(), out.end(), out.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
     return out;
 }
 

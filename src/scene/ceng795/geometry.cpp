@@ -56,7 +56,8 @@ VertexPool readVertexPool(const Context& ctx, pugi::xml_node scene) {
 
 long long FaceReader::boundedOffset(pugi::xml_node faces, const char* name) const {
     const long long offset = integerAttribute(ctx_, faces, name, 0);
-    if (offset < -kMaxIndexMagnitude || offset > kMaxIndexMagnitude) ctx_.fail(faces, std::string(name) + " is out of range");
+    if (offset < -kMaxIndexMagnitude || offset > kMaxIndexMagnitude)
+        ctx_.fail(faces, std::string(name) + " is out of range");
     return offset;
 }
 
@@ -68,10 +69,11 @@ glm::vec3 FaceReader::vertex(pugi::xml_node where, long long id) const {
     return pool_.positions[static_cast<size_t>(i)];
 }
 
-ObjectMesh FaceReader::fromIndices(pugi::xml_node where, const std::vector<long long>& ids, long long vertexOffset,
-    long long textureOffset) const {
+ObjectMesh FaceReader::fromIndices(
+    pugi::xml_node where, const std::vector<long long>& ids, long long vertexOffset, long long textureOffset) const {
     if (ids.empty()) ctx_.fail(where, "no faces");
-    if (ids.size() % 3 != 0) ctx_.fail(where, std::to_string(ids.size()) + " indices is not a whole number of triangles");
+    if (ids.size() % 3 != 0)
+        ctx_.fail(where, std::to_string(ids.size()) + " indices is not a whole number of triangles");
     ObjectMesh mesh;
     // Pool vertex -> mesh vertex: a mesh keeps only the vertices it uses, shared between its
     // triangles (so smooth normals average across them).
@@ -148,7 +150,8 @@ std::vector<glm::vec3> smoothNormals(const ObjectMesh& mesh) {
     std::vector<glm::vec3> sum(mesh.positions.size(), glm::vec3(0.0f));
     for (const auto& t : mesh.triangles) {
         // The cross product's length is twice the area: summing it weights by area.
-        const glm::vec3 n = glm::cross(mesh.positions[t.y] - mesh.positions[t.x], mesh.positions[t.z] - mesh.positions[t.x]);
+        const glm::vec3 n =
+            glm::cross(mesh.positions[t.y] - mesh.positions[t.x], mesh.positions[t.z] - mesh.positions[t.x]);
         sum[t.x] += n;
         sum[t.y] += n;
         sum[t.z] += n;
@@ -183,12 +186,14 @@ std::vector<glm::vec3> worldNormals(const std::vector<glm::vec3>& objectNormals,
 
 } // namespace
 
-Mesh toWorld(const Context& ctx, pugi::xml_node owner, const ObjectMesh& mesh, const glm::mat4& objectToWorld, bool smooth) {
+Mesh toWorld(
+    const Context& ctx, pugi::xml_node owner, const ObjectMesh& mesh, const glm::mat4& objectToWorld, bool smooth) {
     Mesh out;
     out.positions.reserve(mesh.positions.size());
     for (const auto& p : mesh.positions) {
         const glm::vec3 w = glm::vec3(objectToWorld * glm::vec4(p, 1.0f));
-        if (!std::isfinite(w.x) || !std::isfinite(w.y) || !std::isfinite(w.z)) ctx.fail(owner, "transformed vertex is not finite");
+        if (!std::isfinite(w.x) || !std::isfinite(w.y) || !std::isfinite(w.z))
+            ctx.fail(owner, "transformed vertex is not finite");
         out.positions.push_back(w);
     }
     // The renderer takes the front side from the world-space winding. A mirroring transform

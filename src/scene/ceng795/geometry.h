@@ -43,8 +43,8 @@ public:
     glm::vec3 vertex(pugi::xml_node where, long long id) const;
 
 private:
-    ObjectMesh fromIndices(pugi::xml_node where, const std::vector<long long>& ids, long long vertexOffset,
-        long long textureOffset) const;
+    ObjectMesh fromIndices(
+        pugi::xml_node where, const std::vector<long long>& ids, long long vertexOffset, long long textureOffset) const;
     std::shared_ptr<const ObjectMesh> fromPly(pugi::xml_node faces);
     // Ids and offsets are bounded (kMaxIndexMagnitude) before this sum, so it cannot overflow.
     long long poolIndex(long long id, long long offset) const { return id + offset - (pool_.zeroBased ? 0 : 1); }
@@ -62,6 +62,7 @@ std::vector<glm::vec3> smoothNormals(const ObjectMesh& mesh);
 // The mesh mapped by objectToWorld into a scene Mesh (name and material left to the caller):
 // triangles of zero area are dropped (the course asks for degenerate triangles to be skipped),
 // and `smooth` adds normals. `owner` is the element named in errors.
-Mesh toWorld(const Context& ctx, pugi::xml_node owner, const ObjectMesh& mesh, const glm::mat4& objectToWorld, bool smooth);
+Mesh toWorld(
+    const Context& ctx, pugi::xml_node owner, const ObjectMesh& mesh, const glm::mat4& objectToWorld, bool smooth);
 
 } // namespace pt::ceng795

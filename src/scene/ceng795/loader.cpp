@@ -32,7 +32,8 @@ void noteUnknownElements(Context& ctx, pugi::xml_node root) {
         "Transformations", "VertexData", "TexCoordData", "Objects"};
     // The epsilons are deliberately ignored: the renderer offsets rays robustly by itself.
     for (pugi::xml_node e : root.children())
-        if (e.type() == pugi::node_element && !known.count(e.name())) ctx.note("element <" + printable(e.name()) + "> (ignored)");
+        if (e.type() == pugi::node_element && !known.count(e.name()))
+            ctx.note("element <" + printable(e.name()) + "> (ignored)");
 }
 
 void readSceneSettings(Context& ctx, pugi::xml_node root, Scene& s) {
@@ -42,7 +43,8 @@ void readSceneSettings(Context& ctx, pugi::xml_node root, Scene& s) {
     // the depth to the renderer.
     if (pugi::xml_node b = root.child("BackgroundColor")) {
         s.background = vec3(ctx, b);
-        if (s.background.x < 0.0f || s.background.y < 0.0f || s.background.z < 0.0f) ctx.fail(b, "must not be negative");
+        if (s.background.x < 0.0f || s.background.y < 0.0f || s.background.z < 0.0f)
+            ctx.fail(b, "must not be negative");
         // The course shows it to primary rays only; the renderer lights the scene with it too.
         if (s.background != glm::vec3(0.0f)) ctx.note("background seen only by primary rays");
     }
@@ -160,12 +162,18 @@ void readLights(Context& ctx, pugi::xml_node root, Scene& s) {
                 // The course adds ka * Ia: the classic integrator does, path tracing has no such term.
                 s.ambientLight = vec3(ctx, l);
                 if (glm::any(glm::lessThan(s.ambientLight, glm::vec3(0.0f)))) ctx.fail(l, "must not be negative");
-            } else if (type == "PointLight") s.punctualLights.push_back(readPointLight(ctx, l));
-            else if (type == "DirectionalLight") s.punctualLights.push_back(readDirectionalLight(ctx, l));
-            else if (type == "AreaLight") s.punctualLights.push_back(readAreaLight(ctx, l));
-            else if (type == "SpotLight") s.punctualLights.push_back(readSpotLight(ctx, l));
-            else if (type == "SphericalDirectionalLight") readEnvironmentLight(ctx, root, l, s);
-            else ctx.note(printable(type) + " lights (ignored)");
+            } else if (type == "PointLight")
+                s.punctualLights.push_back(readPointLight(ctx, l));
+            else if (type == "DirectionalLight")
+                s.punctualLights.push_back(readDirectionalLight(ctx, l));
+            else if (type == "AreaLight")
+                s.punctualLights.push_back(readAreaLight(ctx, l));
+            else if (type == "SpotLight")
+                s.punctualLights.push_back(readSpotLight(ctx, l));
+            else if (type == "SphericalDirectionalLight")
+                readEnvironmentLight(ctx, root, l, s);
+            else
+                ctx.note(printable(type) + " lights (ignored)");
         }
 }
 
@@ -186,10 +194,12 @@ Scene importScene(Context& ctx, pugi::xml_node root) {
     s.unsupported = ctx.notes();
     // The classic integrator models the diffuse and specular layers of mirrors, conductors and
     // glass; the notes about them concern path tracing only.
-    const bool allClassic = std::all_of(s.cameras.begin(), s.cameras.end(), [](const Camera& c) { return c.settings.classic.value_or(false); });
+    const bool allClassic = std::all_of(
+        s.cameras.begin(), s.cameras.end(), [](const Camera& c) { return c.settings.classic.value_or(false); });
     if (allClassic && !s.cameras.empty())
         std::erase_if(s.unsupported, [](const std::string& n) {
-            return n.find("with diffuse layer") != std::string::npos || n.find("with specular highlights") != std::string::npos;
+            return n.find("with diffuse layer") != std::string::npos ||
+                   n.find("with specular highlights") != std::string::npos;
         });
     return s;
 }
@@ -205,12 +215,14 @@ size_t lineAt(std::string_view text, ptrdiff_t offset) {
 Scene loadCeng795Text(std::string_view xml, const std::string& displayName, const std::filesystem::path& baseDir) {
     Context ctx(displayName, baseDir);
     pugi::xml_document doc;
-    const pugi::xml_parse_result parsed = doc.load_buffer(xml.data(), xml.size(), pugi::parse_default, pugi::encoding_auto);
+    const pugi::xml_parse_result parsed =
+        doc.load_buffer(xml.data(), xml.size(), pugi::parse_default, pugi::encoding_auto);
     if (!parsed)
-        ctx.fail("malformed XML at offset " + std::to_string(parsed.offset) + " (line " + std::to_string(lineAt(xml, parsed.offset)) +
-                 "): " + parsed.description());
+        ctx.fail("malformed XML at offset " + std::to_string(parsed.offset) + " (line " +
+                 std::to_string(lineAt(xml, parsed.offset)) + "): " + parsed.description());
     pugi::xml_node root = doc.document_element();
-    if (std::string(root.name()) != "Scene") ctx.fail("root element is <" + std::string(root.name()) + ">, expected <Scene>");
+    if (std::string(root.name()) != "Scene")
+        ctx.fail("root element is <" + std::string(root.name()) + ">, expected <Scene>");
     return importScene(ctx, root);
 }
 
@@ -224,8 +236,8 @@ Scene loadCeng795File(const std::filesystem::path& xml) {
     if (file.problem == FileProblem::OutOfMemory) throw std::bad_alloc();
     if (!file) throw SceneError(name, describeFileProblem(file, "a scene file"));
     if (file.bytes.empty()) throw SceneError(name, "empty file");
-    return loadCeng795Text(std::string_view(reinterpret_cast<const char*>(file.bytes.data()), file.bytes.size()), name,
-        xml.parent_path());
+    return loadCeng795Text(
+        std::string_view(reinterpret_cast<const char*>(file.bytes.data()), file.bytes.size()), name, xml.parent_path());
 }
 
 } // namespace pt

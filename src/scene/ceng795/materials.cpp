@@ -14,7 +14,8 @@ bool anyPositive(const glm::vec3& c) { return c.x > 0.0f || c.y > 0.0f || c.z > 
 // Reads material colours, undoing the sRGB-ish encoding when the material says degamma="true".
 class ColourReader {
 public:
-    ColourReader(const Context& ctx, pugi::xml_node material, bool degamma) : ctx_(ctx), material_(material), degamma_(degamma) {}
+    ColourReader(const Context& ctx, pugi::xml_node material, bool degamma)
+        : ctx_(ctx), material_(material), degamma_(degamma) {}
 
     glm::vec3 operator()(const char* child, const glm::vec3& fallback) const {
         pugi::xml_node n = material_.child(child);
@@ -73,8 +74,10 @@ void convertDiffuse(const Context& ctx, Notes& notes, pugi::xml_node e, const Co
     if (brdf) {
         m.glossyModel = glossyModel(ctx, *brdf);
         m.exponent = positiveScalar(ctx, *brdf, "Exponent");
-        m.normalized = brdf->attribute("normalized") && booleanValue(ctx, *brdf, brdf->attribute("normalized").value(), "normalized");
-        m.kdFresnel = brdf->attribute("kdfresnel") && booleanValue(ctx, *brdf, brdf->attribute("kdfresnel").value(), "kdfresnel");
+        m.normalized = brdf->attribute("normalized") &&
+                       booleanValue(ctx, *brdf, brdf->attribute("normalized").value(), "normalized");
+        m.kdFresnel =
+            brdf->attribute("kdfresnel") && booleanValue(ctx, *brdf, brdf->attribute("kdfresnel").value(), "kdfresnel");
         if (m.glossyModel == GlossyModel::TorranceSparrow) {
             m.conductorEta = glm::vec3(positiveScalar(ctx, e, "RefractionIndex"));
             const float k = optionalScalar(ctx, e, "AbsorptionIndex").value_or(0.0f);
@@ -92,7 +95,8 @@ void convertDiffuse(const Context& ctx, Notes& notes, pugi::xml_node e, const Co
 // dielectrics too; the renderer's specular materials have no such layers.
 void noteExtraLayers(Notes& notes, const ColourReader& colour, const std::string& type) {
     if (anyPositive(colour("DiffuseReflectance", glm::vec3(0.0f)))) notes.push_back(type + " with diffuse layer");
-    if (anyPositive(colour("SpecularReflectance", glm::vec3(0.0f)))) notes.push_back(type + " with specular highlights (ignored)");
+    if (anyPositive(colour("SpecularReflectance", glm::vec3(0.0f))))
+        notes.push_back(type + " with specular highlights (ignored)");
 }
 
 void convertMirror(Notes& notes, const ColourReader& colour, Material& m) {
@@ -159,8 +163,10 @@ void readClassicShading(const Context& ctx, pugi::xml_node e, const ColourReader
     if (brdf) {
         const std::string name = brdf->name();
         const bool normalised = name == "TorranceSparrow" ||
-            (brdf->attribute("normalized") && booleanValue(ctx, *brdf, brdf->attribute("normalized").value(), "normalized"));
-        if (normalised || m.type == MaterialType::Glossy) return; // glossy.glsl (classic.glsl undoes 1/pi if unnormalised)
+                                (brdf->attribute("normalized") &&
+                                    booleanValue(ctx, *brdf, brdf->attribute("normalized").value(), "normalized"));
+        if (normalised || m.type == MaterialType::Glossy)
+            return; // glossy.glsl (classic.glsl undoes 1/pi if unnormalised)
     }
     m.classicPhong = true;
     m.classicDiffuse = colour("DiffuseReflectance", glm::vec3(0.0f));
@@ -182,7 +188,8 @@ std::map<long long, pugi::xml_node> readBrdfs(const Context& ctx, pugi::xml_node
 
 } // namespace
 
-Material convertMaterial(const Context& ctx, pugi::xml_node e, const std::map<long long, pugi::xml_node>& brdfs, Notes& notes) {
+Material convertMaterial(
+    const Context& ctx, pugi::xml_node e, const std::map<long long, pugi::xml_node>& brdfs, Notes& notes) {
     Material m;
     m.name = "material " + idText(e, "?");
     const bool degamma = e.attribute("degamma") && booleanValue(ctx, e, e.attribute("degamma").value(), "degamma");
@@ -194,9 +201,12 @@ Material convertMaterial(const Context& ctx, pugi::xml_node e, const std::map<lo
         brdfElement = brdfs.at(toInteger(ctx, e, t[0]));
     }
     const std::string type = lowercase(e.attribute("type").value());
-    if (type == "mirror") convertMirror(notes, colour, m);
-    else if (type == "dielectric") convertDielectric(ctx, notes, e, colour, m);
-    else if (type == "conductor") convertConductor(ctx, notes, e, colour, m);
+    if (type == "mirror")
+        convertMirror(notes, colour, m);
+    else if (type == "dielectric")
+        convertDielectric(ctx, notes, e, colour, m);
+    else if (type == "conductor")
+        convertConductor(ctx, notes, e, colour, m);
     else {
         if (!type.empty()) notes.push_back("material type " + quote(type) + " (rendered diffuse)");
         convertDiffuse(ctx, notes, e, colour, brdfElement, m);
@@ -227,7 +237,8 @@ MaterialTable MaterialTable::read(const Context& ctx, pugi::xml_node scene, std:
 }
 
 uint32_t MaterialTable::lookup(const Context& ctx, pugi::xml_node reference) {
-    const long long id = integer(ctx, reference, std::numeric_limits<long long>::min(), std::numeric_limits<long long>::max());
+    const long long id =
+        integer(ctx, reference, std::numeric_limits<long long>::min(), std::numeric_limits<long long>::max());
     auto it = indexById_.find(id);
     if (it == indexById_.end()) ctx.fail(reference, "unknown material " + std::to_string(id));
     used_[it->second] = true;
@@ -240,7 +251,8 @@ void MaterialTable::noteUsed(Context& ctx) const {
             for (const std::string& n : notes_[i]) ctx.note(n);
 }
 
-uint32_t addEmissiveCopy(std::vector<Material>& materials, uint32_t base, const glm::vec3& radiance, const std::string& name) {
+uint32_t addEmissiveCopy(
+    std::vector<Material>& materials, uint32_t base, const glm::vec3& radiance, const std::string& name) {
     Material m = materials[base];
     m.name = name;
     m.emission = radiance;

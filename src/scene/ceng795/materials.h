@@ -33,6 +33,7 @@ Material convertMaterial(const Context& ctx, pugi::xml_node element, const std::
 
 // A copy of materials[base] that emits `radiance`, for LightMesh and LightSphere: the course
 // gives each object light a (black) material plus its own Radiance. Returns the new index.
-uint32_t addEmissiveCopy(std::vector<Material>& materials, uint32_t base, const glm::vec3& radiance, const std::string& name);
+uint32_t addEmissiveCopy(
+    std::vector<Material>& materials, uint32_t base, const glm::vec3& radiance, const std::string& name);
 
 } // namespace pt::ceng795

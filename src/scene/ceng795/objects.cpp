@@ -16,7 +16,8 @@ class ObjectReader {
 public:
     ObjectReader(Context& ctx, const VertexPool& pool, const Transforms& transforms, MaterialTable& materials,
         TextureTable& textures, Scene& out)
-        : ctx_(ctx), faces_(ctx, pool), transforms_(transforms), materials_(materials), textures_(textures), out_(out) {}
+        : ctx_(ctx), faces_(ctx, pool), transforms_(transforms), materials_(materials), textures_(textures), out_(out) {
+    }
 
     void read(pugi::xml_node scene) {
         for (pugi::xml_node objects : scene.children("Objects")) collectDefinitions(objects);
@@ -50,10 +51,11 @@ private:
         for (pugi::xml_node e : objects.children("Mesh")) {
             const long long id = idOf(ctx_, e);
             if (meshes_.count(id)) ctx_.fail(e, "duplicate id");
-            meshes_.emplace(id, MeshDefinition{faces_.faces(required(ctx_, e, "Faces")),
-                                    transforms_.compose(ctx_, e.child("Transformations")),
-                                    materials_.lookup(ctx_, required(ctx_, e, "Material")), smoothShading(e).value_or(false),
-                                    e.child("Textures"), motionBlur(e).value_or(glm::vec3(0.0f))});
+            meshes_.emplace(
+                id, MeshDefinition{faces_.faces(required(ctx_, e, "Faces")),
+                        transforms_.compose(ctx_, e.child("Transformations")),
+                        materials_.lookup(ctx_, required(ctx_, e, "Material")), smoothShading(e).value_or(false),
+                        e.child("Textures"), motionBlur(e).value_or(glm::vec3(0.0f))});
         }
         for (pugi::xml_node e : objects.children("MeshInstance")) {
             const long long id = idOf(ctx_, e);
@@ -63,20 +65,28 @@ private:
 
     void readObject(pugi::xml_node e) {
         const std::string type = e.name();
-        if (type == "Mesh") emitMesh(e, meshes_.at(idOf(ctx_, e)));
-        else if (type == "MeshInstance") emitInstance(e);
-        else if (type == "Triangle") emitTriangle(e);
-        else if (type == "LightMesh") emitLightMesh(e);
-        else if (type == "Sphere") emitSphere(e, std::nullopt);
-        else if (type == "LightSphere") emitSphere(e, radiance(e));
-        else ctx_.note(printable(type) + " objects (ignored)");
+        if (type == "Mesh")
+            emitMesh(e, meshes_.at(idOf(ctx_, e)));
+        else if (type == "MeshInstance")
+            emitInstance(e);
+        else if (type == "Triangle")
+            emitTriangle(e);
+        else if (type == "LightMesh")
+            emitLightMesh(e);
+        else if (type == "Sphere")
+            emitSphere(e, std::nullopt);
+        else if (type == "LightSphere")
+            emitSphere(e, radiance(e));
+        else
+            ctx_.note(printable(type) + " objects (ignored)");
     }
 
     std::optional<bool> smoothShading(pugi::xml_node e) const {
         pugi::xml_attribute a = e.attribute("shadingMode");
         if (!a) return std::nullopt;
         const std::string mode = lowercase(a.value());
-        if (mode != "smooth" && mode != "flat") ctx_.fail(e, "shadingMode " + quote(a.value()) + " is not flat or smooth");
+        if (mode != "smooth" && mode != "flat")
+            ctx_.fail(e, "shadingMode " + quote(a.value()) + " is not flat or smooth");
         return mode == "smooth";
     }
 
@@ -99,7 +109,8 @@ private:
 
     bool emit(pugi::xml_node e, const ObjectMesh& geometry, const glm::mat4& transform, uint32_t material, bool smooth,
         glm::vec3 motion = glm::vec3(0.0f)) {
-        if (geometry.uvs.empty() && hasUvTextures(material)) ctx_.note("image textures on meshes without TexCoordData (drawn with uv 0)");
+        if (geometry.uvs.empty() && hasUvTextures(material))
+            ctx_.note("image textures on meshes without TexCoordData (drawn with uv 0)");
         if (geometry.triangles.size() > kMaxSceneTriangles - triangles_)
             ctx_.fail(e, "the scene expands to more than " + std::to_string(kMaxSceneTriangles) + " triangles");
         Mesh mesh = toWorld(ctx_, e, geometry, transform, smooth);
@@ -116,7 +127,9 @@ private:
         emit(e, *m.geometry, m.transform, textured(m.textures, m.material), m.smooth, m.motion);
     }
 
-    uint32_t textured(pugi::xml_node texturesNode, uint32_t material) { return textures_.apply(ctx_, texturesNode, material, out_); }
+    uint32_t textured(pugi::xml_node texturesNode, uint32_t material) {
+        return textures_.apply(ctx_, texturesNode, material, out_);
+    }
 
     bool hasUvTextures(uint32_t material) const {
         const Material& m = out_.materials[material];
@@ -127,10 +140,12 @@ private:
 
     void emitLightMesh(pugi::xml_node e) {
         const uint32_t base = textured(e.child("Textures"), materials_.lookup(ctx_, required(ctx_, e, "Material")));
-        const uint32_t material = addEmissiveCopy(out_.materials, base, radiance(e), std::string(e.name()) + " " + idText(e, "?"));
+        const uint32_t material =
+            addEmissiveCopy(out_.materials, base, radiance(e), std::string(e.name()) + " " + idText(e, "?"));
         const auto geometry = faces_.faces(required(ctx_, e, "Faces"));
         // A light with no area emits nothing and would divide by zero when sampled.
-        if (!emit(e, *geometry, transforms_.compose(ctx_, e.child("Transformations")), material, smoothShading(e).value_or(false)))
+        if (!emit(e, *geometry, transforms_.compose(ctx_, e.child("Transformations")), material,
+                smoothShading(e).value_or(false)))
             ctx_.fail(e, "all triangles are degenerate (zero area)");
     }
 
@@ -152,7 +167,8 @@ private:
     Placement place(pugi::xml_node e, const Placement& base) {
         Placement p = base;
         const glm::mat4 own = transforms_.compose(ctx_, e.child("Transformations"));
-        const bool reset = e.attribute("resetTransform") && booleanValue(ctx_, e, e.attribute("resetTransform").value(), "resetTransform");
+        const bool reset = e.attribute("resetTransform") &&
+                           booleanValue(ctx_, e, e.attribute("resetTransform").value(), "resetTransform");
         p.transform = reset ? own : own * base.transform;
         if (pugi::xml_node m = e.child("Material")) p.material = materials_.lookup(ctx_, m);
         p.smooth = smoothShading(e).value_or(base.smooth);
@@ -180,11 +196,12 @@ private:
             chain.push_back(inst);
             const long long baseId = baseMeshId(inst);
             if (auto m = meshes_.find(baseId); m != meshes_.end()) {
-                base = Placement{&m->second, m->second.transform, m->second.material, m->second.smooth, m->second.textures,
-                    m->second.motion};
+                base = Placement{&m->second, m->second.transform, m->second.material, m->second.smooth,
+                    m->second.textures, m->second.motion};
                 break;
             }
-            if (!instances_.count(baseId)) ctx_.fail(inst, "baseMeshId " + std::to_string(baseId) + " is neither a Mesh nor a MeshInstance");
+            if (!instances_.count(baseId))
+                ctx_.fail(inst, "baseMeshId " + std::to_string(baseId) + " is neither a Mesh nor a MeshInstance");
             cur = baseId;
         }
         for (auto it = chain.rbegin(); it != chain.rend(); ++it) {
@@ -226,12 +243,13 @@ private:
         if (!(radius > 0.0f)) ctx_.fail(r, "must be positive");
         Sphere s;
         s.name = std::string(e.name()) + " " + idText(e, "?");
-        s.objectToWorld = transforms_.compose(ctx_, e.child("Transformations")) * glm::translate(glm::mat4(1.0f), centre) *
-                          glm::scale(glm::mat4(1.0f), glm::vec3(radius));
+        s.objectToWorld = transforms_.compose(ctx_, e.child("Transformations")) *
+                          glm::translate(glm::mat4(1.0f), centre) * glm::scale(glm::mat4(1.0f), glm::vec3(radius));
         for (int col = 0; col < 4; ++col)
             for (int row = 0; row < 4; ++row)
                 if (!std::isfinite(s.objectToWorld[col][row])) ctx_.fail(e, "transformed sphere is not finite");
-        if (!(std::fabs(glm::determinant(glm::mat3(s.objectToWorld))) > 0.0f)) ctx_.fail(e, "transformed sphere is degenerate");
+        if (!(std::fabs(glm::determinant(glm::mat3(s.objectToWorld))) > 0.0f))
+            ctx_.fail(e, "transformed sphere is degenerate");
         s.material = textured(e.child("Textures"), materials_.lookup(ctx_, required(ctx_, e, "Material")));
         if (emission) s.material = addEmissiveCopy(out_.materials, s.material, *emission, s.name);
         s.motion = motionBlur(e).value_or(glm::vec3(0.0f));

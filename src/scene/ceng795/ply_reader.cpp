@@ -59,10 +59,14 @@ struct TypeInfo {
 };
 
 constexpr TypeInfo kTypeInfo[] = {
-    {"char", 1, INT8_MIN, INT8_MAX},       {"uchar", 1, 0, UINT8_MAX},
-    {"short", 2, INT16_MIN, INT16_MAX},    {"ushort", 2, 0, UINT16_MAX},
-    {"int", 4, INT32_MIN, INT32_MAX},      {"uint", 4, 0, UINT32_MAX},
-    {"float", 4, 0, 0},                    {"double", 8, 0, 0},
+    {"char", 1, INT8_MIN, INT8_MAX},
+    {"uchar", 1, 0, UINT8_MAX},
+    {"short", 2, INT16_MIN, INT16_MAX},
+    {"ushort", 2, 0, UINT16_MAX},
+    {"int", 4, INT32_MIN, INT32_MAX},
+    {"uint", 4, 0, UINT32_MAX},
+    {"float", 4, 0, 0},
+    {"double", 8, 0, 0},
 };
 
 const TypeInfo& info(Type t) { return kTypeInfo[static_cast<size_t>(t)]; }
@@ -75,10 +79,22 @@ Type parseType(std::string_view name) {
     };
     // The original PLY names and the sized names that newer exporters (e.g. Blender) write.
     static constexpr Alias kAliases[] = {
-        {"char", Type::Int8},     {"int8", Type::Int8},       {"uchar", Type::UInt8},    {"uint8", Type::UInt8},
-        {"short", Type::Int16},   {"int16", Type::Int16},     {"ushort", Type::UInt16},  {"uint16", Type::UInt16},
-        {"int", Type::Int32},     {"int32", Type::Int32},     {"uint", Type::UInt32},    {"uint32", Type::UInt32},
-        {"float", Type::Float32}, {"float32", Type::Float32}, {"double", Type::Float64}, {"float64", Type::Float64},
+        {"char", Type::Int8},
+        {"int8", Type::Int8},
+        {"uchar", Type::UInt8},
+        {"uint8", Type::UInt8},
+        {"short", Type::Int16},
+        {"int16", Type::Int16},
+        {"ushort", Type::UInt16},
+        {"uint16", Type::UInt16},
+        {"int", Type::Int32},
+        {"int32", Type::Int32},
+        {"uint", Type::UInt32},
+        {"uint32", Type::UInt32},
+        {"float", Type::Float32},
+        {"float32", Type::Float32},
+        {"double", Type::Float64},
+        {"float64", Type::Float64},
     };
     for (const Alias& a : kAliases)
         if (a.name == name) return a.type;
@@ -274,7 +290,8 @@ void describeVertices(Element& vertex, Header& h) {
     // Texture coordinate pairs in order of preference; a later complete pair is left unused.
     for (size_t pair = 6; pair < kVertexNames.size(); pair += 2) {
         if (h.hasUvs && f[pair] && f[pair + 1]) continue;
-        h.hasUvs |= assignGroup({f[pair], f[pair + 1]}, {Role::U, Role::V}, "texture coordinate (needs both of a pair)");
+        h.hasUvs |=
+            assignGroup({f[pair], f[pair + 1]}, {Role::U, Role::V}, "texture coordinate (needs both of a pair)");
     }
 }
 
@@ -347,7 +364,8 @@ public:
         const std::string_view digits = withoutPlus(token);
         int64_t value = 0;
         const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
-        if (ec != std::errc() || end != digits.data() + digits.size()) fail("expected an integer, found " + inQuotes(token));
+        if (ec != std::errc() || end != digits.data() + digits.size())
+            fail("expected an integer, found " + inQuotes(token));
         if (value < info(t).min || value > info(t).max)
             fail("value " + inQuotes(token) + " is out of range for type " + std::string(info(t).name));
         return value;
@@ -386,7 +404,8 @@ private:
         double value = 0;
         const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
         if (ec == std::errc::result_out_of_range) fail("number " + inQuotes(token) + " is out of range");
-        if (ec != std::errc() || end != digits.data() + digits.size()) fail("expected a number, found " + inQuotes(token));
+        if (ec != std::errc() || end != digits.data() + digits.size())
+            fail("expected a number, found " + inQuotes(token));
         return value;
     }
 
@@ -619,7 +638,8 @@ PlyMesh readBody(const Header& h, std::string_view body) {
 PlyMesh readPly(const std::filesystem::path& path) {
     const FileRead file = tryReadInputFile(path);
     if (!file) throw SceneError(path.string(), describeFileProblem(file, "a PLY file"));
-    return parsePly(std::string_view(reinterpret_cast<const char*>(file.bytes.data()), file.bytes.size()), path.string());
+    return parsePly(
+        std::string_view(reinterpret_cast<const char*>(file.bytes.data()), file.bytes.size()), path.string());
 }
 
 PlyMesh parsePly(std::string_view bytes, const std::string& displayName) {

@@ -7,8 +7,8 @@
 namespace pt::ceng795 {
 namespace {
 
-const char* const kDecalModes[] = {"replace_kd", "blend_kd", "replace_ks", "replace_background", "replace_normal",
-    "bump_normal", "replace_all"};
+const char* const kDecalModes[] = {
+    "replace_kd", "blend_kd", "replace_ks", "replace_background", "replace_normal", "bump_normal", "replace_all"};
 
 std::string decalMode(const Context& ctx, pugi::xml_node map) {
     pugi::xml_node d = required(ctx, map, "DecalMode");
@@ -83,18 +83,23 @@ uint32_t TextureTable::texture(Context& ctx, MapDefinition& map, Scene& out) {
     if (type == "image") {
         pugi::xml_node id = required(ctx, e, "ImageId");
         t.type = Texture::Type::Image;
-        t.image = image(ctx, id, integer(ctx, id, std::numeric_limits<long long>::min(), std::numeric_limits<long long>::max()), out);
+        t.image = image(ctx, id,
+            integer(ctx, id, std::numeric_limits<long long>::min(), std::numeric_limits<long long>::max()), out);
         const TextureImage& img = out.textureImages[t.image];
         // Values are texel / Normalizer with 8-bit texels in 0..255 (default 255, so 0..1).
         // HDR texels are used as they are unless a Normalizer is given.
         const std::optional<float> normalizer = optionalScalar(ctx, e, "Normalizer");
         if (normalizer && !(*normalizer > 0.0f)) ctx.fail(e.child("Normalizer"), "must be positive");
-        if (img.rgbaF.empty()) t.valueScale = 255.0f / normalizer.value_or(255.0f);
-        else t.valueScale = 1.0f / normalizer.value_or(1.0f);
+        if (img.rgbaF.empty())
+            t.valueScale = 255.0f / normalizer.value_or(255.0f);
+        else
+            t.valueScale = 1.0f / normalizer.value_or(1.0f);
         if (pugi::xml_node interp = e.child("Interpolation")) {
             const std::string mode = lowercase(textOf(interp));
-            if (mode.find("nearest") != std::string::npos) t.bilinear = false;
-            else if (mode.find("bilinear") == std::string::npos) ctx.fail(interp, "is not nearest or bilinear");
+            if (mode.find("nearest") != std::string::npos)
+                t.bilinear = false;
+            else if (mode.find("bilinear") == std::string::npos)
+                ctx.fail(interp, "is not nearest or bilinear");
         }
         if (degamma(ctx, e)) t.encoding = Texture::Encoding::Gamma22;
     } else if (type == "checkerboard") {
@@ -111,7 +116,8 @@ uint32_t TextureTable::texture(Context& ctx, MapDefinition& map, Scene& out) {
         t.type = Texture::Type::Perlin;
         t.scale = positive(ctx, e, "NoiseScale", 1.0f);
         const std::string conversion = lowercase(textOf(e.child("NoiseConversion")));
-        if (conversion.find("absval") != std::string::npos) t.perlinAbs = true;
+        if (conversion.find("absval") != std::string::npos)
+            t.perlinAbs = true;
         else if (!conversion.empty() && conversion.find("linear") == std::string::npos)
             ctx.fail(e.child("NoiseConversion"), "is not absval or linear");
     } else {

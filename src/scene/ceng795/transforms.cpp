@@ -77,11 +77,16 @@ Transforms Transforms::read(const Context& ctx, pugi::xml_node scene) {
         for (pugi::xml_node e : list.children()) {
             if (e.type() != pugi::node_element) continue;
             const std::string name = e.name();
-            if (name == "Translation") t.add(ctx, e, 't', readTranslation(ctx, e));
-            else if (name == "Scaling") t.add(ctx, e, 's', readScaling(ctx, e));
-            else if (name == "Rotation") t.add(ctx, e, 'r', readRotation(ctx, e));
-            else if (name == "Composite") t.add(ctx, e, 'c', readComposite(ctx, e));
-            else ctx.fail(e, "unknown transformation (expected Translation, Scaling, Rotation or Composite)");
+            if (name == "Translation")
+                t.add(ctx, e, 't', readTranslation(ctx, e));
+            else if (name == "Scaling")
+                t.add(ctx, e, 's', readScaling(ctx, e));
+            else if (name == "Rotation")
+                t.add(ctx, e, 'r', readRotation(ctx, e));
+            else if (name == "Composite")
+                t.add(ctx, e, 'c', readComposite(ctx, e));
+            else
+                ctx.fail(e, "unknown transformation (expected Translation, Scaling, Rotation or Composite)");
         }
     return t;
 }

@@ -15,7 +15,8 @@ namespace {
 bool decodeImage(tinygltf::Image* image, const int index, std::string* err, std::string*, int, int,
     const unsigned char* bytes, int size, void* user) {
     auto* decoded = static_cast<DecodedImages*>(user);
-    const std::string name = "image " + std::to_string(index) + (image->uri.empty() || image->uri.rfind("data:", 0) == 0 ? "" : " '" + image->uri + "'");
+    const std::string name = "image " + std::to_string(index) +
+                             (image->uri.empty() || image->uri.rfind("data:", 0) == 0 ? "" : " '" + image->uri + "'");
     try {
         if (index < 0) throw std::runtime_error(name + ": bad index");
         if (decoded->images.size() <= static_cast<size_t>(index)) decoded->images.resize(index + 1);

@@ -18,8 +18,7 @@ Scene GltfImporter::run() {
     std::vector<int> roots = rootNodes();
     std::vector<bool> onPath(model_.nodes.size(), false);
     for (int root : roots) visitNode(root, glm::mat4(1.0f), onPath, 0);
-    if (scene_.triangleCount() == 0)
-        fail("no renderable geometry (the scene has no triangle primitives)");
+    if (scene_.triangleCount() == 0) fail("no renderable geometry (the scene has no triangle primitives)");
     noteUnsupportedExtensions();
     std::vector<std::string> notes;
     for (const auto& [what, count] : unsupportedCounts_)
@@ -39,7 +38,8 @@ void GltfImporter::readHints() {
         const tinygltf::Value& v = extras.Get(key);
         if (!v.IsNumber()) return;
         double d = v.GetNumberAsDouble();
-        if (!(d >= lo && d <= hi)) fail(std::string("scene extras: ") + key + " " + std::to_string(d) + " is out of range");
+        if (!(d >= lo && d <= hi))
+            fail(std::string("scene extras: ") + key + " " + std::to_string(d) + " is out of range");
         out = static_cast<int>(d);
     };
     intHint("width", scene_.hints.width, 1, 1 << 16);
@@ -87,7 +87,8 @@ glm::mat4 GltfImporter::localTransform(const tinygltf::Node& node, int index) {
 }
 
 void GltfImporter::visitNode(int index, const glm::mat4& parent, std::vector<bool>& onPath, int depth) {
-    if (index < 0 || index >= static_cast<int>(model_.nodes.size())) fail("node index " + std::to_string(index) + " out of range");
+    if (index < 0 || index >= static_cast<int>(model_.nodes.size()))
+        fail("node index " + std::to_string(index) + " out of range");
     if (onPath[index]) fail("node hierarchy is cyclic (node " + std::to_string(index) + " is its own ancestor)");
     if (depth > kMaxNodeDepth) fail("node hierarchy deeper than " + std::to_string(kMaxNodeDepth));
     if (visited_.size() != model_.nodes.size()) visited_.assign(model_.nodes.size(), false);
@@ -98,13 +99,16 @@ void GltfImporter::visitNode(int index, const glm::mat4& parent, std::vector<boo
     const tinygltf::Node& node = model_.nodes[index];
     glm::mat4 world = parent * localTransform(node, index);
     for (int i = 0; i < 16; ++i)
-        if (!std::isfinite(glm::value_ptr(world)[i])) fail("node " + std::to_string(index) + ": world transform overflows");
+        if (!std::isfinite(glm::value_ptr(world)[i]))
+            fail("node " + std::to_string(index) + ": world transform overflows");
     if (node.mesh >= 0) {
-        if (node.mesh >= static_cast<int>(model_.meshes.size())) fail("node " + std::to_string(index) + ": mesh index out of range");
+        if (node.mesh >= static_cast<int>(model_.meshes.size()))
+            fail("node " + std::to_string(index) + ": mesh index out of range");
         addMesh(model_.meshes[node.mesh], node.mesh, world);
     }
     if (node.camera >= 0) addCamera(node.camera, world);
-    if (auto it = node.extensions.find("KHR_lights_punctual"); it != node.extensions.end()) addLight(it->second, index, world);
+    if (auto it = node.extensions.find("KHR_lights_punctual"); it != node.extensions.end())
+        addLight(it->second, index, world);
     onPath[index] = true;
     for (int child : node.children) visitNode(child, world, onPath, depth + 1);
     onPath[index] = false;

@@ -56,14 +56,14 @@ private:
     void convertFactors(const tinygltf::Material& src, const std::string& label, Material& m);
     void convertTextures(const tinygltf::Material& src, const std::string& label, Material& m);
     static int wrap(int mode, const std::string& where, const GltfImporter& self);
-    std::optional<uint32_t> texture(int index, int texCoord, const tinygltf::ExtensionMap& extensions, Texture::Encoding encoding,
-        const std::string& where);
+    std::optional<uint32_t> texture(int index, int texCoord, const tinygltf::ExtensionMap& extensions,
+        Texture::Encoding encoding, const std::string& where);
     uint32_t imageIndex(int index, const std::string& where);
     uint32_t defaultMaterial();
 
     // ---- gltf_meshes.cpp ----
-    const unsigned char* accessorData(int accessorIndex, const std::string& what, size_t& count, size_t& stride,
-        int& componentType, int& type);
+    const unsigned char* accessorData(
+        int accessorIndex, const std::string& what, size_t& count, size_t& stride, int& componentType, int& type);
     template <int N>
     std::vector<glm::vec<N, float>> readVectors(int accessorIndex, const std::string& what, bool allowNormalizedInts);
     std::vector<uint32_t> readIndices(int accessorIndex, const std::string& what);

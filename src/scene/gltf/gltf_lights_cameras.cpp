@@ -6,7 +6,8 @@ namespace pt::gltf {
 
 // ---- cameras ----
 void GltfImporter::addCamera(int cameraIndex, const glm::mat4& world) {
-    if (cameraIndex >= static_cast<int>(model_.cameras.size())) fail("camera index " + std::to_string(cameraIndex) + " out of range");
+    if (cameraIndex >= static_cast<int>(model_.cameras.size()))
+        fail("camera index " + std::to_string(cameraIndex) + " out of range");
     const tinygltf::Camera& cam = model_.cameras[cameraIndex];
     if (cam.type != "perspective") {
         unsupported("orthographic cameras (skipped)");
@@ -32,7 +33,8 @@ void GltfImporter::addCamera(int cameraIndex, const glm::mat4& world) {
     // and the height derived from it would overflow.
     const double aspect = cam.perspective.aspectRatio;
     if (aspect != 0.0 && !(aspect >= 1.0 / 16384 && aspect <= 16384))
-        fail("camera " + std::to_string(cameraIndex) + ": aspectRatio " + std::to_string(aspect) + " must be in [1/16384, 16384]");
+        fail("camera " + std::to_string(cameraIndex) + ": aspectRatio " + std::to_string(aspect) +
+             " must be in [1/16384, 16384]");
     c.aspectRatio = static_cast<float>(aspect);
     scene_.cameras.push_back(c);
 }
@@ -45,13 +47,15 @@ void GltfImporter::addCamera(int cameraIndex, const glm::mat4& world) {
 // physically based renderers).
 void GltfImporter::addLight(const tinygltf::Value& ref, int nodeIndex, const glm::mat4& world) {
     const std::string where = "node " + std::to_string(nodeIndex) + ": KHR_lights_punctual";
-    const int index = ref.IsObject() && ref.Has("light") && ref.Get("light").IsInt() ? ref.Get("light").GetNumberAsInt() : -1;
+    const int index =
+        ref.IsObject() && ref.Has("light") && ref.Get("light").IsInt() ? ref.Get("light").GetNumberAsInt() : -1;
     if (index < 0 || index >= static_cast<int>(model_.lights.size())) fail(where + " light index out of range");
     const tinygltf::Light& src = model_.lights[index];
     const std::string label = "light " + std::to_string(index) + (src.name.empty() ? "" : " '" + src.name + "'");
     glm::vec3 colour(1.0f);
     if (src.color.size() >= 3) colour = glm::vec3(src.color[0], src.color[1], src.color[2]);
-    if (!finite(colour) || glm::any(glm::lessThan(colour, glm::vec3(0))) || !(src.intensity >= 0.0) || !std::isfinite(src.intensity))
+    if (!finite(colour) || glm::any(glm::lessThan(colour, glm::vec3(0))) || !(src.intensity >= 0.0) ||
+        !std::isfinite(src.intensity))
         fail(label + ": colour and intensity must be finite and non-negative");
     PunctualLight light;
     light.intensity = colour * static_cast<float>(src.intensity);
@@ -59,7 +63,8 @@ void GltfImporter::addLight(const tinygltf::Value& ref, int nodeIndex, const glm
     const glm::vec3 axis = glm::mat3(world) * glm::vec3(0, 0, -1);
     if (!(glm::length(axis) > 0.0f)) fail(where + ": degenerate light transform");
     light.direction = glm::normalize(axis);
-    if (!finite(light.direction) || !(glm::length(light.direction) > 0.5f)) fail(where + ": degenerate light transform");
+    if (!finite(light.direction) || !(glm::length(light.direction) > 0.5f))
+        fail(where + ": degenerate light transform");
     // A finite double intensity can still overflow a float.
     if (!finite(light.intensity)) fail(label + ": intensity times colour overflows");
     if (src.type == "point") {
@@ -79,7 +84,8 @@ void GltfImporter::addLight(const tinygltf::Value& ref, int nodeIndex, const glm
         unsupported("KHR_lights_punctual light type '" + src.type + "' (skipped)");
         return;
     }
-    if (src.range > 0.0) unsupported("KHR_lights_punctual range (ignored: lights fall off with the inverse square to infinity)");
+    if (src.range > 0.0)
+        unsupported("KHR_lights_punctual range (ignored: lights fall off with the inverse square to infinity)");
     scene_.punctualLights.push_back(light);
 }
 

@@ -17,9 +17,9 @@
 namespace pt {
 namespace {
 
+using gltf::configureLoader;
 using gltf::DecodedImages;
 using gltf::GltfImporter;
-using gltf::configureLoader;
 
 // tinygltf's first error line, made safe to print: it can echo the file's bytes (a URI, a JSON
 // excerpt), so control characters become '?' (a hostile file must not drive the terminal) and
@@ -34,7 +34,8 @@ std::string firstLine(const std::string& s) {
     return line;
 }
 
-Scene importModel(bool ok, const tinygltf::Model& model, const std::string& err, const std::string& displayName, DecodedImages& images) {
+Scene importModel(bool ok, const tinygltf::Model& model, const std::string& err, const std::string& displayName,
+    DecodedImages& images) {
     if (!ok)
         throw SceneError(displayName, "invalid glTF: " + (err.empty() ? std::string("unknown error") : firstLine(err)));
     return GltfImporter(model, displayName, images).run();
@@ -47,7 +48,8 @@ Scene loadGltfFile(const std::filesystem::path& path) {
     // The input-file policy's first checks (image/file_read.h); tinygltf then reads the whole file
     // through our readWholeFile callback, which applies the rest. Here only the magic is peeked at.
     const InputFileCheck file = checkInputFile(path, {.streamNonRegular = true});
-    if (file.problem == FileProblem::NotFound || file.problem == FileProblem::CannotAccess) throw SceneError(name, "file not found");
+    if (file.problem == FileProblem::NotFound || file.problem == FileProblem::CannotAccess)
+        throw SceneError(name, "file not found");
     if (file.problem == FileProblem::Directory) throw SceneError(name, "is a directory, not a glTF file");
     std::ifstream in(path, std::ios::binary);
     if (!in) throw SceneError(name, "cannot open for reading");
@@ -62,7 +64,8 @@ Scene loadGltfFile(const std::filesystem::path& path) {
     configureLoader(loader, images);
     tinygltf::Model model;
     std::string err, warn;
-    bool ok = binary ? loader.LoadBinaryFromFile(&model, &err, &warn, name) : loader.LoadASCIIFromFile(&model, &err, &warn, name);
+    bool ok = binary ? loader.LoadBinaryFromFile(&model, &err, &warn, name)
+                     : loader.LoadASCIIFromFile(&model, &err, &warn, name);
     return importModel(ok, model, err, name, images);
 }
 
@@ -72,22 +75,25 @@ Scene loadGltfText(std::string_view text, const std::string& displayName, const 
     configureLoader(loader, images);
     tinygltf::Model model;
     std::string err, warn;
-    bool ok = loader.LoadASCIIFromString(&model, &err, &warn, text.data(), static_cast<unsigned int>(text.size()), baseDir.string());
+    bool ok = loader.LoadASCIIFromString(
+        &model, &err, &warn, text.data(), static_cast<unsigned int>(text.size()), baseDir.string());
     return importModel(ok, model, err, displayName, images);
 }
 
 Scene loadGltfMemory(std::string_view bytes, const std::string& displayName, const std::filesystem::path& baseDir) {
     if (bytes.empty()) throw SceneError(displayName, "empty file");
     // tinygltf takes the length as an unsigned int.
-    if (bytes.size() > std::numeric_limits<unsigned int>::max()) throw SceneError(displayName, "file larger than 4 GiB");
+    if (bytes.size() > std::numeric_limits<unsigned int>::max())
+        throw SceneError(displayName, "file larger than 4 GiB");
     if (bytes.size() < 4 || std::memcmp(bytes.data(), "glTF", 4) != 0) return loadGltfText(bytes, displayName, baseDir);
     tinygltf::TinyGLTF loader;
     DecodedImages images;
     configureLoader(loader, images);
     tinygltf::Model model;
     std::string err, warn;
-    const bool ok = loader.LoadBinaryFromMemory(&model, &err, &warn, reinterpret_cast<const unsigned char*>(bytes.data()),
-        static_cast<unsigned int>(bytes.size()), baseDir.string());
+    const bool ok =
+        loader.LoadBinaryFromMemory(&model, &err, &warn, reinterpret_cast<const unsigned char*>(bytes.data()),
+            static_cast<unsigned int>(bytes.size()), baseDir.string());
     return importModel(ok, model, err, displayName, images);
 }
 

@@ -17,7 +17,8 @@ glm::vec3 color(const tinygltf::Value& obj, const char* key, glm::vec3 fallback)
     const tinygltf::Value& v = obj.Get(key);
     if (!v.IsArray() || v.ArrayLen() < 3) return fallback;
     glm::vec3 c;
-    for (int i = 0; i < 3; ++i) c[i] = v.Get(i).IsNumber() ? static_cast<float>(v.Get(i).GetNumberAsDouble()) : fallback[i];
+    for (int i = 0; i < 3; ++i)
+        c[i] = v.Get(i).IsNumber() ? static_cast<float>(v.Get(i).GetNumberAsDouble()) : fallback[i];
     return c;
 }
 const tinygltf::Value* extension(const tinygltf::Material& m, const char* name) {
@@ -35,8 +36,10 @@ void GltfImporter::convertMaterials() {
         m.name = src.name.empty() ? "material " + std::to_string(i) : src.name;
         m.doubleSided = src.doubleSided;
         const auto& pbr = src.pbrMetallicRoughness;
-        for (int c = 0; c < 3; ++c) m.baseColor[c] = pbr.baseColorFactor.size() > 2 ? static_cast<float>(pbr.baseColorFactor[c]) : 1.0f;
-        for (int c = 0; c < 3; ++c) m.emission[c] = src.emissiveFactor.size() > 2 ? static_cast<float>(src.emissiveFactor[c]) : 0.0f;
+        for (int c = 0; c < 3; ++c)
+            m.baseColor[c] = pbr.baseColorFactor.size() > 2 ? static_cast<float>(pbr.baseColorFactor[c]) : 1.0f;
+        for (int c = 0; c < 3; ++c)
+            m.emission[c] = src.emissiveFactor.size() > 2 ? static_cast<float>(src.emissiveFactor[c]) : 0.0f;
         if (const auto* e = extension(src, "KHR_materials_emissive_strength"))
             m.emission *= static_cast<float>(number(*e, "emissiveStrength", 1.0));
         if (!finite(m.baseColor) || !finite(m.emission) || glm::any(glm::lessThan(m.emission, glm::vec3(0))))
@@ -105,8 +108,8 @@ void GltfImporter::convertFactors(const tinygltf::Material& src, const std::stri
 // section 3.9). Occlusion is for rasterisers: a path tracer computes it.
 void GltfImporter::convertTextures(const tinygltf::Material& src, const std::string& label, Material& m) {
     const auto& pbr = src.pbrMetallicRoughness;
-    m.baseColorTexture = texture(pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord, pbr.baseColorTexture.extensions,
-        Texture::Encoding::Srgb, label + ": baseColorTexture");
+    m.baseColorTexture = texture(pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord,
+        pbr.baseColorTexture.extensions, Texture::Encoding::Srgb, label + ": baseColorTexture");
     m.metallicRoughnessTexture = texture(pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord,
         pbr.metallicRoughnessTexture.extensions, Texture::Encoding::Linear, label + ": metallicRoughnessTexture");
     m.normalTexture = texture(src.normalTexture.index, src.normalTexture.texCoord, src.normalTexture.extensions,
@@ -141,10 +144,11 @@ int GltfImporter::wrap(int mode, const std::string& where, const GltfImporter& s
 }
 
 // A scene texture for one textureInfo (with its KHR_texture_transform), or none.
-std::optional<uint32_t> GltfImporter::texture(int index, int texCoord, const tinygltf::ExtensionMap& extensions, Texture::Encoding encoding,
-    const std::string& where) {
+std::optional<uint32_t> GltfImporter::texture(int index, int texCoord, const tinygltf::ExtensionMap& extensions,
+    Texture::Encoding encoding, const std::string& where) {
     if (index < 0) return std::nullopt;
-    if (index >= static_cast<int>(model_.textures.size())) fail(where + ": texture " + std::to_string(index) + " does not exist");
+    if (index >= static_cast<int>(model_.textures.size()))
+        fail(where + ": texture " + std::to_string(index) + " does not exist");
     const tinygltf::Texture& src = model_.textures[index];
     if (src.source < 0 || src.source >= static_cast<int>(model_.images.size()))
         fail(where + ": texture " + std::to_string(index) + " has no image (or one in an unsupported extension)");
@@ -152,7 +156,8 @@ std::optional<uint32_t> GltfImporter::texture(int index, int texCoord, const tin
     t.encoding = encoding;
     t.image = imageIndex(src.source, where);
     if (src.sampler >= 0) {
-        if (src.sampler >= static_cast<int>(model_.samplers.size())) fail(where + ": sampler " + std::to_string(src.sampler) + " does not exist");
+        if (src.sampler >= static_cast<int>(model_.samplers.size()))
+            fail(where + ": sampler " + std::to_string(src.sampler) + " does not exist");
         const tinygltf::Sampler& sampler = model_.samplers[src.sampler];
         t.bilinear = sampler.magFilter != 9728; // NEAREST
         t.wrapU = static_cast<TextureWrap>(wrap(sampler.wrapS, where, *this));
@@ -187,7 +192,9 @@ uint32_t GltfImporter::imageIndex(int index, const std::string& where) {
     if (auto it = imageIndices_.find(index); it != imageIndices_.end()) return it->second;
     if (static_cast<size_t>(index) >= decoded_.images.size() || !decoded_.images[index])
         fail(where + ": image " + std::to_string(index) +
-             (model_.images[index].uri.empty() || model_.images[index].uri.rfind("data:", 0) == 0 ? "" : " '" + model_.images[index].uri + "'") +
+             (model_.images[index].uri.empty() || model_.images[index].uri.rfind("data:", 0) == 0
+                     ? ""
+                     : " '" + model_.images[index].uri + "'") +
              " has no data (its file was not found or could not be read)");
     scene_.textureImages.push_back(std::move(*decoded_.images[index]));
     decoded_.images[index].reset();

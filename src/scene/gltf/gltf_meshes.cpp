@@ -13,8 +13,8 @@ namespace pt::gltf {
 // ---- accessors ----
 // Checks that `count` elements of `elementBytes` each, `stride` apart, fit in the buffer
 // view and the buffer, and returns a pointer to the first one.
-const unsigned char* GltfImporter::accessorData(int accessorIndex, const std::string& what, size_t& count, size_t& stride,
-    int& componentType, int& type) {
+const unsigned char* GltfImporter::accessorData(
+    int accessorIndex, const std::string& what, size_t& count, size_t& stride, int& componentType, int& type) {
     if (accessorIndex < 0 || accessorIndex >= static_cast<int>(model_.accessors.size()))
         fail(what + ": accessor " + std::to_string(accessorIndex) + " out of range");
     const tinygltf::Accessor& acc = model_.accessors[accessorIndex];
@@ -23,7 +23,8 @@ const unsigned char* GltfImporter::accessorData(int accessorIndex, const std::st
     if (acc.bufferView < 0 || acc.bufferView >= static_cast<int>(model_.bufferViews.size()))
         fail(label + ": missing or out-of-range bufferView");
     const tinygltf::BufferView& view = model_.bufferViews[acc.bufferView];
-    if (view.buffer < 0 || view.buffer >= static_cast<int>(model_.buffers.size())) fail(label + ": buffer index out of range");
+    if (view.buffer < 0 || view.buffer >= static_cast<int>(model_.buffers.size()))
+        fail(label + ": buffer index out of range");
     const tinygltf::Buffer& buffer = model_.buffers[view.buffer];
     int componentBytes = tinygltf::GetComponentSizeInBytes(static_cast<uint32_t>(acc.componentType));
     int components = tinygltf::GetNumComponentsInType(static_cast<uint32_t>(acc.type));
@@ -45,25 +46,30 @@ const unsigned char* GltfImporter::accessorData(int accessorIndex, const std::st
 }
 
 template <int N>
-std::vector<glm::vec<N, float>> GltfImporter::readVectors(int accessorIndex, const std::string& what, bool allowNormalizedInts) {
+std::vector<glm::vec<N, float>> GltfImporter::readVectors(
+    int accessorIndex, const std::string& what, bool allowNormalizedInts) {
     size_t count, stride;
     int componentType, type;
     const unsigned char* data = accessorData(accessorIndex, what, count, stride, componentType, type);
     const int expectedType = N == 2 ? TINYGLTF_TYPE_VEC2 : (N == 3 ? TINYGLTF_TYPE_VEC3 : TINYGLTF_TYPE_VEC4);
-    if (type != expectedType) fail(what + " (accessor " + std::to_string(accessorIndex) + "): expected VEC" + std::to_string(N));
+    if (type != expectedType)
+        fail(what + " (accessor " + std::to_string(accessorIndex) + "): expected VEC" + std::to_string(N));
     std::vector<glm::vec<N, float>> out(count);
     for (size_t i = 0; i < count; ++i) {
         const unsigned char* e = data + i * stride;
         for (int c = 0; c < N; ++c) {
             float v;
-            if (componentType == TINYGLTF_COMPONENT_TYPE_FLOAT) std::memcpy(&v, e + 4 * c, 4);
-            else if (allowNormalizedInts && componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE) v = e[c] / 255.0f;
+            if (componentType == TINYGLTF_COMPONENT_TYPE_FLOAT)
+                std::memcpy(&v, e + 4 * c, 4);
+            else if (allowNormalizedInts && componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE)
+                v = e[c] / 255.0f;
             else if (allowNormalizedInts && componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT) {
                 uint16_t s;
                 std::memcpy(&s, e + 2 * c, 2);
                 v = s / 65535.0f;
             } else
-                fail(what + " (accessor " + std::to_string(accessorIndex) + "): unsupported component type " + std::to_string(componentType));
+                fail(what + " (accessor " + std::to_string(accessorIndex) + "): unsupported component type " +
+                     std::to_string(componentType));
             out[i][c] = v;
         }
     }
@@ -100,10 +106,11 @@ void GltfImporter::addMesh(const tinygltf::Mesh& mesh, int meshIndex, const glm:
     const bool mirrored = glm::determinant(glm::mat3(world)) < 0.0f;
     for (size_t p = 0; p < mesh.primitives.size(); ++p) {
         const tinygltf::Primitive& prim = mesh.primitives[p];
-        const std::string label = "mesh " + std::to_string(meshIndex) + (mesh.name.empty() ? "" : " '" + mesh.name + "'") +
-                                  " primitive " + std::to_string(p);
+        const std::string label = "mesh " + std::to_string(meshIndex) +
+                                  (mesh.name.empty() ? "" : " '" + mesh.name + "'") + " primitive " + std::to_string(p);
         int mode = prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
-        if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP && mode != TINYGLTF_MODE_TRIANGLE_FAN) {
+        if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
+            mode != TINYGLTF_MODE_TRIANGLE_FAN) {
             unsupported("point and line primitives (skipped)");
             continue;
         }
@@ -117,7 +124,8 @@ void GltfImporter::addMesh(const tinygltf::Mesh& mesh, int meshIndex, const glm:
                 fail(label + " POSITION: vertex " + std::to_string(i) + " is non-finite (NaN or Inf)");
         for (auto& v : out.positions) v = glm::vec3(world * glm::vec4(v, 1.0f));
         for (size_t i = 0; i < out.positions.size(); ++i)
-            if (!finite(out.positions[i])) fail(label + ": vertex " + std::to_string(i) + " overflows after transformation");
+            if (!finite(out.positions[i]))
+                fail(label + ": vertex " + std::to_string(i) + " overflows after transformation");
         if (auto n = prim.attributes.find("NORMAL"); n != prim.attributes.end()) {
             out.normals = readVectors<3>(n->second, label + " NORMAL", false);
             if (out.normals.size() != out.positions.size()) fail(label + ": NORMAL count differs from POSITION count");
@@ -132,7 +140,8 @@ void GltfImporter::addMesh(const tinygltf::Mesh& mesh, int meshIndex, const glm:
             // Tangents map with the model matrix (they lie in the surface); a mirroring
             // transform flips the bitangent's handedness.
             out.tangents = readVectors<4>(t->second, label + " TANGENT", false);
-            if (out.tangents.size() != out.positions.size()) fail(label + ": TANGENT count differs from POSITION count");
+            if (out.tangents.size() != out.positions.size())
+                fail(label + ": TANGENT count differs from POSITION count");
             const float handedness = mirrored ? -1.0f : 1.0f;
             for (auto& v : out.tangents) {
                 const glm::vec3 w = glm::mat3(world) * glm::vec3(v);
@@ -160,12 +169,15 @@ void GltfImporter::addMesh(const tinygltf::Mesh& mesh, int meshIndex, const glm:
             out.triangles.push_back(mirrored ? glm::uvec3(a, c, b) : glm::uvec3(a, b, c));
         };
         if (mode == TINYGLTF_MODE_TRIANGLES) {
-            if (indices.size() % 3 != 0) unsupported("triangle lists whose length is not a multiple of 3 (tail dropped)");
+            if (indices.size() % 3 != 0)
+                unsupported("triangle lists whose length is not a multiple of 3 (tail dropped)");
             for (size_t i = 0; i + 2 < indices.size(); i += 3) addTriangle(indices[i], indices[i + 1], indices[i + 2]);
         } else if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
             for (size_t i = 0; i + 2 < indices.size(); ++i)
-                if (i % 2 == 0) addTriangle(indices[i], indices[i + 1], indices[i + 2]);
-                else addTriangle(indices[i + 1], indices[i], indices[i + 2]);
+                if (i % 2 == 0)
+                    addTriangle(indices[i], indices[i + 1], indices[i + 2]);
+                else
+                    addTriangle(indices[i + 1], indices[i], indices[i + 2]);
         } else {
             for (size_t i = 1; i + 1 < indices.size(); ++i) addTriangle(indices[0], indices[i], indices[i + 1]);
         }
@@ -174,7 +186,8 @@ void GltfImporter::addMesh(const tinygltf::Mesh& mesh, int meshIndex, const glm:
         instancedVertices_ += out.positions.size();
         instancedTriangles_ += out.triangles.size();
         if (instancedTriangles_ > kMaxInstanced || instancedVertices_ > kMaxInstanced)
-            fail("more than " + std::to_string(kMaxInstanced) + " vertices or triangles once every node instance is expanded");
+            fail("more than " + std::to_string(kMaxInstanced) +
+                 " vertices or triangles once every node instance is expanded");
         if (!out.triangles.empty()) scene_.meshes.push_back(std::move(out));
     }
 }

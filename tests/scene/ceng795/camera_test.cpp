@@ -8,10 +8,13 @@ namespace {
 // ---------------------------------------------------------------------------------------------
 // Cameras
 
-std::string cameraScene(const std::string& cameras) { return triangleScene("", "", "<Cameras>" + cameras + "</Cameras>"); }
+std::string cameraScene(const std::string& cameras) {
+    return triangleScene("", "", "<Cameras>" + cameras + "</Cameras>");
+}
 
 TEST_F(Ceng795, SimpleCameraWithNearPlane) {
-    const pt::Scene s = load(cameraScene("<Camera id=\"7\"><Position>0 5 25</Position><Gaze>0 0 -2</Gaze><Up>0 1 0.5</Up>"
+    const pt::Scene s = load(cameraScene(
+        "<Camera id=\"7\"><Position>0 5 25</Position><Gaze>0 0 -2</Gaze><Up>0 1 0.5</Up>"
         "<NearPlane>-1 1 -0.5 0.75</NearPlane><NearDistance>2</NearDistance><ImageResolution>800 400</ImageResolution>"
         "<NumSamples>16</NumSamples><ImageName>spheres.png</ImageName>"
         "<FocusDistance>21</FocusDistance><ApertureSize>1.5</ApertureSize></Camera>"));
@@ -41,7 +44,8 @@ TEST_F(Ceng795, LookAtCameraWithGazePointOrGazeAndFovY) {
         "<Camera id=\"1\" type=\"lookAt\"><Position>1 1 1</Position><GazePoint>1 1 -3</GazePoint><Up>0 1 0</Up>"
         "<FovY>60</FovY><NearDistance>1.7</NearDistance><ImageResolution>1280 720</ImageResolution></Camera>"
         // The official HW6 Cornell files: type="lookAt" with a Gaze direction.
-        "<Camera id=\"2\" type=\"lookAt\" handedness=\"right\"><Position>0 -4 0</Position><Gaze>0 2 0</Gaze><Up>0 0 1</Up>"
+        "<Camera id=\"2\" type=\"lookAt\" handedness=\"right\"><Position>0 -4 0</Position><Gaze>0 2 0</Gaze><Up>0 0 "
+        "1</Up>"
         "<FovY>45</FovY><NearDistance>0.1</NearDistance></Camera>"));
     ASSERT_EQ(s.cameras.size(), 2u);
     EXPECT_TRUE(near3(s.cameras[0].forward, glm::vec3(0, 0, -1)));
@@ -57,11 +61,12 @@ TEST_F(Ceng795, LookAtCameraWithGazePointOrGazeAndFovY) {
 TEST_F(Ceng795, LeftHandedCameraMirrorsTheWindow) {
     // Course left-handed u = w x v = -(pt's right): columns run the other way, so the window's
     // left and right are negated (left > right).
-    const pt::Scene s = load(cameraScene(
-        "<Camera id=\"1\" handedness=\"left\"><Position>0 0 0</Position><Gaze>0 0 -1</Gaze><Up>0 1 0</Up>"
-        "<NearPlane>-1 3 -1 1</NearPlane><NearDistance>2</NearDistance></Camera>"
-        "<Camera id=\"2\" type=\"lookAt\" handedness=\"left\"><Position>0 0 0</Position><GazePoint>0 0 -1</GazePoint><Up>0 1 0</Up>"
-        "<FovY>90</FovY><ImageResolution>200 100</ImageResolution></Camera>"));
+    const pt::Scene s = load(
+        cameraScene("<Camera id=\"1\" handedness=\"left\"><Position>0 0 0</Position><Gaze>0 0 -1</Gaze><Up>0 1 0</Up>"
+                    "<NearPlane>-1 3 -1 1</NearPlane><NearDistance>2</NearDistance></Camera>"
+                    "<Camera id=\"2\" type=\"lookAt\" handedness=\"left\"><Position>0 0 0</Position><GazePoint>0 0 "
+                    "-1</GazePoint><Up>0 1 0</Up>"
+                    "<FovY>90</FovY><ImageResolution>200 100</ImageResolution></Camera>"));
     EXPECT_TRUE(near4(*s.cameras[0].window, glm::vec4(0.5f, -1.5f, -0.5f, 0.5f)));
     ASSERT_TRUE(s.cameras[1].window.has_value());
     EXPECT_TRUE(near4(*s.cameras[1].window, glm::vec4(2.0f, -2.0f, -1.0f, 1.0f), 1e-5f));
@@ -70,7 +75,8 @@ TEST_F(Ceng795, LeftHandedCameraMirrorsTheWindow) {
 TEST_F(Ceng795, TonemapSettings) {
     const pt::Scene s = load(cameraScene(
         "<Camera id=\"1\"><Position>0 0 0</Position><Gaze>0 0 -1</Gaze><Up>0 1 0</Up><FovY>45</FovY>"
-        "<Tonemap><TMO>Photographic</TMO><TMOOptions>0.18 1</TMOOptions><Saturation>0.8</Saturation><Gamma>2.2</Gamma></Tonemap></Camera>"
+        "<Tonemap><TMO>Photographic</TMO><TMOOptions>0.18 "
+        "1</TMOOptions><Saturation>0.8</Saturation><Gamma>2.2</Gamma></Tonemap></Camera>"
         "<Camera id=\"2\"><Position>0 0 0</Position><Gaze>0 0 -1</Gaze><Up>0 1 0</Up><FovY>45</FovY>"
         "<Tonemap><TMO>Photographic</TMO><TMOOptions>0.0018 0</TMOOptions><Gamma>sRGB</Gamma></Tonemap></Camera>"
         "<Camera id=\"3\"><Position>0 0 0</Position><Gaze>0 0 -1</Gaze><Up>0 1 0</Up><FovY>45</FovY></Camera>"));
@@ -94,14 +100,17 @@ TEST_F(Ceng795, TonemapSettings) {
 
 TEST_F(Ceng795, RendererParamsMapToIntegratorSwitches) {
     auto camera = [](int id, const std::string& renderer) {
-        return "<Camera id=\"" + std::to_string(id) + "\"><Position>0 0 0</Position><Gaze>0 0 -1</Gaze><Up>0 1 0</Up>"
-               "<FovY>45</FovY>" + renderer + "</Camera>";
+        return "<Camera id=\"" + std::to_string(id) +
+               "\"><Position>0 0 0</Position><Gaze>0 0 -1</Gaze><Up>0 1 0</Up>"
+               "<FovY>45</FovY>" +
+               renderer + "</Camera>";
     };
-    const pt::Scene s = load(cameraScene(
-        camera(1, "<Renderer>PathTracing</Renderer><RendererParams>NextEventEstimation ImportanceSampling RussianRoulette</RendererParams>") +
-        camera(2, "<Renderer>PathTracing</Renderer><RendererParams>ImportanceSampling</RendererParams>") +
-        camera(3, "<Renderer>PathTracing</Renderer><RendererParams></RendererParams>") +
-        camera(4, "<Renderer>PathTracing</Renderer>")));
+    const pt::Scene s = load(
+        cameraScene(camera(1, "<Renderer>PathTracing</Renderer><RendererParams>NextEventEstimation ImportanceSampling "
+                              "RussianRoulette</RendererParams>") +
+                    camera(2, "<Renderer>PathTracing</Renderer><RendererParams>ImportanceSampling</RendererParams>") +
+                    camera(3, "<Renderer>PathTracing</Renderer><RendererParams></RendererParams>") +
+                    camera(4, "<Renderer>PathTracing</Renderer>")));
     const auto& a = s.cameras[0].settings;
     EXPECT_EQ(a.nee, std::optional<bool>(true));
     EXPECT_EQ(a.importanceSampling, std::optional<bool>(true));
@@ -131,26 +140,36 @@ TEST_F(Ceng795, RendererParamsMapToIntegratorSwitches) {
 TEST_F(Ceng795, CameraErrors) {
     const std::string view = "<Position>0 0 0</Position><Up>0 1 0</Up><FovY>45</FovY>";
     expectError(cameraScene("<Camera id=\"3\">" + view + "</Camera>"), "Camera id=3", "missing <Gaze> or <GazePoint>");
-    expectError(cameraScene("<Camera id=\"3\"><Position>0 0 0</Position><Gaze>0 1 0</Gaze><Up>0 2 0</Up><FovY>45</FovY></Camera>"),
+    expectError(
+        cameraScene(
+            "<Camera id=\"3\"><Position>0 0 0</Position><Gaze>0 1 0</Gaze><Up>0 2 0</Up><FovY>45</FovY></Camera>"),
         "Camera id=3", "Up is zero or parallel to the gaze");
-    expectError(cameraScene("<Camera id=\"3\"><Position>0 0 0</Position><Gaze>0 0 0</Gaze><Up>0 1 0</Up><FovY>45</FovY></Camera>"),
+    expectError(
+        cameraScene(
+            "<Camera id=\"3\"><Position>0 0 0</Position><Gaze>0 0 0</Gaze><Up>0 1 0</Up><FovY>45</FovY></Camera>"),
         "Camera id=3", "gaze direction is zero");
     expectError(cameraScene("<Camera id=\"3\"><Position>0 0 0</Position><Gaze>0 0 -1</Gaze><Up>0 1 0</Up></Camera>"),
         "Camera id=3", "missing <NearPlane> or <FovY>");
-    expectError(cameraScene("<Camera id=\"3\"><Position>0 0 0</Position><Gaze>0 0 -1</Gaze><Up>0 1 0</Up><FovY>180</FovY></Camera>"),
+    expectError(
+        cameraScene(
+            "<Camera id=\"3\"><Position>0 0 0</Position><Gaze>0 0 -1</Gaze><Up>0 1 0</Up><FovY>180</FovY></Camera>"),
         "Camera id=3: FovY", "must be in (0, 180)");
     expectError(cameraScene("<Camera id=\"3\"><Position>0 0 0</Position><Gaze>0 0 -1</Gaze><Up>0 1 0</Up>"
-        "<NearPlane>1 -1 -1 1</NearPlane><NearDistance>1</NearDistance></Camera>"),
+                            "<NearPlane>1 -1 -1 1</NearPlane><NearDistance>1</NearDistance></Camera>"),
         "Camera id=3: NearPlane", "left < right");
     expectError(cameraScene("<Camera id=\"3\"><Position>0 0 0</Position><Gaze>0 0 -1</Gaze><Up>0 1 0</Up>"
-        "<NearPlane>-1 1 -1 1</NearPlane></Camera>"), "Camera id=3", "missing <NearDistance>");
+                            "<NearPlane>-1 1 -1 1</NearPlane></Camera>"),
+        "Camera id=3", "missing <NearDistance>");
     expectError(cameraScene("<Camera id=\"3\"><Gaze>0 0 -1</Gaze><Up>0 1 0</Up><FovY>45</FovY></Camera>"),
         "Camera id=3", "missing <Position>");
-    expectError(cameraScene("<Camera id=\"3\">" + view + "<Gaze>0 0 -1</Gaze><NumSamples>99999999999</NumSamples></Camera>"),
+    expectError(
+        cameraScene("<Camera id=\"3\">" + view + "<Gaze>0 0 -1</Gaze><NumSamples>99999999999</NumSamples></Camera>"),
         "Camera id=3: NumSamples", "out of range");
-    expectError(cameraScene("<Camera id=\"3\">" + view + "<Gaze>0 0 -1</Gaze><ImageResolution>0 10</ImageResolution></Camera>"),
+    expectError(
+        cameraScene("<Camera id=\"3\">" + view + "<Gaze>0 0 -1</Gaze><ImageResolution>0 10</ImageResolution></Camera>"),
         "Camera id=3: ImageResolution", "out of range");
-    expectError(cameraScene("<Camera id=\"3\">" + view + "<Gaze>0 0 -1</Gaze><ImageName>../../x.png</ImageName></Camera>"),
+    expectError(
+        cameraScene("<Camera id=\"3\">" + view + "<Gaze>0 0 -1</Gaze><ImageName>../../x.png</ImageName></Camera>"),
         "Camera id=3: ImageName", "relative path inside");
     expectError(cameraScene("<Camera id=\"3\" handedness=\"up\">" + view + "<Gaze>0 0 -1</Gaze></Camera>"),
         "Camera id=3", "handedness 'up'");

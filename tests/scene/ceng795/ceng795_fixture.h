@@ -35,7 +35,9 @@ inline ::testing::AssertionResult near4(const glm::vec4& a, const glm::vec4& b, 
                                          << ", " << b.y << ", " << b.z << ", " << b.w << ")";
 }
 
-inline bool contains(const std::vector<std::string>& v, const std::string& s) { return std::find(v.begin(), v.end(), s) != v.end(); }
+inline bool contains(const std::vector<std::string>& v, const std::string& s) {
+    return std::find(v.begin(), v.end(), s) != v.end();
+}
 
 inline glm::vec3 geometricNormal(const pt::Mesh& m, size_t triangle) {
     const glm::uvec3 t = m.triangles[triangle];
@@ -43,7 +45,9 @@ inline glm::vec3 geometricNormal(const pt::Mesh& m, size_t triangle) {
 }
 
 // World position of corner `corner` of triangle `triangle`.
-inline glm::vec3 corner(const pt::Mesh& m, size_t triangle, int corner) { return m.positions[m.triangles[triangle][corner]]; }
+inline glm::vec3 corner(const pt::Mesh& m, size_t triangle, int corner) {
+    return m.positions[m.triangles[triangle][corner]];
+}
 
 inline const pt::Mesh* findMesh(const pt::Scene& s, const std::string& name) {
     for (const auto& m : s.meshes)
@@ -59,9 +63,10 @@ inline const std::string kSquare = "<VertexData>0 0 0  1 0 0  1 1 0  0 1 0</Vert
 inline std::string sceneXml(const std::string& inner) { return "<Scene>" + inner + "</Scene>"; }
 
 // A scene with the square's first triangle as Mesh 1 plus `objects` and `extra` elements.
-inline std::string triangleScene(const std::string& meshAttributes, const std::string& meshChildren, const std::string& extra = "") {
-    return sceneXml(kOneMaterial + kSquare + extra + "<Objects><Mesh id=\"1\"" + meshAttributes + "><Material>1</Material>" +
-                    meshChildren + "<Faces>1 2 3</Faces></Mesh></Objects>");
+inline std::string triangleScene(
+    const std::string& meshAttributes, const std::string& meshChildren, const std::string& extra = "") {
+    return sceneXml(kOneMaterial + kSquare + extra + "<Objects><Mesh id=\"1\"" + meshAttributes +
+                    "><Material>1</Material>" + meshChildren + "<Faces>1 2 3</Faces></Mesh></Objects>");
 }
 
 class Ceng795 : public ::testing::Test {

@@ -29,14 +29,17 @@ TEST_F(Ceng795, LoadFromTextResolvesAgainstBaseDir) {
         "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
         "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n1 1 0\n3 0 1 2\n");
     const pt::Scene s = pt::loadCeng795Text(
-        sceneXml(kOneMaterial + "<Objects><Mesh id=\"1\"><Material>1</Material><Faces plyFile=\"m/quad.ply\"/></Mesh></Objects>"),
+        sceneXml(kOneMaterial +
+                 "<Objects><Mesh id=\"1\"><Material>1</Material><Faces plyFile=\"m/quad.ply\"/></Mesh></Objects>"),
         "inline.xml", dir_);
     EXPECT_EQ(s.source, "inline.xml");
     EXPECT_EQ(s.triangleCount(), 1u);
 }
 
 TEST_F(Ceng795, UnknownElementsAreNoted) {
-    const pt::Scene s = load(sceneXml(kOneMaterial + kSquare + "<Integrator>PathTracing</Integrator><ShadowRayEpsilon>1e-3</ShadowRayEpsilon>"
+    const pt::Scene s = load(sceneXml(
+        kOneMaterial + kSquare +
+        "<Integrator>PathTracing</Integrator><ShadowRayEpsilon>1e-3</ShadowRayEpsilon>"
         "<Objects><Mesh id=\"1\"><Material>1</Material><Faces>1 2 3</Faces></Mesh><Plane id=\"1\"/></Objects>"));
     EXPECT_TRUE(contains(s.unsupported, "element <Integrator> (ignored)"));
     EXPECT_TRUE(contains(s.unsupported, "Plane objects (ignored)"));
@@ -71,7 +74,8 @@ TEST_F(Ceng795, MaxRecursionDepthCountsBouncesAfterTheCameraRay) {
     const pt::Scene none = load(triangleScene("", "", cameras));
     EXPECT_FALSE(none.hints.maxDepth.has_value());
     EXPECT_FALSE(none.cameras[0].settings.maxDepth.has_value());
-    expectError(triangleScene("", "", "<MaxRecursionDepth>-1</MaxRecursionDepth>"), "MaxRecursionDepth", "out of range");
+    expectError(
+        triangleScene("", "", "<MaxRecursionDepth>-1</MaxRecursionDepth>"), "MaxRecursionDepth", "out of range");
 }
 
 } // namespace

@@ -10,9 +10,11 @@ namespace {
 // Lights
 
 TEST_F(Ceng795, PointAndDirectionalLightsArePunctualLights) {
-    const pt::Scene s = load(triangleScene("", "", "<Lights>"
+    const pt::Scene s = load(triangleScene("", "",
+        "<Lights>"
         "<PointLight id=\"1\"><Position>0 30 50</Position><Intensity>1000 2000 3000</Intensity></PointLight>"
-        "<DirectionalLight id=\"1\"><Direction>0 -2 0</Direction><Radiance>2 2 2</Radiance></DirectionalLight></Lights>"));
+        "<DirectionalLight id=\"1\"><Direction>0 -2 0</Direction><Radiance>2 2 "
+        "2</Radiance></DirectionalLight></Lights>"));
     ASSERT_EQ(s.punctualLights.size(), 2u);
     EXPECT_EQ(s.punctualLights[0].type, pt::PunctualLight::Type::Point);
     EXPECT_TRUE(near3(s.punctualLights[0].position, glm::vec3(0, 30, 50)));
@@ -23,12 +25,15 @@ TEST_F(Ceng795, PointAndDirectionalLightsArePunctualLights) {
     EXPECT_TRUE(s.unsupported.empty());
     expectError(triangleScene("", "", "<Lights><PointLight id=\"4\"><Position>0 0 0</Position></PointLight></Lights>"),
         "PointLight id=4", "missing <Intensity>");
-    expectError(triangleScene("", "", "<Lights><DirectionalLight id=\"2\"><Direction>0 0 0</Direction><Radiance>1 1 1</Radiance>"
-        "</DirectionalLight></Lights>"), "DirectionalLight id=2: Direction", "non-zero");
+    expectError(triangleScene("", "",
+                    "<Lights><DirectionalLight id=\"2\"><Direction>0 0 0</Direction><Radiance>1 1 1</Radiance>"
+                    "</DirectionalLight></Lights>"),
+        "DirectionalLight id=2: Direction", "non-zero");
 }
 
 TEST_F(Ceng795, OtherLightsAreNamedOnce) {
-    const pt::Scene s = load(triangleScene("", "", "<Lights><AmbientLight>25 25 25</AmbientLight>"
+    const pt::Scene s = load(triangleScene("", "",
+        "<Lights><AmbientLight>25 25 25</AmbientLight>"
         "<HeadLight id=\"1\"/><HeadLight id=\"2\"/></Lights>"));
     EXPECT_EQ(s.unsupported, (std::vector<std::string>{"HeadLight lights (ignored)"}));
     EXPECT_TRUE(near3(s.ambientLight, glm::vec3(25.0f))); // for the classic integrator
@@ -38,10 +43,13 @@ TEST_F(Ceng795, OtherLightsAreNamedOnce) {
 }
 
 TEST_F(Ceng795, SpotAndAreaLights) {
-    const pt::Scene s = load(triangleScene("", "", "<Lights>"
-        "<SpotLight id=\"1\"><Position>-0.93 1 0.9</Position><Direction>1 -1 -1</Direction><Intensity>600 600 600</Intensity>"
+    const pt::Scene s = load(triangleScene("", "",
+        "<Lights>"
+        "<SpotLight id=\"1\"><Position>-0.93 1 0.9</Position><Direction>1 -1 -1</Direction><Intensity>600 600 "
+        "600</Intensity>"
         "<CoverageAngle>10</CoverageAngle><FalloffAngle>8</FalloffAngle></SpotLight>"
-        "<AreaLight id=\"1\"><Position>0 9.8 2</Position><Normal>0 -2 0</Normal><Size>3</Size><Radiance>15 15 15</Radiance></AreaLight>"
+        "<AreaLight id=\"1\"><Position>0 9.8 2</Position><Normal>0 -2 0</Normal><Size>3</Size><Radiance>15 15 "
+        "15</Radiance></AreaLight>"
         "</Lights>"));
     ASSERT_EQ(s.punctualLights.size(), 2u);
     const pt::PunctualLight& spot = s.punctualLights[0];
@@ -54,8 +62,10 @@ TEST_F(Ceng795, SpotAndAreaLights) {
     EXPECT_TRUE(near3(square.direction, glm::vec3(0, -1, 0)));
     EXPECT_EQ(square.size, 3.0f);
     EXPECT_TRUE(s.unsupported.empty());
-    expectError(triangleScene("", "", "<Lights><AreaLight id=\"1\"><Position>0 0 0</Position><Normal>0 0 0</Normal>"
-        "<Size>1</Size><Radiance>1 1 1</Radiance></AreaLight></Lights>"), "AreaLight id=1", "non-zero");
+    expectError(triangleScene("", "",
+                    "<Lights><AreaLight id=\"1\"><Position>0 0 0</Position><Normal>0 0 0</Normal>"
+                    "<Size>1</Size><Radiance>1 1 1</Radiance></AreaLight></Lights>"),
+        "AreaLight id=1", "non-zero");
 }
 
 // SphericalDirectionalLight: the lat-long map named by ImageId, read from <Textures><Images>.
@@ -66,17 +76,22 @@ TEST_F(Ceng795, SphericalDirectionalLightLoadsItsMap) {
     map.rgba.assign(4 * 2 * 4, 0.5f);
     fs::create_directories(dir_ / "textures");
     pt::writeExr(dir_ / "textures" / "sky.exr", map, {});
-    const std::string lights = "<Textures><Images><Image id=\"3\">textures/sky.exr</Image></Images></Textures>"
-                               "<Lights><SphericalDirectionalLight id=\"1\"><ImageId>3</ImageId></SphericalDirectionalLight></Lights>";
+    const std::string lights =
+        "<Textures><Images><Image id=\"3\">textures/sky.exr</Image></Images></Textures>"
+        "<Lights><SphericalDirectionalLight id=\"1\"><ImageId>3</ImageId></SphericalDirectionalLight></Lights>";
     const pt::Scene s = load(triangleScene("", "", lights));
     ASSERT_TRUE(s.environment.has_value());
     EXPECT_EQ(s.environment->image.width, 4);
     EXPECT_EQ(s.environment->image.height, 2);
     EXPECT_FLOAT_EQ(s.environment->image.rgba[0], 0.5f);
-    expectError(triangleScene("", "", "<Lights><SphericalDirectionalLight id=\"1\"><ImageId>9</ImageId></SphericalDirectionalLight></Lights>"),
+    expectError(
+        triangleScene("", "",
+            "<Lights><SphericalDirectionalLight id=\"1\"><ImageId>9</ImageId></SphericalDirectionalLight></Lights>"),
         "SphericalDirectionalLight id=1: ImageId", "unknown image");
-    expectError(triangleScene("", "", "<Textures><Images><Image id=\"3\">textures/none.exr</Image></Images></Textures>"
-        "<Lights><SphericalDirectionalLight id=\"1\"><ImageId>3</ImageId></SphericalDirectionalLight></Lights>"),
+    expectError(
+        triangleScene("", "",
+            "<Textures><Images><Image id=\"3\">textures/none.exr</Image></Images></Textures>"
+            "<Lights><SphericalDirectionalLight id=\"1\"><ImageId>3</ImageId></SphericalDirectionalLight></Lights>"),
         "SphericalDirectionalLight id=1", "none.exr");
 }
 

@@ -13,9 +13,9 @@ const fs::path kData = fs::path(PT_TEST_DATA_DIR) / "data" / "ceng795";
 TEST(Ceng795Official, CornellPathDiffuseCameras) {
     const pt::Scene s = pt::loadCeng795File(kData / "cornellbox_jaroslav_path_diffuse.xml");
     ASSERT_EQ(s.cameras.size(), 8u);
-    const std::vector<std::string> names = {"diffuse_next.exr", "diffuse_next_russian.exr", "diffuse_next_importance.exr",
-        "diffuse_next_importance_russian.exr", "diffuse.exr", "diffuse_russian.exr", "diffuse_importance.exr",
-        "diffuse_importance_russian.exr"};
+    const std::vector<std::string> names = {"diffuse_next.exr", "diffuse_next_russian.exr",
+        "diffuse_next_importance.exr", "diffuse_next_importance_russian.exr", "diffuse.exr", "diffuse_russian.exr",
+        "diffuse_importance.exr", "diffuse_importance_russian.exr"};
     for (size_t i = 0; i < names.size(); ++i) {
         const pt::Camera& c = s.cameras[i];
         EXPECT_EQ(c.name, "camera " + std::to_string(i + 1));

@@ -42,15 +42,24 @@ void putBinary(std::string& out, const std::string& type, double value, bool big
         if (bigEndian != (std::endian::native == std::endian::big)) std::reverse(bytes, bytes + sizeof(v));
         out.append(bytes, sizeof(v));
     };
-    if (type == "char" || type == "int8") append(static_cast<int8_t>(value));
-    else if (type == "uchar" || type == "uint8") append(static_cast<uint8_t>(value));
-    else if (type == "short" || type == "int16") append(static_cast<int16_t>(value));
-    else if (type == "ushort" || type == "uint16") append(static_cast<uint16_t>(value));
-    else if (type == "int" || type == "int32") append(static_cast<int32_t>(value));
-    else if (type == "uint" || type == "uint32") append(static_cast<uint32_t>(value));
-    else if (type == "float" || type == "float32") append(static_cast<float>(value));
-    else if (type == "double" || type == "float64") append(value);
-    else ADD_FAILURE() << "test bug: unknown type " << type;
+    if (type == "char" || type == "int8")
+        append(static_cast<int8_t>(value));
+    else if (type == "uchar" || type == "uint8")
+        append(static_cast<uint8_t>(value));
+    else if (type == "short" || type == "int16")
+        append(static_cast<int16_t>(value));
+    else if (type == "ushort" || type == "uint16")
+        append(static_cast<uint16_t>(value));
+    else if (type == "int" || type == "int32")
+        append(static_cast<int32_t>(value));
+    else if (type == "uint" || type == "uint32")
+        append(static_cast<uint32_t>(value));
+    else if (type == "float" || type == "float32")
+        append(static_cast<float>(value));
+    else if (type == "double" || type == "float64")
+        append(value);
+    else
+        ADD_FAILURE() << "test bug: unknown type " << type;
 }
 
 // A value as ascii PLY text. 17 significant digits of a float widened to double are exact, so the
@@ -195,8 +204,7 @@ protected:
         const fs::path path = write("fuzz.ply", bytes);
         try {
             EXPECT_TRUE(consistent(pt::readPly(path)));
-        } catch (const pt::SceneError&) {
-        }
+        } catch (const pt::SceneError&) {}
     }
 
     fs::path dir_;
@@ -246,8 +254,14 @@ TEST_F(PlyReader, AllThreeFormatsGiveIdenticalMeshes) {
 TEST_F(PlyReader, ListCountAndIndexTypes) {
     const std::vector<glm::uvec3> expected = {{0, 1, 2}, {0, 2, 3}};
     const std::pair<const char*, const char*> kTypes[] = {
-        {"uchar", "int"},   {"int", "int"},     {"uint8", "uint32"}, {"ushort", "uint"},
-        {"char", "short"},  {"uint", "ushort"}, {"int16", "uint8"},  {"int32", "int8"},
+        {"uchar", "int"},
+        {"int", "int"},
+        {"uint8", "uint32"},
+        {"ushort", "uint"},
+        {"char", "short"},
+        {"uint", "ushort"},
+        {"int16", "uint8"},
+        {"int32", "int8"},
     };
     for (const auto& [count, index] : kTypes) {
         const std::string name = std::string(count) + "_" + index + ".ply";
@@ -258,8 +272,8 @@ TEST_F(PlyReader, ListCountAndIndexTypes) {
 
 TEST_F(PlyReader, PositionTypeAliasesAndDoubles) {
     // x as double, y as int16, z as uchar, plus skipped properties of every other alias.
-    const char* const kSkipped[] = {"char", "int8", "uint8", "short", "ushort", "uint16", "int",
-                                    "int32", "uint", "uint32", "float", "float32", "float64"};
+    const char* const kSkipped[] = {"char", "int8", "uint8", "short", "ushort", "uint16", "int", "int32", "uint",
+        "uint32", "float", "float32", "float64"};
     std::string header = "ply\nformat binary_big_endian 1.0\nelement vertex 3\n"
                          "property double x\nproperty int16 y\nproperty uchar z\n";
     for (const char* type : kSkipped) header += std::string("property ") + type + " extra_" + type + "\n";
@@ -279,7 +293,7 @@ TEST_F(PlyReader, PositionTypeAliasesAndDoubles) {
     ASSERT_EQ(m.positions.size(), 3u);
     for (int i = 0; i < 3; ++i)
         EXPECT_EQ(m.positions[i], glm::vec3(static_cast<float>(kPositions[i][0]), static_cast<float>(kPositions[i][1]),
-                                            static_cast<float>(kPositions[i][2])));
+                                      static_cast<float>(kPositions[i][2])));
     EXPECT_EQ(m.triangles, std::vector<glm::uvec3>{glm::uvec3(2, 1, 0)});
 }
 
@@ -295,32 +309,61 @@ std::string meshWithExtras(bool binary) {
                       "property list uchar float texcoord\n"
                       "element edge2 1\nproperty list int uint ids\nend_header\n";
     auto value = [&](const std::string& type, double v) {
-        if (binary) putBinary(out, type, v, false);
-        else out += asciiValue(v) + " ";
+        if (binary)
+            putBinary(out, type, v, false);
+        else
+            out += asciiValue(v) + " ";
     };
-    auto newline = [&] { if (!binary) out += "\n"; };
+    auto newline = [&] {
+        if (!binary) out += "\n";
+    };
     for (int e = 0; e < 2; ++e) { // edges
-        value("uchar", 3); value("int", 9); value("int", 9); value("int", 9); value("uchar", 1); newline();
+        value("uchar", 3);
+        value("int", 9);
+        value("int", 9);
+        value("int", 9);
+        value("uchar", 1);
+        newline();
     }
     const float kSquare[4][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
     for (const auto& p : kSquare) {
-        value("uchar", 255); value("float", p[0]);
-        value("ushort", 2); value("double", 1.5); value("double", -1);
-        value("float", p[1]); value("float", p[2]); newline();
+        value("uchar", 255);
+        value("float", p[0]);
+        value("ushort", 2);
+        value("double", 1.5);
+        value("double", -1);
+        value("float", p[1]);
+        value("float", p[2]);
+        newline();
     }
-    value("int", 7); value("uchar", 3); value("int", 0); value("int", 1); value("int", 2);
-    value("uchar", 6); for (int i = 0; i < 6; ++i) value("float", 0.5);
+    value("int", 7);
+    value("uchar", 3);
+    value("int", 0);
+    value("int", 1);
+    value("int", 2);
+    value("uchar", 6);
+    for (int i = 0; i < 6; ++i) value("float", 0.5);
     newline();
-    value("int", -7); value("uchar", 3); value("int", 0); value("int", 2); value("int", 3);
-    value("uchar", 0); newline();
-    value("int", 3); value("uint", 1); value("uint", 2); value("uint", 3); newline();
+    value("int", -7);
+    value("uchar", 3);
+    value("int", 0);
+    value("int", 2);
+    value("int", 3);
+    value("uchar", 0);
+    newline();
+    value("int", 3);
+    value("uint", 1);
+    value("uint", 2);
+    value("uint", 3);
+    newline();
     return out;
 }
 
 TEST_F(PlyReader, SkipsUnknownElementsAndProperties) {
     const std::vector<glm::uvec3> expected = {{0, 1, 2}, {0, 2, 3}};
     for (bool binary : {false, true}) {
-        const pt::PlyMesh m = pt::readPly(write(binary ? "extras_bin.ply" : "extras_ascii.ply", meshWithExtras(binary)));
+        const pt::PlyMesh m =
+            pt::readPly(write(binary ? "extras_bin.ply" : "extras_ascii.ply", meshWithExtras(binary)));
         ASSERT_EQ(m.positions.size(), 4u) << binary;
         EXPECT_EQ(m.positions[2], glm::vec3(1, 1, 0)) << binary;
         EXPECT_EQ(m.triangles, expected) << binary;
@@ -341,9 +384,10 @@ TEST_F(PlyReader, TextureCoordinateNames) {
         EXPECT_TRUE(m.normals.empty());
     }
     // With two complete pairs, u/v wins over s/t.
-    const std::string both = "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\n"
-                             "property float z\nproperty float s\nproperty float t\nproperty float u\nproperty float v\n"
-                             "end_header\n0 0 0 9 9 0.5 0.25\n";
+    const std::string both =
+        "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\n"
+        "property float z\nproperty float s\nproperty float t\nproperty float u\nproperty float v\n"
+        "end_header\n0 0 0 9 9 0.5 0.25\n";
     const pt::PlyMesh m = pt::readPly(write("both.ply", both));
     ASSERT_EQ(m.uvs.size(), 1u);
     EXPECT_EQ(m.uvs[0], glm::vec2(0.5f, 0.25f));
@@ -451,13 +495,13 @@ TEST_F(PlyReader, HeaderProblems) {
     expectError("bad_type.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty float128 x\nend_header\n", "type");
     expectError("neg_count.ply", "ply\nformat ascii 1.0\nelement vertex -1\nend_header\n", "count");
     expectError("text_count.ply", "ply\nformat ascii 1.0\nelement vertex many\nend_header\n", "count");
-    expectError("huge_count_text.ply", "ply\nformat ascii 1.0\nelement vertex 99999999999999999999999\nend_header\n",
-                "count");
-    expectError("short_property.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty float\nend_header\n",
-                "property");
+    expectError(
+        "huge_count_text.ply", "ply\nformat ascii 1.0\nelement vertex 99999999999999999999999\nend_header\n", "count");
+    expectError(
+        "short_property.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty float\nend_header\n", "property");
     expectError("float_list_count.ply",
-                "ply\nformat ascii 1.0\n" + v + "element edge 0\nproperty list float int ids\nend_header\n0 0 0\n",
-                "count type");
+        "ply\nformat ascii 1.0\n" + v + "element edge 0\nproperty list float int ids\nend_header\n0 0 0\n",
+        "count type");
 }
 
 TEST_F(PlyReader, MeshDescriptionProblems) {
@@ -467,26 +511,29 @@ TEST_F(PlyReader, MeshDescriptionProblems) {
     expectError("no_vertex.ply", start + face + "end_header\n", "no vertex element");
     expectError("no_z.ply", start + "element vertex 0\nproperty float x\nproperty float y\nend_header\n", "'z'");
     expectError("list_x.ply",
-                start + "element vertex 0\nproperty list uchar float x\nproperty float y\nproperty float z\nend_header\n",
-                "scalar");
+        start + "element vertex 0\nproperty list uchar float x\nproperty float y\nproperty float z\nend_header\n",
+        "scalar");
     expectError("dup_x.ply", start + "element vertex 0\n" + xyz + "property double x\nend_header\n", "duplicate");
     expectError("two_vertex.ply", start + "element vertex 0\n" + xyz + "element vertex 0\n" + xyz + "end_header\n",
-                "more than one vertex");
-    expectError("half_normal.ply", start + "element vertex 0\n" + xyz + "property float nx\nproperty float ny\nend_header\n",
-                "normal");
-    expectError("half_uv.ply", start + "element vertex 0\n" + xyz + "property float u\nend_header\n",
-                "texture coordinate");
-    expectError("no_indices.ply", start + "element vertex 0\n" + xyz + "element face 0\nproperty list uchar int verts\nend_header\n",
-                "vertex_indices");
-    expectError("scalar_indices.ply", start + "element vertex 0\n" + xyz + "element face 0\nproperty int vertex_indices\nend_header\n",
-                "must be a list");
+        "more than one vertex");
+    expectError("half_normal.ply",
+        start + "element vertex 0\n" + xyz + "property float nx\nproperty float ny\nend_header\n", "normal");
+    expectError(
+        "half_uv.ply", start + "element vertex 0\n" + xyz + "property float u\nend_header\n", "texture coordinate");
+    expectError("no_indices.ply",
+        start + "element vertex 0\n" + xyz + "element face 0\nproperty list uchar int verts\nend_header\n",
+        "vertex_indices");
+    expectError("scalar_indices.ply",
+        start + "element vertex 0\n" + xyz + "element face 0\nproperty int vertex_indices\nend_header\n",
+        "must be a list");
     expectError("float_indices.ply",
-                start + "element vertex 0\n" + xyz + "element face 0\nproperty list uchar float vertex_indices\nend_header\n",
-                "non-integer index type");
+        start + "element vertex 0\n" + xyz + "element face 0\nproperty list uchar float vertex_indices\nend_header\n",
+        "non-integer index type");
     expectError("both_index_names.ply",
-                start + "element vertex 0\n" + xyz +
-                    "element face 0\nproperty list uchar int vertex_indices\nproperty list uchar int vertex_index\nend_header\n",
-                "more than one");
+        start + "element vertex 0\n" + xyz +
+            "element face 0\nproperty list uchar int vertex_indices\nproperty list uchar int "
+            "vertex_index\nend_header\n",
+        "more than one");
 }
 
 TEST_F(PlyReader, HugeCountsInTinyFilesFailBeforeAllocating) {
@@ -494,18 +541,18 @@ TEST_F(PlyReader, HugeCountsInTinyFilesFailBeforeAllocating) {
     const std::string face = "element face 1\nproperty list uchar int vertex_indices\n";
     for (const std::string format : {"ascii", "binary_little_endian", "binary_big_endian"}) {
         const std::string start = "ply\n" + formatLine(format);
-        expectError(format + "_vertex.ply", start + "element vertex 4000000000\n" + xyz + "end_header\n0 0 0\n",
-                    "truncated");
+        expectError(
+            format + "_vertex.ply", start + "element vertex 4000000000\n" + xyz + "end_header\n0 0 0\n", "truncated");
         expectError(format + "_vertex_max.ply",
-                    start + "element vertex 18446744073709551615\n" + xyz + "end_header\n0 0 0\n", "too many vertices");
+            start + "element vertex 18446744073709551615\n" + xyz + "end_header\n0 0 0\n", "too many vertices");
         expectError(format + "_face.ply",
-                    start + "element vertex 1\n" + xyz + "element face 4000000000\n" +
-                        "property list uchar int vertex_indices\nend_header\n0 0 0 3 0 0 0\n",
-                    "truncated");
+            start + "element vertex 1\n" + xyz + "element face 4000000000\n" +
+                "property list uchar int vertex_indices\nend_header\n0 0 0 3 0 0 0\n",
+            "truncated");
         expectError(format + "_other.ply",
-                    start + "element vertex 0\n" + xyz + "element junk 18446744073709551615\nproperty char a\n" +
-                        "property char b\nend_header\n0 0 0\n",
-                    "truncated");
+            start + "element vertex 0\n" + xyz + "element junk 18446744073709551615\nproperty char a\n" +
+                "property char b\nend_header\n0 0 0\n",
+            "truncated");
     }
 }
 
@@ -537,9 +584,9 @@ TEST_F(PlyReader, HugeListLengthsFail) {
 
     expectError("huge_ascii_list.ply", squareAscii("4000000000 0 1 2\n"), "out of range");
     expectError("huge_ascii_list_int.ply",
-                "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nproperty float z\n"
-                "element face 1\nproperty list int int vertex_indices\nend_header\n0 0 0\n2000000000 0 0 0\n",
-                "truncated");
+        "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nproperty float z\n"
+        "element face 1\nproperty list int int vertex_indices\nend_header\n0 0 0\n2000000000 0 0 0\n",
+        "truncated");
 }
 
 TEST_F(PlyReader, TruncatedFilesFail) {

@@ -15,12 +15,15 @@ const std::string kTextureMaps =
     "<Textures><Images><Image id=\"1\">tex/tiny.ppm</Image></Images>"
     "<TextureMap id=\"1\" type=\"image\"><ImageId>1</ImageId><DecalMode>replace_kd</DecalMode>"
     "<Interpolation>nearest</Interpolation><Normalizer>127.5</Normalizer></TextureMap>"
-    "<TextureMap id=\"2\" type=\"image\"><ImageId>1</ImageId><DecalMode>bump_normal</DecalMode><BumpFactor>0.25</BumpFactor></TextureMap>"
+    "<TextureMap id=\"2\" "
+    "type=\"image\"><ImageId>1</ImageId><DecalMode>bump_normal</DecalMode><BumpFactor>0.25</BumpFactor></TextureMap>"
     "<TextureMap id=\"3\" type=\"checkerboard\"><DecalMode>blend_kd</DecalMode><BlackColor>0 0 0.5</BlackColor>"
     "<WhiteColor>1 1 1</WhiteColor><Scale>4</Scale><Offset>0.5</Offset></TextureMap>"
-    "<TextureMap id=\"4\" type=\"perlin\"><DecalMode>replace_normal</DecalMode><NoiseConversion>absval</NoiseConversion>"
+    "<TextureMap id=\"4\" "
+    "type=\"perlin\"><DecalMode>replace_normal</DecalMode><NoiseConversion>absval</NoiseConversion>"
     "<NoiseScale>3</NoiseScale></TextureMap>"
-    "<TextureMap id=\"5\" type=\"image\" degamma=\"true\"><ImageId>1</ImageId><DecalMode>replace_all</DecalMode></TextureMap>"
+    "<TextureMap id=\"5\" type=\"image\" "
+    "degamma=\"true\"><ImageId>1</ImageId><DecalMode>replace_all</DecalMode></TextureMap>"
     "</Textures>";
 
 TEST_F(Ceng795, TextureMapsBecomeTexturesAndDecalModesMaterialSlots) {
@@ -38,7 +41,7 @@ TEST_F(Ceng795, TextureMapsBecomeTexturesAndDecalModesMaterialSlots) {
     EXPECT_FALSE(kd.bilinear);
     EXPECT_FLOAT_EQ(kd.valueScale, 2.0f); // 255 / Normalizer
     const pt::Texture& bump = s.textures.at(*m.normalTexture);
-    EXPECT_TRUE(bump.bilinear); // Interpolation omitted: bilinear
+    EXPECT_TRUE(bump.bilinear);      // Interpolation omitted: bilinear
     EXPECT_EQ(kd.image, bump.image); // one image, read once
     ASSERT_EQ(s.textureImages.size(), 1u);
     EXPECT_EQ(s.textureImages[0].width, 2);
@@ -75,11 +78,12 @@ TEST_F(Ceng795, ProceduralTexturesAndTheOtherDecalModes) {
 
 TEST_F(Ceng795, ObjectsWithTheSameTexturesShareOneMaterialVariant) {
     write("tex/tiny.ppm", tinyPpm());
-    const std::string xml = sceneXml(kOneMaterial + kSquare + kTextureMaps +
-        "<Objects><Mesh id=\"1\"><Material>1</Material><Textures>1</Textures><Faces>1 2 3</Faces></Mesh>"
-        "<Mesh id=\"2\"><Material>1</Material><Textures>1</Textures><Faces>1 3 4</Faces></Mesh>"
-        "<MeshInstance id=\"3\" baseMeshId=\"1\"><Textures>3</Textures></MeshInstance>"
-        "<MeshInstance id=\"4\" baseMeshId=\"1\"></MeshInstance></Objects>");
+    const std::string xml =
+        sceneXml(kOneMaterial + kSquare + kTextureMaps +
+                 "<Objects><Mesh id=\"1\"><Material>1</Material><Textures>1</Textures><Faces>1 2 3</Faces></Mesh>"
+                 "<Mesh id=\"2\"><Material>1</Material><Textures>1</Textures><Faces>1 3 4</Faces></Mesh>"
+                 "<MeshInstance id=\"3\" baseMeshId=\"1\"><Textures>3</Textures></MeshInstance>"
+                 "<MeshInstance id=\"4\" baseMeshId=\"1\"></MeshInstance></Objects>");
     const pt::Scene s = load(xml);
     ASSERT_EQ(s.meshes.size(), 4u);
     EXPECT_EQ(s.meshes[0].material, s.meshes[1].material);
@@ -90,8 +94,10 @@ TEST_F(Ceng795, ObjectsWithTheSameTexturesShareOneMaterialVariant) {
 
 TEST_F(Ceng795, ReplaceBackgroundBecomesTheSceneBackgroundTexture) {
     write("tex/tiny.ppm", tinyPpm());
-    const std::string bg = "<Textures><Images><Image id=\"1\">tex/tiny.ppm</Image></Images>"
-                           "<TextureMap id=\"1\" type=\"image\"><ImageId>1</ImageId><DecalMode>replace_background</DecalMode></TextureMap></Textures>";
+    const std::string bg =
+        "<Textures><Images><Image id=\"1\">tex/tiny.ppm</Image></Images>"
+        "<TextureMap id=\"1\" "
+        "type=\"image\"><ImageId>1</ImageId><DecalMode>replace_background</DecalMode></TextureMap></Textures>";
     const pt::Scene s = load(triangleScene("", "", bg));
     ASSERT_TRUE(s.backgroundTexture.has_value());
     EXPECT_EQ(s.textures.at(*s.backgroundTexture).type, pt::Texture::Type::Image);
@@ -102,27 +108,35 @@ TEST_F(Ceng795, ReplaceBackgroundBecomesTheSceneBackgroundTexture) {
 TEST_F(Ceng795, BadTexturesAreNamedErrors) {
     write("tex/tiny.ppm", tinyPpm());
     write("tex/broken.png", "\x89PNG\r\n\x1a\n truncated");
-    expectError(triangleScene("", "<Textures>9</Textures>", kTextureMaps), "Mesh id=1: Textures", "unknown TextureMap 9");
+    expectError(
+        triangleScene("", "<Textures>9</Textures>", kTextureMaps), "Mesh id=1: Textures", "unknown TextureMap 9");
     expectError(triangleScene("", "<Textures>1</Textures>",
-                    "<Textures><TextureMap id=\"1\" type=\"image\"><ImageId>1</ImageId><DecalMode>paint_it</DecalMode></TextureMap></Textures>"),
+                    "<Textures><TextureMap id=\"1\" "
+                    "type=\"image\"><ImageId>1</ImageId><DecalMode>paint_it</DecalMode></TextureMap></Textures>"),
         "TextureMap id=1: DecalMode", "unknown decal mode");
-    expectError(triangleScene("", "<Textures>1</Textures>",
-                    "<Textures><TextureMap id=\"1\" type=\"marble\"><DecalMode>replace_kd</DecalMode></TextureMap></Textures>"),
+    expectError(
+        triangleScene("", "<Textures>1</Textures>",
+            "<Textures><TextureMap id=\"1\" type=\"marble\"><DecalMode>replace_kd</DecalMode></TextureMap></Textures>"),
         "TextureMap id=1", "unknown TextureMap type");
     expectError(triangleScene("", "<Textures>1</Textures>",
-                    "<Textures><TextureMap id=\"1\" type=\"image\"><ImageId>4</ImageId><DecalMode>replace_kd</DecalMode></TextureMap></Textures>"),
+                    "<Textures><TextureMap id=\"1\" "
+                    "type=\"image\"><ImageId>4</ImageId><DecalMode>replace_kd</DecalMode></TextureMap></Textures>"),
         "TextureMap id=1: ImageId", "unknown image 4");
     expectError(triangleScene("", "<Textures>1</Textures>",
                     "<Textures><Images><Image id=\"1\">tex/missing.png</Image></Images>"
-                    "<TextureMap id=\"1\" type=\"image\"><ImageId>1</ImageId><DecalMode>replace_kd</DecalMode></TextureMap></Textures>"),
+                    "<TextureMap id=\"1\" "
+                    "type=\"image\"><ImageId>1</ImageId><DecalMode>replace_kd</DecalMode></TextureMap></Textures>"),
         "Image id=1", "missing.png");
     expectError(triangleScene("", "<Textures>1</Textures>",
                     "<Textures><Images><Image id=\"1\">tex/broken.png</Image></Images>"
-                    "<TextureMap id=\"1\" type=\"image\"><ImageId>1</ImageId><DecalMode>replace_kd</DecalMode></TextureMap></Textures>"),
+                    "<TextureMap id=\"1\" "
+                    "type=\"image\"><ImageId>1</ImageId><DecalMode>replace_kd</DecalMode></TextureMap></Textures>"),
         "Image id=1", "cannot decode image");
     expectError(triangleScene("", "<Textures>1</Textures>",
                     "<Textures><Images><Image id=\"1\">tex/tiny.ppm</Image></Images>"
-                    "<TextureMap id=\"1\" type=\"image\"><ImageId>1</ImageId><DecalMode>replace_kd</DecalMode><Normalizer>0</Normalizer></TextureMap></Textures>"),
+                    "<TextureMap id=\"1\" "
+                    "type=\"image\"><ImageId>1</ImageId><DecalMode>replace_kd</DecalMode><Normalizer>0</Normalizer></"
+                    "TextureMap></Textures>"),
         "TextureMap id=1: Normalizer", "must be positive");
 }
 

@@ -17,9 +17,9 @@ TEST_F(Ceng795, TransformationsApplyLeftToRight) {
         "<Scaling id=\"2\">2 1 1</Scaling></Transformations>";
     const pt::Scene s = load(triangleScene("", "<Transformations>r1 t1 s2</Transformations>", transforms));
     ASSERT_EQ(s.meshes.size(), 1u);
-    EXPECT_TRUE(near3(corner(s.meshes[0], 0, 0), glm::vec3(2, 0, 0)));  // (0,0,0) -> (0,0,0) -> (1,0,0) -> (2,0,0)
-    EXPECT_TRUE(near3(corner(s.meshes[0], 0, 1), glm::vec3(2, 1, 0)));  // (1,0,0)
-    EXPECT_TRUE(near3(corner(s.meshes[0], 0, 2), glm::vec3(0, 1, 0)));  // (1,1,0) -> (-1,1,0) -> (0,1,0) -> (0,1,0)
+    EXPECT_TRUE(near3(corner(s.meshes[0], 0, 0), glm::vec3(2, 0, 0))); // (0,0,0) -> (0,0,0) -> (1,0,0) -> (2,0,0)
+    EXPECT_TRUE(near3(corner(s.meshes[0], 0, 1), glm::vec3(2, 1, 0))); // (1,0,0)
+    EXPECT_TRUE(near3(corner(s.meshes[0], 0, 2), glm::vec3(0, 1, 0))); // (1,1,0) -> (-1,1,0) -> (0,1,0) -> (0,1,0)
 
     // The reverse list is a different map: (1,0,0) -> (2,0,0) -> (3,0,0) -> (0,3,0).
     const pt::Scene r = load(triangleScene("", "<Transformations>s2 t1 r1</Transformations>", transforms));
@@ -45,7 +45,8 @@ TEST_F(Ceng795, MirroringTransformKeepsTheFrontSide) {
     // docs/ceng795-format.md §10: normals map with the inverse transpose, which for Scaling -1 1 1 keeps +z.
     // The mirrored winding would face -z, so the loader swaps two corners.
     const std::string transforms = "<Transformations><Scaling id=\"1\">-1 1 1</Scaling></Transformations>";
-    const pt::Scene s = load(triangleScene(" shadingMode=\"smooth\"", "<Transformations>s1</Transformations>", transforms));
+    const pt::Scene s =
+        load(triangleScene(" shadingMode=\"smooth\"", "<Transformations>s1</Transformations>", transforms));
     EXPECT_TRUE(near3(geometricNormal(s.meshes[0], 0), glm::vec3(0, 0, 1)));
     for (const auto& n : s.meshes[0].normals) EXPECT_TRUE(near3(n, glm::vec3(0, 0, 1)));
 }
@@ -59,7 +60,9 @@ TEST_F(Ceng795, BadTransformationsAreErrors) {
         "Scaling id=1", "non-zero");
     expectError(triangleScene("", "", "<Transformations><Rotation id=\"1\">30 0 0 0</Rotation></Transformations>"),
         "Rotation id=1", "axis");
-    expectError(triangleScene("", "", "<Transformations><Composite id=\"1\">1 0 0 0 0 1 0 0 0 0 1 0 1 0 0 1</Composite></Transformations>"),
+    expectError(
+        triangleScene("", "",
+            "<Transformations><Composite id=\"1\">1 0 0 0 0 1 0 0 0 0 1 0 1 0 0 1</Composite></Transformations>"),
         "Composite id=1", "last row");
     expectError(triangleScene("", "", "<Transformations><Translation id=\"1\">1 2</Translation></Transformations>"),
         "Translation id=1", "expected 3 numbers");
@@ -76,17 +79,22 @@ const std::string kTwoMaterials =
     "<Material id=\"2\"><DiffuseReflectance>0.1 0.2 0.3</DiffuseReflectance></Material></Materials>";
 
 TEST_F(Ceng795, InstancesComposeOrResetTheBaseTransform) {
-    const pt::Scene s = load(sceneXml(kTwoMaterials + kSquare + kInstanceTransforms + "<Objects>"
-        "<Mesh id=\"1\"><Material>1</Material><Transformations>t1</Transformations><Faces>2 3 4</Faces></Mesh>"
-        // on top of the base: (1,0,0) -> t1 -> (2,0,0) -> t2 -> (2,10,0)
-        "<MeshInstance id=\"2\" baseMeshId=\"1\"><Transformations>t2</Transformations></MeshInstance>"
-        // raw base geometry: (1,0,0) -> s1 -> (2,0,0)
-        "<MeshInstance id=\"3\" baseMeshId=\"1\" resetTransform=\"true\"><Material>2</Material><Transformations>s1</Transformations></MeshInstance>"
-        // a chain: on top of instance 2: (2,10,0) -> s1 -> (4,20,0)
-        "<MeshInstance id=\"4\" baseMeshId=\"2\" resetTransform=\"false\"><Transformations>s1</Transformations></MeshInstance>"
-        // reset in a chain still starts from the root mesh's raw geometry: (1,0,0) -> t2
-        "<MeshInstance id=\"5\" baseMeshId=\"4\" resetTransform=\"true\"><Transformations>t2</Transformations></MeshInstance>"
-        "</Objects>"));
+    const pt::Scene s = load(
+        sceneXml(kTwoMaterials + kSquare + kInstanceTransforms +
+                 "<Objects>"
+                 "<Mesh id=\"1\"><Material>1</Material><Transformations>t1</Transformations><Faces>2 3 4</Faces></Mesh>"
+                 // on top of the base: (1,0,0) -> t1 -> (2,0,0) -> t2 -> (2,10,0)
+                 "<MeshInstance id=\"2\" baseMeshId=\"1\"><Transformations>t2</Transformations></MeshInstance>"
+                 // raw base geometry: (1,0,0) -> s1 -> (2,0,0)
+                 "<MeshInstance id=\"3\" baseMeshId=\"1\" "
+                 "resetTransform=\"true\"><Material>2</Material><Transformations>s1</Transformations></MeshInstance>"
+                 // a chain: on top of instance 2: (2,10,0) -> s1 -> (4,20,0)
+                 "<MeshInstance id=\"4\" baseMeshId=\"2\" "
+                 "resetTransform=\"false\"><Transformations>s1</Transformations></MeshInstance>"
+                 // reset in a chain still starts from the root mesh's raw geometry: (1,0,0) -> t2
+                 "<MeshInstance id=\"5\" baseMeshId=\"4\" "
+                 "resetTransform=\"true\"><Transformations>t2</Transformations></MeshInstance>"
+                 "</Objects>"));
     ASSERT_EQ(s.meshes.size(), 5u);
     EXPECT_TRUE(near3(corner(*findMesh(s, "Mesh 1"), 0, 0), glm::vec3(2, 0, 0)));
     EXPECT_TRUE(near3(corner(*findMesh(s, "MeshInstance 2"), 0, 0), glm::vec3(2, 10, 0)));
@@ -99,10 +107,12 @@ TEST_F(Ceng795, InstancesComposeOrResetTheBaseTransform) {
 }
 
 TEST_F(Ceng795, InstanceMayPrecedeItsBaseAndInheritsShading) {
-    const pt::Scene s = load(sceneXml(kOneMaterial + kSquare + kInstanceTransforms + "<Objects>"
-        "<MeshInstance id=\"2\" baseMeshId=\"1\"><Transformations>t2</Transformations></MeshInstance>"
-        "<MeshInstance id=\"3\" baseMeshId=\"1\" shadingMode=\"flat\"/>"
-        "<Mesh id=\"1\" shadingMode=\"smooth\"><Material>1</Material><Faces>1 2 3</Faces></Mesh></Objects>"));
+    const pt::Scene s = load(
+        sceneXml(kOneMaterial + kSquare + kInstanceTransforms +
+                 "<Objects>"
+                 "<MeshInstance id=\"2\" baseMeshId=\"1\"><Transformations>t2</Transformations></MeshInstance>"
+                 "<MeshInstance id=\"3\" baseMeshId=\"1\" shadingMode=\"flat\"/>"
+                 "<Mesh id=\"1\" shadingMode=\"smooth\"><Material>1</Material><Faces>1 2 3</Faces></Mesh></Objects>"));
     ASSERT_EQ(s.meshes.size(), 3u);
     EXPECT_EQ(s.meshes[0].name, "MeshInstance 2"); // file order
     EXPECT_EQ(s.meshes[0].normals.size(), 3u);
@@ -111,7 +121,9 @@ TEST_F(Ceng795, InstanceMayPrecedeItsBaseAndInheritsShading) {
 
 TEST_F(Ceng795, BaseMeshIdPrefersMeshesOverInstancesWithTheSameId) {
     // veach-ajar: MeshInstance 1 coexists with Mesh 1; baseMeshId="1" is the Mesh, not itself.
-    const pt::Scene s = load(sceneXml(kOneMaterial + kSquare + kInstanceTransforms + "<Objects>"
+    const pt::Scene s = load(sceneXml(
+        kOneMaterial + kSquare + kInstanceTransforms +
+        "<Objects>"
         "<Mesh id=\"1\"><Material>1</Material><Faces>2 3 4</Faces></Mesh>"
         "<MeshInstance id=\"1\" baseMeshId=\"1\"><Transformations>t2</Transformations></MeshInstance>"
         "<MeshInstance id=\"2\" baseMeshId=\"1\"><Transformations>t1</Transformations></MeshInstance></Objects>"));
@@ -125,33 +137,39 @@ TEST_F(Ceng795, LongInstanceChainsResolve) {
     for (int i = 2; i <= 3000; ++i)
         objects += "<MeshInstance id=\"" + std::to_string(i) + "\" baseMeshId=\"" + std::to_string(i - 1) +
                    "\"><Transformations>t1</Transformations></MeshInstance>";
-    const pt::Scene s = load(sceneXml(kOneMaterial + kSquare + kInstanceTransforms + "<Objects>" + objects + "</Objects>"));
+    const pt::Scene s =
+        load(sceneXml(kOneMaterial + kSquare + kInstanceTransforms + "<Objects>" + objects + "</Objects>"));
     ASSERT_EQ(s.meshes.size(), 3000u);
     EXPECT_TRUE(near3(corner(s.meshes.back(), 0, 0), glm::vec3(2999, 0, 0), 1e-2f));
 }
 
 TEST_F(Ceng795, CyclicOrDanglingInstancesAreErrors) {
-    const std::string base = kOneMaterial + kSquare + "<Objects><Mesh id=\"1\"><Material>1</Material><Faces>1 2 3</Faces></Mesh>";
-    expectError(sceneXml(base + "<MeshInstance id=\"2\" baseMeshId=\"3\"/><MeshInstance id=\"3\" baseMeshId=\"2\"/></Objects>"),
+    const std::string base =
+        kOneMaterial + kSquare + "<Objects><Mesh id=\"1\"><Material>1</Material><Faces>1 2 3</Faces></Mesh>";
+    expectError(
+        sceneXml(base + "<MeshInstance id=\"2\" baseMeshId=\"3\"/><MeshInstance id=\"3\" baseMeshId=\"2\"/></Objects>"),
         "MeshInstance id=2", "baseMeshId chain is cyclic (2 -> 3 -> 2)");
     expectError(sceneXml(base + "<MeshInstance id=\"7\" baseMeshId=\"7\"/></Objects>"), "MeshInstance id=7", "cyclic");
     expectError(sceneXml(base + "<MeshInstance id=\"2\" baseMeshId=\"9\"/></Objects>"), "MeshInstance id=2",
         "baseMeshId 9 is neither a Mesh nor a MeshInstance");
     expectError(sceneXml(base + "<MeshInstance id=\"2\"/></Objects>"), "MeshInstance id=2", "missing baseMeshId");
-    expectError(sceneXml(base + "<Mesh id=\"1\"><Material>1</Material><Faces>1 2 3</Faces></Mesh></Objects>"), "Mesh id=1",
-        "duplicate id");
+    expectError(sceneXml(base + "<Mesh id=\"1\"><Material>1</Material><Faces>1 2 3</Faces></Mesh></Objects>"),
+        "Mesh id=1", "duplicate id");
 }
 
 // ---------------------------------------------------------------------------------------------
 // Motion blur
 
 TEST_F(Ceng795, MotionBlurIsEachObjectsTranslation) {
-    const pt::Scene s = load(sceneXml(kOneMaterial + kSquare + "<Objects><Mesh id=\"1\"><Material>1</Material>"
-        "<MotionBlur>0 0 1</MotionBlur><Faces>1 2 3</Faces></Mesh>"
-        "<MeshInstance id=\"2\" baseMeshId=\"1\"></MeshInstance>"
-        "<MeshInstance id=\"3\" baseMeshId=\"1\"><MotionBlur>2 0 0</MotionBlur></MeshInstance>"
-        "<Sphere id=\"1\"><Material>1</Material><Center>1</Center><Radius>1</Radius><MotionBlur>0 3 0</MotionBlur></Sphere>"
-        "</Objects>"));
+    const pt::Scene s =
+        load(sceneXml(kOneMaterial + kSquare +
+                      "<Objects><Mesh id=\"1\"><Material>1</Material>"
+                      "<MotionBlur>0 0 1</MotionBlur><Faces>1 2 3</Faces></Mesh>"
+                      "<MeshInstance id=\"2\" baseMeshId=\"1\"></MeshInstance>"
+                      "<MeshInstance id=\"3\" baseMeshId=\"1\"><MotionBlur>2 0 0</MotionBlur></MeshInstance>"
+                      "<Sphere id=\"1\"><Material>1</Material><Center>1</Center><Radius>1</Radius><MotionBlur>0 3 "
+                      "0</MotionBlur></Sphere>"
+                      "</Objects>"));
     ASSERT_EQ(s.meshes.size(), 3u);
     EXPECT_TRUE(near3(s.meshes[0].motion, glm::vec3(0, 0, 1)));
     EXPECT_TRUE(near3(s.meshes[1].motion, glm::vec3(0, 0, 1))); // the base's
@@ -159,8 +177,10 @@ TEST_F(Ceng795, MotionBlurIsEachObjectsTranslation) {
     ASSERT_EQ(s.spheres.size(), 1u);
     EXPECT_TRUE(near3(s.spheres[0].motion, glm::vec3(0, 3, 0)));
     EXPECT_TRUE(s.unsupported.empty());
-    expectError(sceneXml(kOneMaterial + kSquare + "<Objects><Mesh id=\"1\"><Material>1</Material>"
-        "<MotionBlur>0 0</MotionBlur><Faces>1 2 3</Faces></Mesh></Objects>"), "Mesh id=1: MotionBlur", "");
+    expectError(sceneXml(kOneMaterial + kSquare +
+                         "<Objects><Mesh id=\"1\"><Material>1</Material>"
+                         "<MotionBlur>0 0</MotionBlur><Faces>1 2 3</Faces></Mesh></Objects>"),
+        "Mesh id=1: MotionBlur", "");
 }
 
 } // namespace

@@ -53,7 +53,8 @@ TEST(GltfLoader, CboxDiffuseGeometryCameraAndHints) {
     EXPECT_EQ(s.meshes.size(), 8u);
     for (const auto& m : s.meshes) {
         ASSERT_LT(m.material, s.materials.size()) << m.name;
-        for (const auto& t : m.triangles) EXPECT_TRUE(glm::all(glm::lessThan(t, glm::uvec3(m.positions.size())))) << m.name;
+        for (const auto& t : m.triangles)
+            EXPECT_TRUE(glm::all(glm::lessThan(t, glm::uvec3(m.positions.size())))) << m.name;
     }
 
     ASSERT_EQ(s.cameras.size(), 1u);
@@ -139,7 +140,8 @@ TEST(GltfLoader, CboxGlassMirrorMaterialsAndSmoothNormals) {
         for (const auto& n : m.normals) EXPECT_NEAR(glm::length(n), 1.0f, 1e-4f) << m.name;
         size_t differFromFace = 0;
         for (const auto& t : m.triangles) {
-            const glm::vec3 g = glm::normalize(glm::cross(m.positions[t.y] - m.positions[t.x], m.positions[t.z] - m.positions[t.x]));
+            const glm::vec3 g =
+                glm::normalize(glm::cross(m.positions[t.y] - m.positions[t.x], m.positions[t.z] - m.positions[t.x]));
             for (int k = 0; k < 3; ++k)
                 if (glm::dot(g, m.normals[t[k]]) < 0.9999f) ++differFromFace;
             // Shading normals lie on the front side of their face.
@@ -235,7 +237,8 @@ std::string triangleDocument(const std::string& nodes, const std::string& roots)
     }
     std::ostringstream d;
     d << R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": )" << roots << R"(}],
-  "nodes": )" << nodes << R"(,
+  "nodes": )"
+      << nodes << R"(,
   "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "NORMAL": 1}, "material": 0}]}],
   "materials": [{"name": "grey", "pbrMetallicRoughness": {"baseColorFactor": [0.5, 0.5, 0.5, 1], "metallicFactor": 0},
                  "extensions": {"KHR_materials_specular": {"specularFactor": 0}}}],
@@ -278,8 +281,8 @@ WorldTriangle onlyTriangle(const pt::Scene& s) {
 // face (geometric normal, by winding) is the transformed local front face, as are its shading normals.
 void expectScaledTriangle(const glm::vec3& scale) {
     SCOPED_TRACE("scale " + vec3Json(scale));
-    const WorldTriangle w = onlyTriangle(loadText(triangleDocument(
-        R"([{"mesh": 0, "scale": )" + vec3Json(scale) + "}]", "[0]")));
+    const WorldTriangle w =
+        onlyTriangle(loadText(triangleDocument(R"([{"mesh": 0, "scale": )" + vec3Json(scale) + "}]", "[0]")));
     // The same three points (in whichever order).
     for (const glm::vec3& local : kP) {
         const glm::vec3 expected = local * scale;
@@ -310,8 +313,8 @@ TEST(GltfLoader, NegativeDeterminantScaleKeepsFrontFaces) {
 
 TEST(GltfLoader, MirrorInheritedFromAParentNode) {
     // Parent mirrors x, child mirrors nothing: the child's triangle is still mirrored.
-    const WorldTriangle w = onlyTriangle(loadText(triangleDocument(
-        R"([{"scale": [-1, 1, 1], "children": [1]}, {"mesh": 0, "translation": [0, 0, 5]}])", "[0]")));
+    const WorldTriangle w = onlyTriangle(loadText(
+        triangleDocument(R"([{"scale": [-1, 1, 1], "children": [1]}, {"mesh": 0, "translation": [0, 0, 5]}])", "[0]")));
     const glm::vec3 front = glm::normalize(kN * glm::vec3(-1, 1, 1));
     EXPECT_TRUE(near3(w.geometricNormal(), front, 1e-5f));
     for (int k = 0; k < 3; ++k) EXPECT_TRUE(near3(w.n[k], front, 1e-5f)) << k;
@@ -323,8 +326,10 @@ TEST(GltfLoader, NodeHierarchyTransformsAreComposed) {
     const float h = std::sqrt(0.5f);
     std::ostringstream nodes;
     nodes << R"([{"translation": [1, 2, 3], "children": [1, 2]},
-      {"mesh": 0, "rotation": [0, 0, )" << h << ", " << h << R"(]},
-      {"camera": 0, "rotation": [0, )" << h << ", 0, " << h << R"(]}])";
+      {"mesh": 0, "rotation": [0, 0, )"
+          << h << ", " << h << R"(]},
+      {"camera": 0, "rotation": [0, )"
+          << h << ", 0, " << h << R"(]}])";
     const pt::Scene s = loadText(triangleDocument(nodes.str(), "[0]"));
     const WorldTriangle w = onlyTriangle(s);
     // Rz(90): (x, y, z) -> (-y, x, z); then + (1, 2, 3).
@@ -360,8 +365,8 @@ TEST(GltfLoader, NodeTrsAppliesScaleThenRotationThenTranslation) {
 
 TEST(GltfLoader, NodeMatrixIsColumnMajor) {
     // translation (4, 5, 6) as a column-major matrix: elements 12..14.
-    const WorldTriangle w = onlyTriangle(loadText(triangleDocument(
-        R"([{"mesh": 0, "matrix": [1,0,0,0, 0,1,0,0, 0,0,1,0, 4,5,6,1]}])", "[0]")));
+    const WorldTriangle w = onlyTriangle(
+        loadText(triangleDocument(R"([{"mesh": 0, "matrix": [1,0,0,0, 0,1,0,0, 0,0,1,0, 4,5,6,1]}])", "[0]")));
     for (int k = 0; k < 3; ++k) EXPECT_TRUE(near3(w.p[k], kP[k] + glm::vec3(4, 5, 6), 1e-6f)) << k;
 }
 
@@ -401,9 +406,12 @@ std::string materialDocument(const std::string& materials, int materialCount, co
     }
     std::ostringstream d;
     d << R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [)" << roots.str() << R"(]}],
-  "nodes": [)" << nodes.str() << R"(], "meshes": [)" << meshes.str() << R"(],
-  "materials": )" << materials << R"(,
-  "extensions": {"KHR_lights_punctual": {"lights": )" << lights << R"(}},
+  "nodes": [)"
+      << nodes.str() << R"(], "meshes": [)" << meshes.str() << R"(],
+  "materials": )"
+      << materials << R"(,
+  "extensions": {"KHR_lights_punctual": {"lights": )"
+      << lights << R"(}},
   "extensionsUsed": ["KHR_materials_specular", "KHR_materials_ior", "KHR_materials_transmission",
                      "KHR_materials_volume", "KHR_materials_emissive_strength", "KHR_lights_punctual"],
   "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 1]}],
@@ -432,7 +440,8 @@ TEST(GltfLoaderMaterials, MetallicRoughnessFactorsAndExtensions) {
        "extensions": {"KHR_materials_specular": {"specularFactor": 0}}},
       {"name": "chrome", "pbrMetallicRoughness": {"metallicFactor": 1, "roughnessFactor": 0}},
       {"name": "lamp", "emissiveFactor": [1, 0.5, 0.25], "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": 8}}}
-    ])", 10));
+    ])",
+        10));
     auto get = [&](const char* name) {
         const pt::Material* m = findMaterial(s, name);
         EXPECT_NE(m, nullptr) << name;
@@ -509,7 +518,8 @@ TEST(GltfLoaderMaterials, PrimitivesWithoutMaterialGetTheGltfDefault) {
 }
 
 TEST(GltfLoaderMaterials, OutOfRangeFactorsAreErrors) {
-    for (const char* bad : {R"({"pbrMetallicRoughness": {"metallicFactor": 1.5}})", R"({"pbrMetallicRoughness": {"roughnessFactor": -0.1}})",
+    for (const char* bad : {R"({"pbrMetallicRoughness": {"metallicFactor": 1.5}})",
+             R"({"pbrMetallicRoughness": {"roughnessFactor": -0.1}})",
              R"({"extensions": {"KHR_materials_transmission": {"transmissionFactor": 2}}})",
              R"({"extensions": {"KHR_materials_specular": {"specularFactor": -1}}})"}) {
         EXPECT_THROW(loadText(materialDocument(std::string("[") + bad + "]", 1)), pt::SceneError) << bad;
@@ -523,9 +533,12 @@ TEST(GltfLoaderLights, PunctualLightsWithUnitsAndNodeTransforms) {
     // down, to -y); directional rotated 90 degrees about y (its -z becomes -x); a light under a
     // translated parent inherits the parent's transform.
     nodes << R"({"translation": [1, 2, 3], "extensions": {"KHR_lights_punctual": {"light": 0}}},
-      {"translation": [0, 5, 0], "rotation": [)" << -h << ", 0, 0, " << h << R"(], "extensions": {"KHR_lights_punctual": {"light": 1}}},
-      {"rotation": [0, )" << h << ", 0, " << h << R"(], "extensions": {"KHR_lights_punctual": {"light": 2}}},
-      {"translation": [10, 0, 0], "children": [)" << 5 << R"(]})";
+      {"translation": [0, 5, 0], "rotation": [)"
+          << -h << ", 0, 0, " << h << R"(], "extensions": {"KHR_lights_punctual": {"light": 1}}},
+      {"rotation": [0, )"
+          << h << ", 0, " << h << R"(], "extensions": {"KHR_lights_punctual": {"light": 2}}},
+      {"translation": [10, 0, 0], "children": [)"
+          << 5 << R"(]})";
     // (The child node 5, listed after these, is not a scene root: the helper makes every
     // top-level object of the list a root, so it is added by hand below.)
     std::string doc = materialDocument(R"([{"name": "grey"}])", 1, R"([
@@ -533,10 +546,12 @@ TEST(GltfLoaderLights, PunctualLightsWithUnitsAndNodeTransforms) {
       {"type": "spot", "intensity": 100, "spot": {"innerConeAngle": 0.3, "outerConeAngle": 0.6}},
       {"type": "directional", "color": [0.5, 0.5, 1], "intensity": 3},
       {"type": "point", "intensity": 2}
-    ])", nodes.str());
+    ])",
+        nodes.str());
     // Add node 5 (a point light at the parent's origin plus (0, 1, 0)) without making it a root.
     const std::string lastNode = R"("children": [5]})";
-    doc.insert(doc.find(lastNode) + lastNode.size(), R"(, {"translation": [0, 1, 0], "extensions": {"KHR_lights_punctual": {"light": 3}}})");
+    doc.insert(doc.find(lastNode) + lastNode.size(),
+        R"(, {"translation": [0, 1, 0], "extensions": {"KHR_lights_punctual": {"light": 3}}})");
     const pt::Scene s = loadText(doc);
     ASSERT_EQ(s.punctualLights.size(), 4u);
     const pt::PunctualLight& point = s.punctualLights[0];
@@ -567,12 +582,14 @@ TEST(GltfLoaderLights, PunctualLightsWithUnitsAndNodeTransforms) {
 
 TEST(GltfLoaderLights, RangeIsNotedAndBadLightsAreErrors) {
     const std::string node = R"({"extensions": {"KHR_lights_punctual": {"light": 0}}})";
-    const pt::Scene ranged = loadText(materialDocument(R"([{}])", 1, R"([{"type": "point", "intensity": 1, "range": 5}])", node));
+    const pt::Scene ranged =
+        loadText(materialDocument(R"([{}])", 1, R"([{"type": "point", "intensity": 1, "range": 5}])", node));
     ASSERT_EQ(ranged.punctualLights.size(), 1u);
     ASSERT_EQ(ranged.unsupported.size(), 1u);
     EXPECT_NE(ranged.unsupported[0].find("range"), std::string::npos) << ranged.unsupported[0];
 
-    EXPECT_THROW(loadText(materialDocument(R"([{}])", 1, R"([{"type": "point", "intensity": -1}])", node)), pt::SceneError);
+    EXPECT_THROW(
+        loadText(materialDocument(R"([{}])", 1, R"([{"type": "point", "intensity": -1}])", node)), pt::SceneError);
     EXPECT_THROW(loadText(materialDocument(R"([{}])", 1,
                      R"([{"type": "spot", "spot": {"innerConeAngle": 0.8, "outerConeAngle": 0.5}}])", node)),
         pt::SceneError);
@@ -662,7 +679,8 @@ namespace {
 // Textures: slots, encodings, samplers, KHR_texture_transform, alpha modes
 
 const char* const kOnePixelPng =
-    "data:image/png;base64,iVBORw0KGgoAAAANSUhEUgAAAAEAAAABCAYAAAAfFcSJAAAADUlEQVR42mP8z8BQDwAEhQGAhKmMIQAAAABJRU5ErkJggg==";
+    "data:image/"
+    "png;base64,iVBORw0KGgoAAAANSUhEUgAAAAEAAAABCAYAAAAfFcSJAAAADUlEQVR42mP8z8BQDwAEhQGAhKmMIQAAAABJRU5ErkJggg==";
 
 // materialDocument plus textures / images / samplers arrays.
 std::string texturedDocument(const std::string& materials, int materialCount, const std::string& textures,
@@ -671,7 +689,8 @@ std::string texturedDocument(const std::string& materials, int materialCount, co
     const std::string head = R"({"asset": {"version": "2.0"},)";
     const size_t at = d.find(head);
     EXPECT_NE(at, std::string::npos);
-    d.insert(at + head.size(), R"( "textures": )" + textures + R"(, "images": )" + images + R"(, "samplers": )" + samplers + ",");
+    d.insert(at + head.size(),
+        R"( "textures": )" + textures + R"(, "images": )" + images + R"(, "samplers": )" + samplers + ",");
     return d;
 }
 
@@ -685,12 +704,14 @@ TEST(GltfLoaderTextures, SlotsEncodingsSamplersAndTransforms) {
       {"name": "moved", "pbrMetallicRoughness": {"baseColorFactor": [1, 1, 1, 0.4],
         "baseColorTexture": {"index": 1, "extensions": {"KHR_texture_transform": {"offset": [0.5, 0.25], "rotation": 1.5707963, "scale": [2, 3]}}}},
        "alphaMode": "BLEND"}
-    ])", 2, R"([{"source": 0}, {"source": 0, "sampler": 0}])", images,
+    ])",
+        2, R"([{"source": 0}, {"source": 0, "sampler": 0}])", images,
         R"([{"magFilter": 9728, "wrapS": 33071, "wrapT": 33648}])"));
     const pt::Material* painted = findMaterial(s, "painted");
     const pt::Material* moved = findMaterial(s, "moved");
     ASSERT_TRUE(painted && moved);
-    ASSERT_TRUE(painted->baseColorTexture && painted->metallicRoughnessTexture && painted->normalTexture && painted->emissiveTexture);
+    ASSERT_TRUE(painted->baseColorTexture && painted->metallicRoughnessTexture && painted->normalTexture &&
+                painted->emissiveTexture);
     // A metallic-roughness texture can make the factors' mirror rough: the full model is needed.
     EXPECT_EQ(painted->type, pt::MaterialType::Pbr);
     EXPECT_EQ(s.textures.at(*painted->baseColorTexture).encoding, pt::Texture::Encoding::Srgb);
@@ -736,10 +757,11 @@ TEST(GltfLoaderTextures, BadTexturesAreErrors) {
     };
     const std::string base = R"([{"pbrMetallicRoughness": {"baseColorTexture": {"index": 3}}}])";
     expectError(texturedDocument(base, 1, R"([{"source": 0}])", images), "texture 3 does not exist");
-    expectError(texturedDocument(R"([{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}])", 1, R"([{"source": 0, "sampler": 4}])", images),
+    expectError(texturedDocument(R"([{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}])", 1,
+                    R"([{"source": 0, "sampler": 4}])", images),
         "sampler 4 does not exist");
-    expectError(texturedDocument(R"([{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}])", 1, R"([{"source": 0}])",
-                    R"([{"uri": "data:image/png;base64,iVBORw0KGgoAAAA"}])"),
+    expectError(texturedDocument(R"([{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}])", 1,
+                    R"([{"source": 0}])", R"([{"uri": "data:image/png;base64,iVBORw0KGgoAAAA"}])"),
         "image 0");
     expectError(texturedDocument(R"([{"alphaMode": "SOMETIMES"}])", 1, "[]", "[]"), "unknown alphaMode");
 }
@@ -762,17 +784,20 @@ TEST(GltfLoaderTextures, TangentsAreTransformedWithTheirHandedness) {
     }
     auto document = [&](const std::string& scale) {
         return std::string(R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}],
-          "nodes": [{"mesh": 0, "scale": )") + scale + R"(}],
+          "nodes": [{"mesh": 0, "scale": )") +
+               scale + R"(}],
           "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "NORMAL": 1, "TANGENT": 2}, "material": 0}]}],
           "materials": [{"normalTexture": {"index": 0}}],
-          "textures": [{"source": 0}], "images": [{"uri": ")" + kOnePixelPng + R"("}],
+          "textures": [{"source": 0}], "images": [{"uri": ")" +
+               kOnePixelPng + R"("}],
           "accessors": [
             {"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]},
             {"bufferView": 1, "componentType": 5126, "count": 3, "type": "VEC3"},
             {"bufferView": 2, "componentType": 5126, "count": 3, "type": "VEC4"}],
           "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 36}, {"buffer": 0, "byteOffset": 36, "byteLength": 36},
                           {"buffer": 0, "byteOffset": 72, "byteLength": 48}],
-          "buffers": [{"byteLength": 120, "uri": "data:application/octet-stream;base64,)" + base64(bytes) + R"("}]})";
+          "buffers": [{"byteLength": 120, "uri": "data:application/octet-stream;base64,)" +
+               base64(bytes) + R"("}]})";
     };
     const pt::Scene plain = loadText(document("[2, 1, 1]"));
     ASSERT_EQ(plain.meshes.at(0).tangents.size(), 3u);

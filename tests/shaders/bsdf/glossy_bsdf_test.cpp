@@ -104,7 +104,8 @@ TEST_F(GlossyBsdf, SamplingMatchesPdfAndWeightsAreFCosOverPdf) {
         }
         expected.back() = std::max(0.0, 1.0 - mass) * kSamples; // samples lost below the horizon
 
-        const auto samples = runTestKernel(TEST_MODE_BSDF_SAMPLE, kSamples, gpu_.get(), {}, glm::vec3(0.0f), wo, 3, index);
+        const auto samples =
+            runTestKernel(TEST_MODE_BSDF_SAMPLE, kSamples, gpu_.get(), {}, glm::vec3(0.0f), wo, 3, index);
         std::vector<glm::vec4> sampled;
         for (uint32_t i = 0; i < kSamples; ++i) {
             if (samples[kSamples + i].w == 0.0f) {
@@ -116,7 +117,8 @@ TEST_F(GlossyBsdf, SamplingMatchesPdfAndWeightsAreFCosOverPdf) {
         }
         int dof = 0;
         const double p = chiSquarePValue(observed, expected, &dof);
-        std::printf("[          ] %s: chi-square p %.4f (%d dof), pdf mass %.4f, albedo %.4f\n", c.name, p, dof, mass, albedo);
+        std::printf(
+            "[          ] %s: chi-square p %.4f (%d dof), pdf mass %.4f, albedo %.4f\n", c.name, p, dof, mass, albedo);
         EXPECT_GT(p, 1e-3) << c.name;
         EXPECT_LE(mass, 1.0 + 2e-3) << c.name;
         if (c.normalized || c.model == GlossyModel::TorranceSparrow)

@@ -41,7 +41,8 @@ std::vector<glm::vec4> midpoints(const std::vector<int>& bins, int nz, int nphi)
         for (int a = 0; a < nz; ++a)
             for (int b = 0; b < nphi; ++b)
                 dirs.emplace_back(direction(-1.0 + 2.0 * (zi + (a + 0.5) / nz) / kZBins,
-                                      2 * M_PI * (pi + (b + 0.5) / nphi) / kPhiBins), 0.0f);
+                                      2 * M_PI * (pi + (b + 0.5) / nphi) / kPhiBins),
+                    0.0f);
     }
     return dirs;
 }
@@ -115,7 +116,8 @@ std::vector<Case> cases() {
         {"rough dielectric, alpha 0.36", roughDielectric(0.6f, 1.5f), {0.6f, -0.3f}, 1.5},
         {"pbr dielectric, roughness 0.5", pbr(0.6f, 0.0f, 0.5f), {0.8f, 0.1f}},
         {"pbr half metal, roughness 0.4", pbr(0.7f, 0.5f, 0.4f), {0.7f, 0.2f}},
-        {"pbr transmission 0.7 with volume, roughness 0.4", pbr(0.9f, 0.0f, 0.4f, 0.7f, false), {0.7f, -0.8f, -0.3f}, 1.5},
+        {"pbr transmission 0.7 with volume, roughness 0.4", pbr(0.9f, 0.0f, 0.4f, 0.7f, false), {0.7f, -0.8f, -0.3f},
+            1.5},
         {"pbr thin-walled transmission, roughness 0.3", pbr(0.9f, 0.0f, 0.3f, 1.0f, true), {0.6f, -0.4f}},
         {"pbr ior 1.3, specular 0.5 x 0.8", lowSpecular, {0.75f, 0.15f}},
     };
@@ -186,8 +188,8 @@ std::vector<double> binProbabilities(Evaluate&& evaluate, bool grazing) {
 FitResult fit(MicrofacetBsdf& t, uint32_t index, glm::vec3 wo, double ior, std::vector<glm::vec4>& samples,
     std::vector<glm::vec4>& evaluated, std::vector<glm::vec3> deltaDirections, size_t* deltaCount) {
     FitResult r;
-    const auto probability = binProbabilities([&](const std::vector<glm::vec4>& d) { return t.evaluate(index, wo, d); },
-        std::abs(wo.z) < kGrazingCos);
+    const auto probability = binProbabilities(
+        [&](const std::vector<glm::vec4>& d) { return t.evaluate(index, wo, d); }, std::abs(wo.z) < kGrazingCos);
     std::vector<double> expected(kBins + 1, 0.0), observed(kBins + 1, 0.0);
     for (int k = 0; k < kBins; ++k) {
         expected[k] = probability[k] * kSamples;
@@ -244,8 +246,8 @@ TEST_F(MicrofacetBsdf, SamplingMatchesPdfAndWeightsAreFCosOverPdf) {
             SCOPED_TRACE(std::string(c.name) + ", cos theta_o " + std::to_string(cosO));
             std::vector<glm::vec4> samples, evaluated;
             const FitResult r = fit(*this, index, woAt(cosO), c.ior, samples, evaluated, {}, nullptr);
-            std::printf("[          ] %s, cos_o %+.2f: chi-square p %.4f, pdf mass %.4f (valid %.4f), albedo %.4f\n", c.name,
-                cosO, r.pValue, r.mass, r.validFraction, r.albedo);
+            std::printf("[          ] %s, cos_o %+.2f: chi-square p %.4f, pdf mass %.4f (valid %.4f), albedo %.4f\n",
+                c.name, cosO, r.pValue, r.mass, r.validFraction, r.albedo);
             EXPECT_GT(r.pValue, 1e-3);
             EXPECT_LE(r.mass, 1.0 + 3e-3);
             // The sampler's valid fraction is the pdf's mass (binomial, 5 sigma).
@@ -262,7 +264,8 @@ TEST_F(MicrofacetBsdf, ChiSquareRejectsAWrongRoughness) {
     const uint32_t wrong = add(roughConductor(0.4f, 0.2f, 3.0f, 0.9f));
     upload();
     const glm::vec3 wo = woAt(0.8f);
-    const auto probability = binProbabilities([&](const std::vector<glm::vec4>& d) { return evaluate(wrong, wo, d); }, false);
+    const auto probability =
+        binProbabilities([&](const std::vector<glm::vec4>& d) { return evaluate(wrong, wo, d); }, false);
     std::vector<double> expected(kBins, 0.0), observed(kBins, 0.0);
     for (int k = 0; k < kBins; ++k) expected[k] = probability[k] * kSamples;
     const auto samples = sample(0, wo);
@@ -296,15 +299,17 @@ TEST_F(MicrofacetBsdf, SmoothPbrTakesDeltaLobesWithTheirProbability) {
                     reflected += 1;
                     pSpecular = samples[i].w;
                     // weight * probability = the lobe's f cos integral: the Fresnel blend.
-                    const double F = (1 - 0.3) * fresnelDielectric(cosO, 1.5) +
-                                     0.3 * (0.5 + 0.5 * std::pow(1.0 - cosO, 5.0));
+                    const double F =
+                        (1 - 0.3) * fresnelDielectric(cosO, 1.5) + 0.3 * (0.5 + 0.5 * std::pow(1.0 - cosO, 5.0));
                     if (index == opaque) EXPECT_NEAR(samples[kSamples + i].x * samples[i].w, F, 1e-4);
-                    if (index == thin) EXPECT_NEAR(samples[kSamples + i].x * samples[i].w, fresnelDielectric(cosO, 1.5), 1e-4);
+                    if (index == thin)
+                        EXPECT_NEAR(samples[kSamples + i].x * samples[i].w, fresnelDielectric(cosO, 1.5), 1e-4);
                 } else if (glm::length(s + wo) < 1e-4f) {
                     transmitted += 1;
                     pTransmission = samples[i].w;
                     // Thin wall, straight through: transmission x base colour x (1 - F).
-                    EXPECT_NEAR(samples[kSamples + i].x * samples[i].w, 0.5 * 0.8 * (1 - fresnelDielectric(cosO, 1.5)), 1e-4);
+                    EXPECT_NEAR(
+                        samples[kSamples + i].x * samples[i].w, 0.5 * 0.8 * (1 - fresnelDielectric(cosO, 1.5)), 1e-4);
                 }
             }
             ASSERT_GT(pSpecular, 0.0f);
@@ -318,7 +323,8 @@ TEST_F(MicrofacetBsdf, SmoothPbrTakesDeltaLobesWithTheirProbability) {
             } else {
                 EXPECT_EQ(transmitted, 0.0);
             }
-            std::printf("[          ] smooth pbr %u, cos_o %.2f: p %.4f, delta probability %.4f, non-delta pdf mass %.4f, albedo %.4f\n",
+            std::printf("[          ] smooth pbr %u, cos_o %.2f: p %.4f, delta probability %.4f, non-delta pdf mass "
+                        "%.4f, albedo %.4f\n",
                 index, cosO, r.pValue, deltaProbability, r.mass, r.albedo);
             EXPECT_NEAR(r.mass, 1.0 - deltaProbability, 3e-3);
             EXPECT_GT(r.pValue, 1e-3);
@@ -342,7 +348,8 @@ TEST_F(MicrofacetBsdf, ReflectionLobesAreReciprocal) {
             for (size_t b = 0; b < dirs.size(); ++b) {
                 if (a == b) continue;
                 const double fab = f[a][b].x / dirs[b].z, fba = f[b][a].x / dirs[a].z;
-                EXPECT_NEAR(fab, fba, 1e-4 * std::max(1.0, std::abs(fab))) << "material " << index << " pair " << a << ", " << b;
+                EXPECT_NEAR(fab, fba, 1e-4 * std::max(1.0, std::abs(fab)))
+                    << "material " << index << " pair " << a << ", " << b;
             }
     }
 }
@@ -358,7 +365,8 @@ TEST_F(MicrofacetBsdf, WhiteFurnaceConductorLosesOnlySingleScatteringEnergy) {
     // (a quadrature of the same D and G2 gives 0.987 / 0.970 / 0.883 at alpha 0.1, 0.684 /
     // 0.698 / 0.860 at 0.5 and 0.328 / 0.451 / 0.760 at 1, for cos 0.9 / 0.5 / 0.1; Kulla and
     // Conty 2017 show the same up-to-60% loss at roughness 1).
-    const Level levels[] = {{0.1f, 0.995, 0.99}, {std::sqrt(0.1f), 0.96, 0.87}, {std::sqrt(0.5f), 0.66, 0.84}, {1.0f, 0.31, 0.74}};
+    const Level levels[] = {
+        {0.1f, 0.995, 0.99}, {std::sqrt(0.1f), 0.96, 0.87}, {std::sqrt(0.5f), 0.66, 0.84}, {1.0f, 0.31, 0.74}};
     std::vector<uint32_t> index;
     for (const Level& l : levels) index.push_back(add(roughConductor(l.roughness, 0.0f, 0.0f, 1.0f)));
     upload();
@@ -372,7 +380,8 @@ TEST_F(MicrofacetBsdf, WhiteFurnaceConductorLosesOnlySingleScatteringEnergy) {
                 sum += w;
                 sum2 += w * w;
             }
-            const double albedo = sum / kSamples, se = std::sqrt(std::max(0.0, sum2 / kSamples - albedo * albedo) / kSamples);
+            const double albedo = sum / kSamples,
+                         se = std::sqrt(std::max(0.0, sum2 / kSamples - albedo * albedo) / kSamples);
             std::printf("[          ] furnace conductor alpha %.3f, cos_o %.1f: albedo %.4f +- %.4f\n",
                 levels[k].roughness * levels[k].roughness, cosO, albedo, se);
             EXPECT_LE(albedo, 1.0 + 4 * se + 1e-4);
@@ -399,13 +408,17 @@ TEST_F(MicrofacetBsdf, RoughDielectricReflectsAndTransmitsAtMostWhatArrives) {
             if (samples[kSamples + i].w == 0.0f) continue;
             const bool transmitted = (samples[i].z < 0) != (wo.z < 0);
             const double w = samples[kSamples + i].x;
-            if (transmitted) T += w * (wo.z > 0 ? 1.5 * 1.5 : 1 / (1.5 * 1.5)) / kSamples;
-            else R += w / kSamples;
+            if (transmitted)
+                T += w * (wo.z > 0 ? 1.5 * 1.5 : 1 / (1.5 * 1.5)) / kSamples;
+            else
+                R += w / kSamples;
         }
-        std::printf("[          ] rough dielectric alpha 0.09, cos_o %+.2f: R %.4f T %.4f R+T %.4f\n", cosO, R, T, R + T);
+        std::printf(
+            "[          ] rough dielectric alpha 0.09, cos_o %+.2f: R %.4f T %.4f R+T %.4f\n", cosO, R, T, R + T);
         EXPECT_LE(R + T, 1.0 + 5e-3);
         if (std::abs(cosO) >= 0.3f) EXPECT_GE(R + T, 0.97) << "alpha 0.09 loses little energy away from grazing";
-        if (cosO > 0) EXPECT_NEAR(R, fresnelDielectric(cosO, 1.5), 0.05 + 0.5 * (1 - cosO)) << "reflectance near Fresnel";
+        if (cosO > 0)
+            EXPECT_NEAR(R, fresnelDielectric(cosO, 1.5), 0.05 + 0.5 * (1 - cosO)) << "reflectance near Fresnel";
     }
 }
 
@@ -423,13 +436,15 @@ TEST_F(MicrofacetBsdf, ExtremeRoughnessAndGrazingAnglesStayFinite) {
     }
     upload();
     std::vector<glm::vec4> dirs;
-    for (int i = 0; i < 4096; ++i) dirs.emplace_back(direction(-1.0 + (i / 64 + 0.5) / 32.0, (i % 64 + 0.5) / 64.0 * 2 * M_PI), 0.0f);
+    for (int i = 0; i < 4096; ++i)
+        dirs.emplace_back(direction(-1.0 + (i / 64 + 0.5) / 32.0, (i % 64 + 0.5) / 64.0 * 2 * M_PI), 0.0f);
     for (float c : {-1e-4f, -0.5f, 1e-4f, 1.0f}) dirs.emplace_back(woAt(c), 0.0f); // the grazing and axial ones exactly
     for (uint32_t m : index)
         for (float cosO : {1.0f, 1e-4f, -1e-4f, -1.0f}) {
             const glm::vec3 wo = woAt(cosO);
             size_t bad = 0;
-            for (const glm::vec4& v : evaluate(m, wo, dirs)) bad += !std::isfinite(v.x) || !std::isfinite(v.w) || v.x < 0 || v.w < 0;
+            for (const glm::vec4& v : evaluate(m, wo, dirs))
+                bad += !std::isfinite(v.x) || !std::isfinite(v.w) || v.x < 0 || v.w < 0;
             const auto samples = runTestKernel(TEST_MODE_BSDF_SAMPLE, 20000, gpu_.get(), {}, glm::vec3(0.0f), wo, 5, m);
             for (const glm::vec4& v : samples) bad += !std::isfinite(v.x + v.y + v.z + v.w) || v.w < 0;
             EXPECT_EQ(bad, 0u) << "material " << m << ", cos theta_o " << cosO;
@@ -503,8 +518,8 @@ TEST_F(MicrofacetRender, RoughGlassAtTinyAlphaConvergesToSmoothGlass) {
                 var += v;
                 if (std::abs(d) > 5 * std::sqrt(v) + 2e-3 * std::abs(a.mean.at(x, y)[c]) + 1e-4) ++outliers;
             }
-    std::printf("[          ] smooth mean %.5f, rough (alpha 1e-3) mean %.5f, sigma %.5f, outliers %d\n", sumA / 768, sumB / 768,
-        std::sqrt(var) / 768, outliers);
+    std::printf("[          ] smooth mean %.5f, rough (alpha 1e-3) mean %.5f, sigma %.5f, outliers %d\n", sumA / 768,
+        sumB / 768, std::sqrt(var) / 768, outliers);
     EXPECT_LE(outliers, 3);
     EXPECT_NEAR(sumA / 768, sumB / 768, 4 * std::sqrt(var) / 768 + 1e-4);
     // And the absorption is there: the sphere's centre is darker in red than in blue.
@@ -532,8 +547,8 @@ TEST_F(MicrofacetRender, RoughGlassUnderUniformSkyLosesLittle) {
     double centre = 0;
     for (int y = 6; y < 10; ++y)
         for (int x = 6; x < 10; ++x) centre += r.mean.at(x, y)[0] / 16;
-    std::printf("[          ] rough glass (alpha 0.09) in a white furnace: pixels in [%.4f, %.4f], centre %.4f\n", minimum,
-        maximum, centre);
+    std::printf("[          ] rough glass (alpha 0.09) in a white furnace: pixels in [%.4f, %.4f], centre %.4f\n",
+        minimum, maximum, centre);
     // Single-scattering GGX at alpha 0.09 loses little head-on (R + T = 0.997 at cos 0.7) and
     // more at the silhouette, where light meets the surface at grazing angles (0.93 at cos 0.05).
     EXPECT_GE(centre, 0.95);

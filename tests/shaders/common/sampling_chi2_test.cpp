@@ -13,7 +13,8 @@ std::vector<double> expectedFromZPdf(const DirectionGrid& grid, double n, Antide
     std::vector<double> expected(grid.count());
     for (int zi = 0; zi < grid.zBins; ++zi) {
         const double z0 = grid.zLo + zi * grid.dz(), z1 = z0 + grid.dz();
-        for (int pi = 0; pi < grid.phiBins; ++pi) expected[grid.index(zi, pi)] = n * (cdfOfZ(z1) - cdfOfZ(z0)) * grid.dphi();
+        for (int pi = 0; pi < grid.phiBins; ++pi)
+            expected[grid.index(zi, pi)] = n * (cdfOfZ(z1) - cdfOfZ(z0)) * grid.dphi();
     }
     return expected;
 }
@@ -25,8 +26,8 @@ double uniformAntiderivative(double z) { return z / (2.0 * kPi); }
 // one; then the distribution by chi-square. Two seeds, so one lucky stream cannot hide a bias.
 void checkHemisphereSampler(uint32_t mode, double (*pdf)(double), double (*antiderivative)(double), const char* name) {
     for (uint32_t seed : {1u, 0x9e3779b9u}) {
-        const std::vector<glm::vec4> samples = pt::test::runTestKernel(mode, kSamples, nullptr, {}, glm::vec3(0.0f),
-            glm::vec3(0, 0, 1), seed);
+        const std::vector<glm::vec4> samples =
+            pt::test::runTestKernel(mode, kSamples, nullptr, {}, glm::vec3(0.0f), glm::vec3(0, 0, 1), seed);
         size_t bad = 0;
         for (const glm::vec4& s : samples) {
             const double z = s.z;
@@ -34,8 +35,8 @@ void checkHemisphereSampler(uint32_t mode, double (*pdf)(double), double (*antid
             const bool ok = z >= 0.0 && std::abs(glm::length(glm::dvec3(s)) - 1.0) < 1e-5 &&
                             std::abs(s.w - expectedPdf) <= 1e-5 * expectedPdf;
             if (!ok && ++bad <= 5)
-                ADD_FAILURE() << name << " seed " << seed << ": sample (" << s.x << ", " << s.y << ", " << s.z << ") pdf " << s.w
-                              << ", analytic pdf " << expectedPdf;
+                ADD_FAILURE() << name << " seed " << seed << ": sample (" << s.x << ", " << s.y << ", " << s.z
+                              << ") pdf " << s.w << ", analytic pdf " << expectedPdf;
         }
         EXPECT_EQ(bad, 0u) << name;
         const std::vector<double> expected = expectedFromZPdf(kHemisphere, kSamples, antiderivative);
@@ -45,14 +46,16 @@ void checkHemisphereSampler(uint32_t mode, double (*pdf)(double), double (*antid
 }
 
 TEST_F(SamplingTest, CosineHemisphereMatchesItsPdf) {
-    checkHemisphereSampler(TEST_MODE_COSINE_HEMISPHERE, [](double z) { return std::max(z, 0.0) / kPi; }, cosineAntiderivative,
+    checkHemisphereSampler(
+        TEST_MODE_COSINE_HEMISPHERE, [](double z) { return std::max(z, 0.0) / kPi; }, cosineAntiderivative,
         "cosine hemisphere");
 }
 
 TEST_F(SamplingTest, UniformHemisphereMatchesItsPdf) {
     // The production pdf is 0 exactly at z = 0 (a boundary of measure zero); mirror that.
-    checkHemisphereSampler(TEST_MODE_UNIFORM_HEMISPHERE, [](double z) { return z > 0.0 ? 0.5 / kPi : 0.0; },
-        uniformAntiderivative, "uniform hemisphere");
+    checkHemisphereSampler(
+        TEST_MODE_UNIFORM_HEMISPHERE, [](double z) { return z > 0.0 ? 0.5 / kPi : 0.0; }, uniformAntiderivative,
+        "uniform hemisphere");
 }
 
 // Random numbers on the edges of [0, 1) map to the rim of the disk, a tangent direction of pdf 0
@@ -64,8 +67,8 @@ TEST_F(SamplingTest, EdgeRandomNumbersGiveDirectionsAboveTheHorizon) {
     for (float a : {0.0f, 0.5f, top, 0.25f, 0.75f})
         for (float b : {0.0f, 0.5f, top, 1.0f / 16777216.0f}) at.emplace_back(a, b, 0, 0), at.emplace_back(b, a, 0, 0);
     for (uint32_t mode : {TEST_MODE_COSINE_HEMISPHERE, TEST_MODE_UNIFORM_HEMISPHERE}) {
-        const std::vector<glm::vec4> w = pt::test::runTestKernel(mode, static_cast<uint32_t>(at.size()), nullptr,
-            std::as_bytes(std::span(at)));
+        const std::vector<glm::vec4> w =
+            pt::test::runTestKernel(mode, static_cast<uint32_t>(at.size()), nullptr, std::as_bytes(std::span(at)));
         for (size_t i = 0; i < at.size(); ++i) {
             EXPECT_GT(w[i].z, 0.0f) << "mode " << mode << " u = (" << at[i].x << ", " << at[i].y << ")";
             EXPECT_GT(w[i].w, 0.0f) << "pdf, mode " << mode << " u = (" << at[i].x << ", " << at[i].y << ")";
@@ -77,8 +80,8 @@ TEST_F(SamplingTest, EdgeRandomNumbersGiveDirectionsAboveTheHorizon) {
 // The chi-square test must be able to fail: cosine samples judged against uniform expectations.
 TEST_F(SamplingTest, ChiSquareRejectsAWrongPdf) {
     const std::vector<glm::vec4> samples = pt::test::runTestKernel(TEST_MODE_COSINE_HEMISPHERE, kSamples, nullptr);
-    const double p = pValue(histogram(kHemisphere, samples), expectedFromZPdf(kHemisphere, kSamples, uniformAntiderivative),
-        "cosine samples vs uniform pdf (must fail)");
+    const double p = pValue(histogram(kHemisphere, samples),
+        expectedFromZPdf(kHemisphere, kSamples, uniformAntiderivative), "cosine samples vs uniform pdf (must fail)");
     EXPECT_LT(p, 1e-6);
 }
 

@@ -18,7 +18,9 @@ constexpr uint32_t kPoints = 1u << 16;
 
 class SobolSampler : public GpuTest {};
 
-std::vector<glm::vec4> sobolPoints(uint32_t seed) { return runTestKernel(TEST_MODE_SOBOL_POINTS, kPoints, nullptr, {}, {}, {0, 0, 1}, seed); }
+std::vector<glm::vec4> sobolPoints(uint32_t seed) {
+    return runTestKernel(TEST_MODE_SOBOL_POINTS, kPoints, nullptr, {}, {}, {0, 0, 1}, seed);
+}
 
 // Number of the first `n` points (x, y) that share an elementary interval of size
 // 2^-a x 2^-(k-a) with an earlier one, over every a; zero for a (0, k, 2)-net with n = 2^k.
@@ -44,7 +46,8 @@ TEST_F(SobolSampler, PowerOfTwoPrefixesAreNetsInEveryPair) {
         const auto points = sobolPoints(seed);
         for (int k : {2, 5, 8, 12, 14})
             for (bool second : {false, true})
-                EXPECT_EQ(pointsSharingAnInterval(points, k, second), 0u) << "seed " << seed << ", 2^" << k << " points";
+                EXPECT_EQ(pointsSharingAnInterval(points, k, second), 0u)
+                    << "seed " << seed << ", 2^" << k << " points";
     }
 }
 
@@ -77,8 +80,8 @@ TEST_F(SobolSampler, PointsAreUniformAndPairsUncorrelated) {
     EXPECT_GT(pFirst, 1e-3);
     EXPECT_GT(pSecond, 1e-3);
     const double n = kPoints;
-    const double correlation = (sxz / n - sx / n * sz / n) /
-                               std::sqrt((sxx / n - sx / n * sx / n) * (szz / n - sz / n * sz / n));
+    const double correlation =
+        (sxz / n - sx / n * sz / n) / std::sqrt((sxx / n - sx / n * sx / n) * (szz / n - sz / n * sz / n));
     EXPECT_LT(std::abs(correlation), 4.0 / std::sqrt(n)) << correlation;
 }
 

@@ -78,7 +78,9 @@ TEST_F(HardCases, DegenerateInputLoadsAndLightsTheFloorAsLambertsFormulaSays) {
                 if (std::max(std::abs(p.x), std::abs(p.z)) < 0.99) {
                     ++onFloor;
                     const double eSun = irradianceFrom(sun, sunL, p, {0, 1, 0});
-                    sum += (eSun + irradianceFrom(wall, wallL, p, {0, 1, 0}) + irradianceFrom(edgeOn, 1.0, p, {0, 1, 0})) / M_PI;
+                    sum +=
+                        (eSun + irradianceFrom(wall, wallL, p, {0, 1, 0}) + irradianceFrom(edgeOn, 1.0, p, {0, 1, 0})) /
+                        M_PI;
                     sunSum += eSun / M_PI;
                 } else if (p.x > 1.21 && p.x < 1.59 && std::abs(p.z) < 0.49) {
                     ++onLamp;
@@ -96,9 +98,11 @@ TEST_F(HardCases, DegenerateInputLoadsAndLightsTheFloorAsLambertsFormulaSays) {
             ++floorPixels;
         }
     const double error = std::sqrt(variance);
-    std::printf("[          ] degenerate input: floor mean %.5f +- %.5f over %d pixels, expected %.5f (far sun alone %.5f); "
-                "%d lamp pixels\n",
-        measured / floorPixels, error / floorPixels, floorPixels, expected / floorPixels, expectedSun / floorPixels, lampPixels);
+    std::printf(
+        "[          ] degenerate input: floor mean %.5f +- %.5f over %d pixels, expected %.5f (far sun alone %.5f); "
+        "%d lamp pixels\n",
+        measured / floorPixels, error / floorPixels, floorPixels, expected / floorPixels, expectedSun / floorPixels,
+        lampPixels);
     ASSERT_GT(floorPixels, size * size / 4);
     ASSERT_GT(lampPixels, 10);
     EXPECT_NEAR(measured, expected, 4.0 * error + 0.005 * expected);

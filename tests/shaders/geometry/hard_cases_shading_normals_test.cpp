@@ -29,7 +29,8 @@ std::optional<glm::dvec3> smoothNormalAt(const Mesh& mesh, glm::dvec3 o, glm::dv
         const double v = glm::dot(d, r) / det, dist = glm::dot(e2, r) / det;
         if (u < 0 || v < 0 || u + v > 1 || dist <= 0 || dist >= best) continue;
         best = dist;
-        n = (1 - u - v) * glm::dvec3(mesh.normals[t.x]) + u * glm::dvec3(mesh.normals[t.y]) + v * glm::dvec3(mesh.normals[t.z]);
+        n = (1 - u - v) * glm::dvec3(mesh.normals[t.x]) + u * glm::dvec3(mesh.normals[t.y]) +
+            v * glm::dvec3(mesh.normals[t.z]);
     }
     return n;
 }
@@ -69,7 +70,8 @@ TEST_F(HardCases, LowPolySphereWithSmoothNormalsHasNoBlackTerminatorBandAndNoLea
             for (int k = 0; k < 25 && onSphere; ++k) {
                 const glm::dvec3 d = pixelDirection(gc, size, size, x + (k % 5) / 4.0, y + (k / 5) / 4.0);
                 const auto n = smoothNormalAt(sphere, glm::dvec3(camera.position), d);
-                if (!n) onSphere = false;
+                if (!n)
+                    onSphere = false;
                 else {
                     const double c = glm::dot(glm::normalize(*n), toLight);
                     lo = std::min(lo, c);
@@ -93,9 +95,11 @@ TEST_F(HardCases, LowPolySphereWithSmoothNormalsHasNoBlackTerminatorBandAndNoLea
                 }
             }
         }
-    std::printf("[          ] smooth icosphere: %d lit pixels (%d black), %d dark (brightest %g); terminator band of %d "
-                "pixels: mean %.5f +- %.5f, expected %.5f\n",
-        lit, blackLit, back, brightestBack, band, bandMeasured / band, std::sqrt(bandVariance) / band, bandExpected / band);
+    std::printf(
+        "[          ] smooth icosphere: %d lit pixels (%d black), %d dark (brightest %g); terminator band of %d "
+        "pixels: mean %.5f +- %.5f, expected %.5f\n",
+        lit, blackLit, back, brightestBack, band, bandMeasured / band, std::sqrt(bandVariance) / band,
+        bandExpected / band);
     ASSERT_GT(lit, 100);
     ASSERT_GT(back, 100);
     ASSERT_GT(band, 20);
@@ -134,7 +138,8 @@ void expectNormalMappedPlane(const Scene& scene, const char* file) {
     ASSERT_EQ(stripes.height, 1) << file;
     ASSERT_EQ(stripes.rgba8.size(), 8u) << file;
     for (int i = 0; i < 8; ++i) // (+-0.87, 0, 0.5) in tangent space, stored as (n + 1) / 2
-        EXPECT_EQ(stripes.rgba8[i], (i % 2 ? 16u : 239u) | 128u << 8 | 191u << 16 | 255u << 24) << file << ", texel " << i;
+        EXPECT_EQ(stripes.rgba8[i], (i % 2 ? 16u : 239u) | 128u << 8 | 191u << 16 | 255u << 24)
+            << file << ", texel " << i;
     ASSERT_EQ(scene.cameras.size(), 1u) << file;
     const Camera expected = lookAt({0.0f, 2.0f, 0.01f}, {0.0f, 0.0f, 0.0f}, 0.9f), &c = scene.cameras[0];
     EXPECT_EQ(c.position, expected.position) << file;
@@ -152,7 +157,8 @@ TEST_F(HardCases, NormalMappedPlaneLetsNoLightThroughAndKeepsItsLitStripesLit) {
     IntegratorSettings s;
     s.maxDepth = 2;
     for (bool fromBelow : {true, false}) {
-        const char* file = fromBelow ? "normal-mapped-plane-light-below.gltf" : "normal-mapped-plane-light-grazing.gltf";
+        const char* file =
+            fromBelow ? "normal-mapped-plane-light-below.gltf" : "normal-mapped-plane-light-grazing.gltf";
         const Scene scene = loadHardScene(file, s);
         ASSERT_NO_FATAL_FAILURE(expectNormalMappedPlane(scene, file));
         ASSERT_EQ(scene.meshes.size(), 1u) << file;
@@ -163,7 +169,8 @@ TEST_F(HardCases, NormalMappedPlaneLetsNoLightThroughAndKeepsItsLitStripesLit) {
         EXPECT_EQ(sun.type, PunctualLight::Type::Directional) << file;
         EXPECT_EQ(sun.intensity, glm::vec3(float(M_PI))) << file;
         const float elevation = glm::radians(fromBelow ? -40.0f : 10.0f);
-        EXPECT_LE(glm::length(sun.direction + glm::vec3(std::cos(elevation), std::sin(elevation), 0.0f)), 1e-6f) << file;
+        EXPECT_LE(glm::length(sun.direction + glm::vec3(std::cos(elevation), std::sin(elevation), 0.0f)), 1e-6f)
+            << file;
         // (The forced random numbers once: the two lights compile the same kernel.)
         const Camera& camera = scene.cameras[0];
         const auto r = fromBelow ? renderAllModes(scene, s, camera, size, 8, "normal map, light below")
@@ -191,7 +198,8 @@ TEST_F(HardCases, NormalMappedPlaneLetsNoLightThroughAndKeepsItsLitStripesLit) {
     ASSERT_EQ(scene.meshes.size(), 2u) << file;
     // The emitter: 20 x 20, radiance 1, black, one-sided, 0.5 below the plane and facing it.
     const Mesh& emitter = scene.meshes[1];
-    EXPECT_EQ(emitter.positions, (std::vector<glm::vec3>{{-10, -0.5f, -10}, {-10, -0.5f, 10}, {10, -0.5f, 10}, {10, -0.5f, -10}}))
+    EXPECT_EQ(emitter.positions,
+        (std::vector<glm::vec3>{{-10, -0.5f, -10}, {-10, -0.5f, 10}, {10, -0.5f, 10}, {10, -0.5f, -10}}))
         << file;
     EXPECT_EQ(emitter.triangles, (std::vector<glm::uvec3>{{0, 1, 2}, {0, 2, 3}})) << file; // faces +y
     const Material& lamp = scene.materials.at(emitter.material);
@@ -204,7 +212,8 @@ TEST_F(HardCases, NormalMappedPlaneLetsNoLightThroughAndKeepsItsLitStripesLit) {
         const auto r = renderScene(scene, s, scene.cameras[0], size, size, 32);
         EXPECT_EQ(r.droppedSamples, 0u);
         const ImageStats st = imageStats(r, 0);
-        std::printf("[          ] normal-mapped plane, emitter below, NEE %s: highest %.5f\n", nee ? "on" : "off", st.highest);
+        std::printf(
+            "[          ] normal-mapped plane, emitter below, NEE %s: highest %.5f\n", nee ? "on" : "off", st.highest);
         EXPECT_EQ(st.highest, 0.0) << "a BSDF-sampled ray passed through the plane, NEE " << (nee ? "on" : "off");
     }
 }

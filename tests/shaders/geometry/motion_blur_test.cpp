@@ -60,8 +60,10 @@ TEST_F(MotionBlur, StaticQuadIsABoxAndNeedsNoMotionCode) {
     const Renderer::Readback r = renderScene(scene, IntegratorSettings{}, stripCamera(), 48, 2, 4);
     for (int x = 0; x < 48; ++x) {
         const double x0 = -0.5 + 3.0 * x / 48, x1 = -0.5 + 3.0 * (x + 1) / 48;
-        if (x1 <= 0.0 || x0 >= 1.0) EXPECT_EQ(r.mean.at(x, 0)[0], 0.0f) << x;
-        else if (x0 >= 0.0 && x1 <= 1.0) EXPECT_EQ(r.mean.at(x, 0)[0], 1.0f) << x;
+        if (x1 <= 0.0 || x0 >= 1.0)
+            EXPECT_EQ(r.mean.at(x, 0)[0], 0.0f) << x;
+        else if (x0 >= 0.0 && x1 <= 1.0)
+            EXPECT_EQ(r.mean.at(x, 0)[0], 1.0f) << x;
     }
 }
 

@@ -27,7 +27,8 @@ TEST_F(Spheres, TraversalMatchesBruteForceWithTrianglesAndEllipsoids) {
     scene.materials.push_back(Material{});
     std::mt19937 rng(5);
     std::uniform_real_distribution<float> u(-4.0f, 4.0f), r(0.05f, 0.6f), a(0.0f, 180.0f);
-    for (int i = 0; i < 300; ++i) scene.spheres.push_back(makeSphere({u(rng), u(rng), u(rng)}, {r(rng), r(rng), r(rng)}, a(rng), 0));
+    for (int i = 0; i < 300; ++i)
+        scene.spheres.push_back(makeSphere({u(rng), u(rng), u(rng)}, {r(rng), r(rng), r(rng)}, a(rng), 0));
     scene.meshes.push_back(makeIcosphere(2, glm::vec3(0.5f), 1.5f, 0));
     FlatScene flat = flattenScene(scene);
     ASSERT_EQ(flat.spheres.size(), 300u);

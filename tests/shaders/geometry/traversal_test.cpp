@@ -99,8 +99,8 @@ struct TraceResult {
 };
 
 std::vector<TraceResult> trace(uint32_t mode, const TestScene& scene, const std::vector<GpuTestRay>& rays) {
-    std::vector<glm::vec4> out = pt::test::runTestKernel(mode, static_cast<uint32_t>(rays.size()), scene.gpu.get(),
-        std::as_bytes(std::span<const GpuTestRay>(rays)));
+    std::vector<glm::vec4> out = pt::test::runTestKernel(
+        mode, static_cast<uint32_t>(rays.size()), scene.gpu.get(), std::as_bytes(std::span<const GpuTestRay>(rays)));
     std::vector<TraceResult> results(out.size());
     for (size_t i = 0; i < out.size(); ++i) {
         TraceResult& r = results[i];
@@ -125,8 +125,8 @@ std::string str(float x) {
 std::string describe(const GpuTestRay& r) {
     std::ostringstream s;
     s.precision(9);
-    s << "origin (" << r.origin.x << ", " << r.origin.y << ", " << r.origin.z << ") direction (" << r.direction.x << ", "
-      << r.direction.y << ", " << r.direction.z << ") tMax " << r.tMax;
+    s << "origin (" << r.origin.x << ", " << r.origin.y << ", " << r.origin.z << ") direction (" << r.direction.x
+      << ", " << r.direction.y << ", " << r.direction.z << ") tMax " << r.tMax;
     return s.str();
 }
 
@@ -152,8 +152,8 @@ struct Comparison {
 
 // Runs `rays` through the BVH and brute force and fails (with the first few rays named) on any
 // disagreement; with `mustHit`, also on any miss.
-Comparison expectBvhMatchesBruteForce(const TestScene& scene, const std::vector<GpuTestRay>& rays, const char* what,
-    bool mustHit = false) {
+Comparison expectBvhMatchesBruteForce(
+    const TestScene& scene, const std::vector<GpuTestRay>& rays, const char* what, bool mustHit = false) {
     Comparison c;
     c.bvh = trace(TEST_MODE_TRACE_BVH, scene, rays);
     c.brute = trace(TEST_MODE_TRACE_BRUTE_FORCE, scene, rays);
@@ -180,11 +180,14 @@ Comparison expectBvhMatchesBruteForce(const TestScene& scene, const std::vector<
         if (!f.hit) continue;
         ++c.hits;
         if (std::bit_cast<uint32_t>(b.t) != std::bit_cast<uint32_t>(f.t)) {
-            fail(i, "t differs: BVH " + str(b.t) + " (triangle " + std::to_string(b.triangle) + "), brute force " + str(f.t) +
-                        " (triangle " + std::to_string(f.triangle) + ")");
+            fail(i, "t differs: BVH " + str(b.t) + " (triangle " + std::to_string(b.triangle) + "), brute force " +
+                        str(f.t) + " (triangle " + std::to_string(f.triangle) + ")");
         } else if (b.triangle != f.triangle) {
-            if (isGenuineTie(scene.flat, rays[i], b, f)) ++c.ties;
-            else fail(i, "triangle differs: BVH " + std::to_string(b.triangle) + ", brute force " + std::to_string(f.triangle));
+            if (isGenuineTie(scene.flat, rays[i], b, f))
+                ++c.ties;
+            else
+                fail(i, "triangle differs: BVH " + std::to_string(b.triangle) + ", brute force " +
+                            std::to_string(f.triangle));
         }
     }
     EXPECT_EQ(failures, 0u) << what << ": " << failures << " of " << rays.size() << " rays disagree";
@@ -230,8 +233,8 @@ pt::Mesh box(glm::vec3 lo, glm::vec3 hi) {
     pt::Mesh m;
     m.name = "box";
     for (int k = 0; k < 8; ++k) m.positions.push_back({k & 1 ? hi.x : lo.x, k & 2 ? hi.y : lo.y, k & 4 ? hi.z : lo.z});
-    m.triangles = {{0, 2, 3}, {0, 3, 1}, {4, 5, 7}, {4, 7, 6}, {0, 1, 5}, {0, 5, 4},
-        {2, 6, 7}, {2, 7, 3}, {0, 4, 6}, {0, 6, 2}, {1, 3, 7}, {1, 7, 5}};
+    m.triangles = {{0, 2, 3}, {0, 3, 1}, {4, 5, 7}, {4, 7, 6}, {0, 1, 5}, {0, 5, 4}, {2, 6, 7}, {2, 7, 3}, {0, 4, 6},
+        {0, 6, 2}, {1, 3, 7}, {1, 7, 5}};
     return m;
 }
 
@@ -318,8 +321,8 @@ TEST_F(TraversalTest, RandomRaysAgainstTriangleSoupMatchBruteForce) {
 TEST_F(TraversalTest, AxisAlignedRaysAndOriginsOnNodePlanesMatchBruteForce) {
     const TestScene scene = uploadMeshes({randomSoup(2000, 99)});
     std::mt19937 rng(2024);
-    const std::vector<GpuTestRay> rays = concat({axisAlignedRays(1000, rng, glm::vec3(-12.0f), glm::vec3(12.0f)),
-        nodePlaneRays(scene.flat, 20000, rng)});
+    const std::vector<GpuTestRay> rays = concat(
+        {axisAlignedRays(1000, rng, glm::vec3(-12.0f), glm::vec3(12.0f)), nodePlaneRays(scene.flat, 20000, rng)});
     const Comparison c = expectBvhMatchesBruteForce(scene, rays, "axis-aligned / node-plane rays, soup");
     EXPECT_GT(c.hits, rays.size() / 10);
 }
@@ -331,9 +334,10 @@ TEST_F(TraversalTest, FlatGridInPlaneZeroMatchesBruteForce) {
         ASSERT_EQ(n.hi.z, 0.0f);
     }
     std::mt19937 rng(31);
-    std::vector<GpuTestRay> rays = concat({randomRays(15000, rng, glm::vec3(-14.0f, -14.0f, -5.0f), glm::vec3(14.0f, 14.0f, 5.0f)),
-        axisAlignedRays(500, rng, glm::vec3(-14.0f, -14.0f, -3.0f), glm::vec3(14.0f, 14.0f, 3.0f)),
-        nodePlaneRays(scene.flat, 10000, rng), raysThroughVertices(scene.flat, 4.0f)});
+    std::vector<GpuTestRay> rays =
+        concat({randomRays(15000, rng, glm::vec3(-14.0f, -14.0f, -5.0f), glm::vec3(14.0f, 14.0f, 5.0f)),
+            axisAlignedRays(500, rng, glm::vec3(-14.0f, -14.0f, -3.0f), glm::vec3(14.0f, 14.0f, 3.0f)),
+            nodePlaneRays(scene.flat, 10000, rng), raysThroughVertices(scene.flat, 4.0f)});
     // Rays lying in the plane itself, and rays grazing it.
     for (int i = 0; i < 2000; ++i) {
         glm::vec3 o = randomIn(rng, glm::vec3(-14.0f, -14.0f, 0.0f), glm::vec3(14.0f, 14.0f, 0.0f));
@@ -350,14 +354,16 @@ TEST_F(TraversalTest, FlatGridInPlaneZeroMatchesBruteForce) {
 // Both edges belong to the quad (the intersector is edge-inclusive), so each ray must hit,
 // whichever face of the box (lo or hi) its origin lies on.
 TEST_F(TraversalTest, RaysInTheFacePlanesOfABoxAreNotCulled) {
-    const TestScene scene = uploadMeshes({pt::test::makeQuad(glm::vec3(0.0f), glm::vec3(1, 0, 0), glm::vec3(0, 1, 0), 0)});
+    const TestScene scene =
+        uploadMeshes({pt::test::makeQuad(glm::vec3(0.0f), glm::vec3(1, 0, 0), glm::vec3(0, 1, 0), 0)});
     std::vector<GpuTestRay> rays;
     for (float x : {0.0f, 1.0f})
         for (float y : {0.25f, 0.5f, 0.75f}) {
-            rays.push_back(makeRay({x, y, 1.0f}, {0.0f, 0.0f, -1.0f}));                // straight down the edge
+            rays.push_back(makeRay({x, y, 1.0f}, {0.0f, 0.0f, -1.0f}));                    // straight down the edge
             rays.push_back(makeRay({x, y - 0.5f, 1.0f}, {0.0f, 0.4472136f, -0.8944272f})); // slanted within x = const
         }
-    expectBvhMatchesBruteForce(scene, rays, "rays in the planes x = lo.x, x = hi.x of the quad's box", /*mustHit=*/true);
+    expectBvhMatchesBruteForce(
+        scene, rays, "rays in the planes x = lo.x, x = hi.x of the quad's box", /*mustHit=*/true);
 }
 
 TEST_F(TraversalTest, AxisAlignedBoxesMatchBruteForce) {
@@ -446,7 +452,8 @@ TEST_F(TraversalTest, TMaxIsRespected) {
     for (size_t i = 0; i < probe.size(); ++i) {
         if (!first[i].hit) continue;
         const float t = first[i].t;
-        for (float tMax : {0.25f * t, 0.999f * t, t}) shortRays.push_back(makeRay(probe[i].origin, probe[i].direction, tMax));
+        for (float tMax : {0.25f * t, 0.999f * t, t})
+            shortRays.push_back(makeRay(probe[i].origin, probe[i].direction, tMax));
         longRays.push_back(makeRay(probe[i].origin, probe[i].direction, 1.001f * t));
         hitT.push_back(t);
     }

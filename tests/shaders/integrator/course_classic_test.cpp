@@ -52,7 +52,8 @@ Comparison renderAndCompare(const std::string& name, uint32_t spp) {
     c.blockDiff /= n;
     c.meanOurs /= n * kBlock * kBlock;
     c.meanOfficial /= n * kBlock * kBlock;
-    std::printf("%s: block difference %.2f levels, mean %.1f (official %.1f)\n", name.c_str(), c.blockDiff, c.meanOurs, c.meanOfficial);
+    std::printf("%s: block difference %.2f levels, mean %.1f (official %.1f)\n", name.c_str(), c.blockDiff, c.meanOurs,
+        c.meanOfficial);
     return c;
 }
 

@@ -25,7 +25,8 @@ protected:
         IntegratorSettings s;
         s.nee = camera->settings.nee.value_or(true);
         s.rr = camera->settings.russianRoulette.value_or(true);
-        s.sampling = camera->settings.importanceSampling.value_or(true) ? DirectionSampling::Cosine : DirectionSampling::Uniform;
+        s.sampling =
+            camera->settings.importanceSampling.value_or(true) ? DirectionSampling::Cosine : DirectionSampling::Uniform;
         s.maxDepth = static_cast<uint32_t>(camera->settings.maxDepth.value());
         ASSERT_FALSE(s.nee);
         auto r = renderScene(scene, s, *camera, reference.width, reference.height, spp);
@@ -36,9 +37,10 @@ protected:
         const double fluxDiff = (ours - theirs) / theirs;
         // Block means: our variance is known, the official image's is not (it counts as zero),
         // so judge by the mean relative difference rather than z-scores.
-        const AgreementResult a = compareBlocks(blockStats(r.mean, &r.varianceOfMean, 64), blockStats(reference, nullptr, 64));
-        std::printf("[          ] %s: total flux %+.2f%%, mean |relative difference| of 64x64 blocks %.2f%%\n", official,
-            100 * fluxDiff, 100 * a.meanRelDiff);
+        const AgreementResult a =
+            compareBlocks(blockStats(r.mean, &r.varianceOfMean, 64), blockStats(reference, nullptr, 64));
+        std::printf("[          ] %s: total flux %+.2f%%, mean |relative difference| of 64x64 blocks %.2f%%\n",
+            official, 100 * fluxDiff, 100 * a.meanRelDiff);
         // The block threshold is noise: both images are noisy (the official ones 100 spp of uniform
         // hemisphere sampling, ours 48 spp); measured here 1.7% (diffuse) and 4.5% (glass, whose
         // caustic blocks are the noisiest).
@@ -50,7 +52,9 @@ protected:
 TEST_F(CourseReference, Hw6DiffuseWithoutLightSampling) {
     check("cornellbox_jaroslav_path_diffuse.xml", 7, "diffuse_importance.exr", 48);
 }
-TEST_F(CourseReference, Hw6GlassWithoutLightSampling) { check("cornellbox_jaroslav_path_glass.xml", 5, "glass.exr", 48); }
+TEST_F(CourseReference, Hw6GlassWithoutLightSampling) {
+    check("cornellbox_jaroslav_path_glass.xml", 5, "glass.exr", 48);
+}
 
 } // namespace
 } // namespace pt::test

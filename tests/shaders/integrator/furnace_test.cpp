@@ -24,9 +24,7 @@ Scene enclosure() {
     return scene;
 }
 
-double expectedRadiance(uint32_t maxDepth) {
-    return kEmission * (1.0 - std::pow(kAlbedo, maxDepth)) / (1.0 - kAlbedo);
-}
+double expectedRadiance(uint32_t maxDepth) { return kEmission * (1.0 - std::pow(kAlbedo, maxDepth)) / (1.0 - kAlbedo); }
 
 struct Stats {
     double mean = 0;
@@ -152,7 +150,8 @@ TEST_F(Furnace, GlassSphereInAWhiteSkyIsInvisible) {
         double lowest = 1e9;
         for (int y = 0; y < 24; ++y)
             for (int x = 0; x < 24; ++x) lowest = std::min(lowest, double(r.mean.at(x, y)[0]));
-        std::printf("glass roughness %.1f: image mean %.5f +- %.5f, lowest pixel %.4f\n", roughness, st.mean, st.standardError, lowest);
+        std::printf("glass roughness %.1f: image mean %.5f +- %.5f, lowest pixel %.4f\n", roughness, st.mean,
+            st.standardError, lowest);
         if (roughness == 0.0f) {
             EXPECT_NEAR(st.mean, 1.0, 4 * st.standardError + 2e-3);
             EXPECT_GT(lowest, 0.97);

@@ -30,10 +30,11 @@ TEST_F(HardCases, LightInsideGlassAtTheFieldsRadianceIsInvisible) {
     const Camera& camera = scene.cameras.at(0);
     for (bool nee : {true, false}) {
         s.nee = s.mis = nee;
-        const auto r = renderAllModes(scene, s, camera, size, 16, nee ? "light inside glass, NEE" : "light inside glass, no NEE");
+        const auto r =
+            renderAllModes(scene, s, camera, size, 16, nee ? "light inside glass, NEE" : "light inside glass, no NEE");
         const ImageStats st = imageStats(r, 0);
-        std::printf("[          ] light inside glass, NEE %s: mean %.6f, lowest %.6f, highest %.6f\n", nee ? "on" : "off",
-            st.mean, st.lowest, st.highest);
+        std::printf("[          ] light inside glass, NEE %s: mean %.6f, lowest %.6f, highest %.6f\n",
+            nee ? "on" : "off", st.mean, st.lowest, st.highest);
         // Only a path still inside at the depth limit (after 60-odd internal Fresnel
         // reflections) could lower a pixel; float rounding of 2.25 / 2.25 is far below 1e-5.
         EXPECT_NEAR(st.lowest, 1.0, 1e-5);

@@ -41,8 +41,8 @@ double radiusOf(const Sphere& s) { return glm::length(glm::dvec3(glm::vec3(s.obj
 
 // Clear glass of ior 1.5: a smooth dielectric, untinted, not absorbing.
 bool isClearGlass(const Material& m) {
-    return m.type == MaterialType::Dielectric && m.ior == 1.5f && m.baseColor == glm::vec3(1.0f) && m.roughness == 0.0f &&
-           std::isinf(m.attenuationDistance);
+    return m.type == MaterialType::Dielectric && m.ior == 1.5f && m.baseColor == glm::vec3(1.0f) &&
+           m.roughness == 0.0f && std::isinf(m.attenuationDistance);
 }
 
 // ---- Scale: the Cornell box at 1e-3, 1 and 1e3, and moved to (1e4, 1e4, 1e4) ----
@@ -69,10 +69,12 @@ TEST_F(HardCases, CornellBoxMeanRadianceIsTheSameAtEveryScaleAndPlace) {
         for (size_t m = 0; m < scene.meshes.size(); ++m) {
             ASSERT_EQ(scene.meshes[m].positions.size(), expected.meshes[m].positions.size()) << c.file;
             for (size_t v = 0; v < scene.meshes[m].positions.size(); ++v)
-                EXPECT_LE(glm::length(scene.meshes[m].positions[v] - expected.meshes[m].positions[v]), 1e-6f * (c.scale + c.offset.x))
+                EXPECT_LE(glm::length(scene.meshes[m].positions[v] - expected.meshes[m].positions[v]),
+                    1e-6f * (c.scale + c.offset.x))
                     << c.file;
         }
-        EXPECT_LE(glm::length(scene.cameras.at(0).position - expected.cameras.at(0).position), 1e-6f * (c.scale + c.offset.x));
+        EXPECT_LE(glm::length(scene.cameras.at(0).position - expected.cameras.at(0).position),
+            1e-6f * (c.scale + c.offset.x));
         const auto r = renderScene(scene, s, scene.cameras.at(0), 48, 48, 32);
         EXPECT_EQ(r.droppedSamples, 0u) << c.name;
         const ImageStats st = imageStats(r, 0);
@@ -85,12 +87,11 @@ TEST_F(HardCases, CornellBoxMeanRadianceIsTheSameAtEveryScaleAndPlace) {
     }
 }
 
-
 // ---- Contacts: a room closed by a box resting on a floor, a 1e-4-thick lid whose underside
 // coincides with the walls' top face; bright light only outside. Inside, every pixel is 0. ----
 TEST_F(HardCases, NoLightLeaksIntoASealedRoomThroughContactsAndAThinLid) {
-    const std::pair<float, const char*> cases[] = {
-        {1.0f, "sealed-room-scale-1.gltf"}, {1e-3f, "sealed-room-scale-1e-3.gltf"}, {1e3f, "sealed-room-scale-1e3.gltf"}};
+    const std::pair<float, const char*> cases[] = {{1.0f, "sealed-room-scale-1.gltf"},
+        {1e-3f, "sealed-room-scale-1e-3.gltf"}, {1e3f, "sealed-room-scale-1e3.gltf"}};
     for (auto [scale, file] : cases) {
         IntegratorSettings s;
         s.maxDepth = 8;
@@ -104,7 +105,8 @@ TEST_F(HardCases, NoLightLeaksIntoASealedRoomThroughContactsAndAThinLid) {
         EXPECT_GT(scene.punctualLights[0].position.y, 1.0001f * scale) << file;
         float top = 0, lidBottom = INFINITY, lidTop = 0;
         for (const glm::vec3& p : scene.meshes[1].positions) top = std::max(top, p.y);
-        for (const glm::vec3& p : scene.meshes[2].positions) lidBottom = std::min(lidBottom, p.y), lidTop = std::max(lidTop, p.y);
+        for (const glm::vec3& p : scene.meshes[2].positions)
+            lidBottom = std::min(lidBottom, p.y), lidTop = std::max(lidTop, p.y);
         EXPECT_EQ(lidBottom, top) << file; // coincident faces, exactly
         EXPECT_NEAR(top, scale, 1e-6f * scale) << file;
         EXPECT_NEAR(lidTop - lidBottom, 1e-4f * scale, 1e-2f * 1e-4f * scale) << file;
@@ -149,7 +151,8 @@ TEST_F(HardCases, RaysThroughSharedVerticesAndEdgesOfAClosedMeshNeverSlipThrough
     camera = scene.cameras[1];
     const auto r = renderScene(scene, s, camera, 64, 64, 16);
     EXPECT_EQ(r.droppedSamples, 0u);
-    const ImageStats inner = imageStats(r, 0, [](int x, int y) { return std::abs(x - 32) < 14 && std::abs(y - 32) < 14; });
+    const ImageStats inner =
+        imageStats(r, 0, [](int x, int y) { return std::abs(x - 32) < 14 && std::abs(y - 32) < 14; });
     EXPECT_EQ(inner.lowest, 1.0);
     EXPECT_EQ(inner.highest, 1.0);
 }
@@ -178,8 +181,8 @@ TEST_F(HardCases, HugeGroundSphereHasNoAcne) {
 // while the ray offset there was a fixed 1/65536; it now scales with the primitive, see
 // shaders/common/ray_offset.glsl.)
 TEST_F(HardCases, CameraInsideSpheresOfEverySizeSeesTheAnalyticRadiance) {
-    const std::pair<float, const char*> cases[] = {{1e-3f, "inside-sphere-r1e-3.xml"}, {1e-2f, "inside-sphere-r1e-2.xml"},
-        {1.0f, "inside-sphere-r1.xml"}, {1e4f, "inside-sphere-r1e4.xml"}};
+    const std::pair<float, const char*> cases[] = {{1e-3f, "inside-sphere-r1e-3.xml"},
+        {1e-2f, "inside-sphere-r1e-2.xml"}, {1.0f, "inside-sphere-r1.xml"}, {1e4f, "inside-sphere-r1e4.xml"}};
     for (auto [radius, file] : cases) {
         IntegratorSettings s;
         s.maxDepth = 6;
@@ -231,15 +234,15 @@ TEST_F(HardCases, TinySphereFarAwayCoversItsSolidAngle) {
         const double measured = st.mean * st.pixels * pixelSolidAngle;
         const double error = st.standardError * st.pixels * pixelSolidAngle;
         const double expected = M_PI * r * r / (d * d);
-        std::printf("[          ] tiny sphere along (%.2f %.2f %.2f): solid angle %.4e +- %.1e, expected %.4e\n", dir.x, dir.y,
-            dir.z, measured, error, expected);
+        std::printf("[          ] tiny sphere along (%.2f %.2f %.2f): solid angle %.4e +- %.1e, expected %.4e\n", dir.x,
+            dir.y, dir.z, measured, error, expected);
         EXPECT_NEAR(measured, expected, 4.0 * error + 0.01 * expected);
         // Clean silhouette: nothing lit beyond 1.5 radii from the centre pixel.
-        const ImageStats outside = imageStats(rb, 0, [&](int x, int y) { return std::hypot(x + 0.5 - size / 2.0, y + 0.5 - size / 2.0) > 6.0 * 1.5; });
+        const ImageStats outside = imageStats(
+            rb, 0, [&](int x, int y) { return std::hypot(x + 0.5 - size / 2.0, y + 0.5 - size / 2.0) > 6.0 * 1.5; });
         EXPECT_EQ(outside.highest, 0.0);
     }
 }
-
 
 // ---- Sphere lights: irradiance on a diffuse plane (albedo 1, so radiance = E / pi) from a
 // sphere light wholly above it is E = pi L sin^2(theta_max) cos(alpha) = pi L r^2 cos(alpha) / d^2,
@@ -253,7 +256,8 @@ TEST_F(HardCases, SphereLightIrradianceMatchesPiLSinSquaredThetaMax) {
         Scene scene = loadHardScene(file, s);
         // A white floor at y = 0 (to 20 either way) and one sphere light wholly above it.
         ASSERT_EQ(scene.meshes.size(), 1u) << file;
-        for (const glm::vec3& p : scene.meshes[0].positions) EXPECT_TRUE(p.y == 0.0f && std::abs(p.x) == 20.0f && std::abs(p.z) == 20.0f);
+        for (const glm::vec3& p : scene.meshes[0].positions)
+            EXPECT_TRUE(p.y == 0.0f && std::abs(p.x) == 20.0f && std::abs(p.z) == 20.0f);
         EXPECT_EQ(scene.materials.at(scene.meshes[0].material).baseColor, glm::vec3(1.0f)) << file;
         ASSERT_EQ(scene.spheres.size(), 1u) << file;
         const glm::vec3 lampCentre = centreOf(scene.spheres[0]);
@@ -300,8 +304,8 @@ TEST_F(HardCases, SphereLightIrradianceMatchesPiLSinSquaredThetaMax) {
                 ++used;
             }
         const double error = std::sqrt(variance);
-        std::printf("[          ] %s: mean radiance %.5f +- %.5f over %d pixels, expected %.5f\n", name, measured / used,
-            error / used, used, expected / used);
+        std::printf("[          ] %s: mean radiance %.5f +- %.5f over %d pixels, expected %.5f\n", name,
+            measured / used, error / used, used, expected / used);
         ASSERT_GT(used, size * size / 4);
         EXPECT_NEAR(measured, expected, 4.0 * error + 0.005 * expected) << name;
     }

@@ -16,7 +16,8 @@ namespace pt::test {
 namespace {
 
 std::filesystem::path causticsScene() {
-    return std::filesystem::path(PT_TEST_DATA_DIR).parent_path() / "scenes" / "caustics" / "ellipsoid-light-caustics.xml";
+    return std::filesystem::path(PT_TEST_DATA_DIR).parent_path() / "scenes" / "caustics" /
+           "ellipsoid-light-caustics.xml";
 }
 
 AgreementResult agreement(const Renderer::Readback& a, const Renderer::Readback& b) {
@@ -57,7 +58,9 @@ TEST_F(LightTracing, SphereLightCausticsAgreeWithBsdfSampling) {
 
 TEST_F(LightTracing, UsedOnlyWhereTheSceneHasCausticsItModels) {
     IntegratorSettings s;
-    const auto features = [&](const std::filesystem::path& path) { return computeFeatures(flattenScene(loadScene(path)), s); };
+    const auto features = [&](const std::filesystem::path& path) {
+        return computeFeatures(flattenScene(loadScene(path)), s);
+    };
     const std::filesystem::path refs = testDataDir() / "references";
     EXPECT_TRUE(features(refs / "cbox-glass-mirror" / "scene.gltf").lightTracing);
     EXPECT_FALSE(features(refs / "cbox-diffuse" / "scene.gltf").lightTracing) << "no specular surface";

@@ -62,7 +62,8 @@ Scene commonStage(Scene& scene) {
     panel.emission = glm::vec3(6.0f);
     panel.emissiveTexture = 0;
     scene.materials.push_back(panel); // material 1
-    scene.meshes.push_back(uvQuad({-0.6f, 2.5f, -0.6f}, {1.2f, 0, 0}, {0, 0, 1.2f}, 1, 1.0f)); // (1,0,0) x (0,0,1): faces down
+    scene.meshes.push_back(
+        uvQuad({-0.6f, 2.5f, -0.6f}, {1.2f, 0, 0}, {0, 0, 1.2f}, 1, 1.0f)); // (1,0,0) x (0,0,1): faces down
     // A back wall, so that no pixel sees the (noise-free) sky directly.
     Material wall;
     wall.baseColor = glm::vec3(0.6f, 0.5f, 0.4f);
@@ -77,13 +78,13 @@ Scene commonStage(Scene& scene) {
 Scene texturedScene() {
     Scene scene;
     commonStage(scene);
-    scene.textureImages.push_back(ridges(16));            // image 1
+    scene.textureImages.push_back(ridges(16)); // image 1
     Texture normals;
     normals.image = 1;
-    scene.textures.push_back(normals);                      // texture 1
+    scene.textures.push_back(normals); // texture 1
     // Metal-roughness: the checker's channels as G = roughness, B = metallic (linear).
     Texture mr;
-    scene.textures.push_back(mr);                           // texture 2: image 0, linear
+    scene.textures.push_back(mr);         // texture 2: image 0, linear
     scene.materials[2].normalTexture = 1; // the back wall, corrugated
     Material sphere;
     sphere.type = MaterialType::Pbr;
@@ -95,7 +96,8 @@ Scene texturedScene() {
     Mesh ball = makeIcosphere(3, glm::vec3(0.3f, 0.6f, 0.0f), 0.6f, 3);
     for (const glm::vec3& p : ball.positions) {
         const glm::vec3 d = glm::normalize(p - glm::vec3(0.3f, 0.6f, 0.0f));
-        ball.uvs.emplace_back(0.5f + std::atan2(d.z, d.x) / 6.2831853f, std::acos(std::clamp(d.y, -1.0f, 1.0f)) / 3.1415927f);
+        ball.uvs.emplace_back(
+            0.5f + std::atan2(d.z, d.x) / 6.2831853f, std::acos(std::clamp(d.y, -1.0f, 1.0f)) / 3.1415927f);
     }
     scene.meshes.push_back(ball);
     return scene;
@@ -148,8 +150,8 @@ void checkAgainstReference(const std::string& name, const Scene& scene, uint32_t
     const AgreementResult onOff = compareBlocks(statsOn, statsOff);
     const AgreementResult onRef = compareBlocks(statsOn, statsRef);
     const AgreementResult offRef = compareBlocks(statsOff, statsRef);
-    std::printf("%s: NEE on vs off chi2/dof %.2f (mean z %.2f), on vs reference %.2f, off vs reference %.2f\n", name.c_str(),
-        onOff.chi2PerDof, onOff.meanZ, onRef.chi2PerDof, offRef.chi2PerDof);
+    std::printf("%s: NEE on vs off chi2/dof %.2f (mean z %.2f), on vs reference %.2f, off vs reference %.2f\n",
+        name.c_str(), onOff.chi2PerDof, onOff.meanZ, onRef.chi2PerDof, offRef.chi2PerDof);
     for (const AgreementResult& r : {onOff, onRef, offRef}) {
         EXPECT_LT(r.chi2PerDof, 2.0);
         EXPECT_LT(std::abs(r.meanZ), 0.35);
@@ -169,9 +171,11 @@ TEST_F(OwnScenes, RoughGlassAgreesAcrossEstimatorsAndWithItsReference) {
 // Makes the references (run by hand: --gtest_also_run_disabled_tests --gtest_filter='*MakeReferences').
 TEST_F(OwnScenes, DISABLED_MakeReferences) {
     std::filesystem::create_directories(referencePath("x").parent_path());
-    for (auto [name, scene] : {std::pair{std::string("textured"), texturedScene()}, std::pair{std::string("rough-glass"), roughGlassScene()}}) {
+    for (auto [name, scene] : {std::pair{std::string("textured"), texturedScene()},
+             std::pair{std::string("rough-glass"), roughGlassScene()}}) {
         const Renderer::Readback r = render(scene, true, 32768);
-        writeExr(referencePath(name), r.mean, {{"spp", "32768"}, {"made-by", "tests/shaders/integrator/own_scenes_test.cpp DISABLED_MakeReferences"}});
+        writeExr(referencePath(name), r.mean,
+            {{"spp", "32768"}, {"made-by", "tests/shaders/integrator/own_scenes_test.cpp DISABLED_MakeReferences"}});
     }
 }
 

@@ -34,14 +34,16 @@ protected:
         const BlockStats theirs = blockStats(reference, &referenceVar, 16);
         const AgreementResult a = compareBlocks(ours, theirs);
         RecordProperty("chi2PerDof", std::to_string(a.chi2PerDof));
-        EXPECT_LT(a.chi2PerDof, maxChi2PerDof) << name << ": block means disagree (mean z " << a.meanZ << ", max |z| " << a.maxAbsZ << ")";
+        EXPECT_LT(a.chi2PerDof, maxChi2PerDof)
+            << name << ": block means disagree (mean z " << a.meanZ << ", max |z| " << a.maxAbsZ << ")";
         EXPECT_LT(std::abs(a.meanZ), maxMeanZ) << name << ": systematic offset";
 
         // relMSE: expected value of (x - ref)^2 / (ref^2 + 0.01) is (var_x + var_ref) / (ref^2 + 0.01).
         double predicted = 0;
         for (size_t i = 0; i < reference.rgba.size(); ++i) {
             if (i % 4 == 3) continue;
-            predicted += (r.varianceOfMean.rgba[i] + referenceVar.rgba[i]) / (reference.rgba[i] * reference.rgba[i] + 0.01);
+            predicted +=
+                (r.varianceOfMean.rgba[i] + referenceVar.rgba[i]) / (reference.rgba[i] * reference.rgba[i] + 0.01);
         }
         predicted /= reference.rgba.size() / 4 * 3;
         const double measured = relMse(r.mean, reference);

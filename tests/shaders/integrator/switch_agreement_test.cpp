@@ -30,7 +30,8 @@ std::vector<Combination> allCombinations(bool lightTracedScene) {
         for (bool mis : {true, false}) {
             if (!nee && mis) continue; // MIS only exists with NEE
             for (bool rr : {true, false})
-                for (auto sampling : {DirectionSampling::Cosine, DirectionSampling::Uniform}) out.push_back({nee, mis, rr, sampling});
+                for (auto sampling : {DirectionSampling::Cosine, DirectionSampling::Uniform})
+                    out.push_back({nee, mis, rr, sampling});
         }
     // The Sobol' sampler with and without light sampling: the same image as independent samples.
     out.push_back({true, true, true, DirectionSampling::Cosine, SamplerKind::Sobol});
@@ -39,7 +40,8 @@ std::vector<Combination> allCombinations(bool lightTracedScene) {
     // tracing is not used, so there is nothing to compare). BSDF sampling finds them so rarely that at the others' 256 spp most caustic
     // blocks have not seen their bright samples yet and their variance estimate is far too small
     // (chi2/dof 2.6); with 8x the samples the heavy tail is sampled (chi2/dof ~1).
-    if (lightTracedScene) out.push_back({true, true, true, DirectionSampling::Cosine, SamplerKind::Independent, false, 8});
+    if (lightTracedScene)
+        out.push_back({true, true, true, DirectionSampling::Cosine, SamplerKind::Independent, false, 8});
     return out;
 }
 
@@ -67,8 +69,8 @@ protected:
             auto r = render(c, 1);
             EXPECT_EQ(r.droppedSamples, 0u) << c.name();
             const AgreementResult a = compareBlocks(blockStats(r.mean, &r.varianceOfMean, 8), base);
-            std::printf("%s %-28s chi2/dof %.3f  mean z %+.3f  max |z| %.2f\n", sceneName, c.name().c_str(), a.chi2PerDof,
-                a.meanZ, a.maxAbsZ);
+            std::printf("%s %-28s chi2/dof %.3f  mean z %+.3f  max |z| %.2f\n", sceneName, c.name().c_str(),
+                a.chi2PerDof, a.meanZ, a.maxAbsZ);
             EXPECT_LT(a.chi2PerDof, 1.6) << sceneName << " " << c.name();
             EXPECT_LT(std::abs(a.meanZ), 0.5) << sceneName << " " << c.name();
         }
@@ -87,7 +89,8 @@ TEST_F(SwitchAgreement, DifferentDepthLimitIsDetected) {
     s.maxDepth = 2;
     s.seed = 9;
     auto b = renderScene(scene, s, scene.cameras.at(0), 64, 64, 128);
-    const AgreementResult r = compareBlocks(blockStats(a.mean, &a.varianceOfMean, 8), blockStats(b.mean, &b.varianceOfMean, 8));
+    const AgreementResult r =
+        compareBlocks(blockStats(a.mean, &a.varianceOfMean, 8), blockStats(b.mean, &b.varianceOfMean, 8));
     EXPECT_GT(r.chi2PerDof, 10.0);
 }
 

@@ -66,8 +66,9 @@ LightTestScene uploadLightScene(bool equalRadiance) {
 // TEST_MODE_LIGHT_PDF: the solid-angle pdf the integrator assigns to a BSDF ray from the shading
 // point in each direction (0 where it reaches no light).
 std::vector<float> lightPdfs(const pt::GpuScene& scene, const std::vector<glm::vec4>& directions) {
-    const std::vector<glm::vec4> out = pt::test::runTestKernel(TEST_MODE_LIGHT_PDF, static_cast<uint32_t>(directions.size()),
-        &scene, std::as_bytes(std::span<const glm::vec4>(directions)), kShadingPoint);
+    const std::vector<glm::vec4> out =
+        pt::test::runTestKernel(TEST_MODE_LIGHT_PDF, static_cast<uint32_t>(directions.size()), &scene,
+            std::as_bytes(std::span<const glm::vec4>(directions)), kShadingPoint);
     std::vector<float> pdfs(out.size());
     for (size_t i = 0; i < out.size(); ++i) pdfs[i] = out[i].x;
     return pdfs;
@@ -79,7 +80,8 @@ struct BinIntegrals {
     std::vector<double> integral;
     std::vector<bool> mixed, lit;
 };
-BinIntegrals integrateBins(const pt::GpuScene& scene, const DirectionGrid& grid, const std::vector<int>& bins, int sub) {
+BinIntegrals integrateBins(
+    const pt::GpuScene& scene, const DirectionGrid& grid, const std::vector<int>& bins, int sub) {
     std::vector<glm::vec4> dirs;
     dirs.reserve(bins.size() * sub * sub);
     const double dz = grid.dz() / sub, dphi = grid.dphi() / sub;
@@ -87,10 +89,12 @@ BinIntegrals integrateBins(const pt::GpuScene& scene, const DirectionGrid& grid,
         const int zi = bin / grid.phiBins, pi = bin % grid.phiBins;
         for (int a = 0; a < sub; ++a)
             for (int b = 0; b < sub; ++b)
-                dirs.emplace_back(directionAt(grid.zLo + zi * grid.dz() + (a + 0.5) * dz, pi * grid.dphi() + (b + 0.5) * dphi), 0.0f);
+                dirs.emplace_back(
+                    directionAt(grid.zLo + zi * grid.dz() + (a + 0.5) * dz, pi * grid.dphi() + (b + 0.5) * dphi), 0.0f);
     }
     const std::vector<float> pdf = lightPdfs(scene, dirs);
-    BinIntegrals r{std::vector<double>(bins.size(), 0.0), std::vector<bool>(bins.size()), std::vector<bool>(bins.size())};
+    BinIntegrals r{
+        std::vector<double>(bins.size(), 0.0), std::vector<bool>(bins.size()), std::vector<bool>(bins.size())};
     for (size_t k = 0; k < bins.size(); ++k) {
         int nonZero = 0;
         for (int j = 0; j < sub * sub; ++j) {
@@ -147,8 +151,8 @@ void checkLightSampling(const LightTestScene& scene) {
     std::printf("[          ] integral of the light pdf over the sphere: %.5f\n", sum(expected) / kSamples);
 
     for (uint32_t seed : {1u, 7u}) {
-        const std::vector<glm::vec4> samples = pt::test::runTestKernel(TEST_MODE_LIGHT_SAMPLE, kSamples, scene.gpu.get(), {},
-            kShadingPoint, glm::vec3(0, 0, 1), seed);
+        const std::vector<glm::vec4> samples = pt::test::runTestKernel(
+            TEST_MODE_LIGHT_SAMPLE, kSamples, scene.gpu.get(), {}, kShadingPoint, glm::vec3(0, 0, 1), seed);
         std::vector<glm::vec4> dirs(samples.size());
         for (size_t i = 0; i < samples.size(); ++i) dirs[i] = glm::vec4(glm::vec3(samples[i]), 0.0f);
         const std::vector<float> pdfAtSample = lightPdfs(*scene.gpu, dirs);
@@ -157,8 +161,9 @@ void checkLightSampling(const LightTestScene& scene) {
             const float sampled = samples[i].w;
             const bool ok = sampled > 0.0f && std::abs(pdfAtSample[i] - sampled) <= 1e-3f * sampled;
             if (!ok && ++mismatched <= 5)
-                ADD_FAILURE() << "seed " << seed << " sample " << i << " direction (" << dirs[i].x << ", " << dirs[i].y << ", "
-                              << dirs[i].z << "): sampleLight pdf " << sampled << ", light pdf of that direction " << pdfAtSample[i];
+                ADD_FAILURE() << "seed " << seed << " sample " << i << " direction (" << dirs[i].x << ", " << dirs[i].y
+                              << ", " << dirs[i].z << "): sampleLight pdf " << sampled
+                              << ", light pdf of that direction " << pdfAtSample[i];
         }
         EXPECT_EQ(mismatched, 0u);
         const std::string what = "light sampling seed " + std::to_string(seed);
@@ -174,8 +179,8 @@ TEST_F(SamplingTest, LightSamplingMatchesTheLightPdf) {
 
 pt::Sphere transformedSphere(glm::vec3 centre, float angle, glm::vec3 radii, uint32_t material) {
     pt::Sphere s;
-    s.objectToWorld = glm::translate(glm::mat4(1.0f), centre) * glm::rotate(glm::mat4(1.0f), angle, glm::vec3(0, 0, 1)) *
-                      glm::scale(glm::mat4(1.0f), radii);
+    s.objectToWorld = glm::translate(glm::mat4(1.0f), centre) *
+                      glm::rotate(glm::mat4(1.0f), angle, glm::vec3(0, 0, 1)) * glm::scale(glm::mat4(1.0f), radii);
     s.material = material;
     return s;
 }
@@ -202,7 +207,8 @@ TEST_F(SamplingTest, AreaSampledEllipsoidLightMatchesTheLightPdfFromInside) {
     pt::Scene scene = lightScene(false);
     scene.meshes.clear();
     scene.materials[2].doubleSided = true;
-    scene.spheres.push_back(transformedSphere(kShadingPoint + glm::vec3(0.3f, -0.2f, 0.1f), 0.7f, {1.5f, 0.6f, 0.9f}, 2));
+    scene.spheres.push_back(
+        transformedSphere(kShadingPoint + glm::vec3(0.3f, -0.2f, 0.1f), 0.7f, {1.5f, 0.6f, 0.9f}, 2));
     const LightTestScene uploaded = uploadScene(scene);
     ASSERT_EQ(uploaded.flat.lights.lights.size(), 1u);
     EXPECT_EQ(uploaded.flat.lights.lights[0].radius, 0.0f);
@@ -234,7 +240,8 @@ TEST_F(SamplingTest, EnvironmentSamplingMatchesItsPdf) {
     const double angle = glm::radians(40.0);
     auto texelOf = [&](glm::vec3 d) {
         // World to the map's frame (rotation about +y), then the course's lat-long mapping.
-        const double x = std::cos(angle) * d.x - std::sin(angle) * d.z, z = std::sin(angle) * d.x + std::cos(angle) * d.z;
+        const double x = std::cos(angle) * d.x - std::sin(angle) * d.z,
+                     z = std::sin(angle) * d.x + std::cos(angle) * d.z;
         const double u = 0.5 * (1.0 + std::atan2(x, -z) / M_PI), v = std::acos(std::clamp<double>(d.y, -1, 1)) / M_PI;
         return std::min(H - 1, int(v * H)) * W + std::min(W - 1, int(u * W));
     };
@@ -244,7 +251,8 @@ TEST_F(SamplingTest, EnvironmentSamplingMatchesItsPdf) {
             expected[y * W + x] = kSamples * double(fe.marginal[y + 1] - fe.marginal[y]) *
                                   double(fe.conditional[y * (W + 1) + x + 1] - fe.conditional[y * (W + 1) + x]);
 
-    const auto samples = pt::test::runTestKernel(TEST_MODE_LIGHT_SAMPLE, kSamples, uploaded.gpu.get(), {}, kShadingPoint);
+    const auto samples =
+        pt::test::runTestKernel(TEST_MODE_LIGHT_SAMPLE, kSamples, uploaded.gpu.get(), {}, kShadingPoint);
     std::vector<double> observed(W * H, 0.0);
     std::vector<glm::vec4> dirs;
     for (const auto& s : samples) {
@@ -282,8 +290,8 @@ TEST_F(SamplingTest, EnvironmentSamplingMatchesItsPdf) {
 TEST_F(SamplingTest, LightChiSquareRejectsTheWrongSelectionCdf) {
     const LightTestScene scene = uploadLightScene(false);
     const LightTestScene byArea = uploadLightScene(true);
-    const std::vector<glm::vec4> samples = pt::test::runTestKernel(TEST_MODE_LIGHT_SAMPLE, kSamples, scene.gpu.get(), {},
-        kShadingPoint);
+    const std::vector<glm::vec4> samples =
+        pt::test::runTestKernel(TEST_MODE_LIGHT_SAMPLE, kSamples, scene.gpu.get(), {}, kShadingPoint);
     const double p = pValue(histogram(kSphere, samples), expectedFromLightPdf(*byArea.gpu, kSphere, kSamples),
         "light samples vs area-proportional pdf (must fail)");
     EXPECT_LT(p, 1e-6);

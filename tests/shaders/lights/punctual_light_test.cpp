@@ -72,7 +72,8 @@ TEST_F(PunctualLights, DirectionalLightGivesLambertsCosineLaw) {
 
 TEST_F(PunctualLights, ShadowsBlockPointLights) {
     Scene scene = plane();
-    scene.meshes.push_back(makeQuad({-1.0f, 1.0f, 1.0f}, {2.0f, 0.0f, 0.0f}, {0.0f, 0.0f, -2.0f}, 0)); // occluder at y = 1
+    scene.meshes.push_back(
+        makeQuad({-1.0f, 1.0f, 1.0f}, {2.0f, 0.0f, 0.0f}, {0.0f, 0.0f, -2.0f}, 0)); // occluder at y = 1
     PunctualLight light;
     light.position = glm::vec3(0.0f, 2.0f, 0.0f);
     light.intensity = glm::vec3(10.0f);
@@ -161,7 +162,8 @@ TEST_F(PunctualLights, SquareAreaLightGivesTheAnalyticIrradiance) {
     // Both faces emit (the course's |n_l . w_i|): a ceiling as far above the square, facing it,
     // receives the same irradiance from its back.
     Scene above = scene;
-    above.meshes.push_back(makeQuad({-2.0f, float(2 * c), 2.0f}, {0.0f, 0.0f, -4.0f}, {4.0f, 0.0f, 0.0f}, 0)); // normal -y
+    above.meshes.push_back(
+        makeQuad({-2.0f, float(2 * c), 2.0f}, {0.0f, 0.0f, -4.0f}, {4.0f, 0.0f, 0.0f}, 0)); // normal -y
     above.meshes.erase(above.meshes.begin());
     camera.position = glm::vec3(0.0f, float(1.5 * c), 0.0f);
     camera.forward = glm::vec3(0.0f, 1.0f, 0.0f);

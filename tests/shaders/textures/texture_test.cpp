@@ -39,10 +39,13 @@ int wrap(int i, int n, TextureWrap mode) {
 }
 
 glm::dvec4 texel(const TextureImage& img, const Texture& t, int x, int y) {
-    const uint32_t p = img.rgba8[static_cast<size_t>(wrap(y, img.height, t.wrapV)) * img.width + wrap(x, img.width, t.wrapU)];
+    const uint32_t p =
+        img.rgba8[static_cast<size_t>(wrap(y, img.height, t.wrapV)) * img.width + wrap(x, img.width, t.wrapU)];
     glm::dvec4 c((p & 255u) / 255.0, (p >> 8 & 255u) / 255.0, (p >> 16 & 255u) / 255.0, (p >> 24) / 255.0);
-    if (t.encoding == Texture::Encoding::Srgb) c = glm::dvec4(srgbToLinear(c.r), srgbToLinear(c.g), srgbToLinear(c.b), c.a);
-    if (t.encoding == Texture::Encoding::Gamma22) c = glm::dvec4(std::pow(c.r, 2.2), std::pow(c.g, 2.2), std::pow(c.b, 2.2), c.a);
+    if (t.encoding == Texture::Encoding::Srgb)
+        c = glm::dvec4(srgbToLinear(c.r), srgbToLinear(c.g), srgbToLinear(c.b), c.a);
+    if (t.encoding == Texture::Encoding::Gamma22)
+        c = glm::dvec4(std::pow(c.r, 2.2), std::pow(c.g, 2.2), std::pow(c.b, 2.2), c.a);
     return c;
 }
 
@@ -78,8 +81,8 @@ Uploaded upload(Scene scene) {
 }
 
 std::vector<glm::vec4> evaluate(const Uploaded& u, uint32_t texture, const std::vector<glm::vec4>& at) {
-    return runTestKernel(TEST_MODE_TEXTURE, static_cast<uint32_t>(at.size()), u.gpu.get(),
-        std::as_bytes(std::span(at)), glm::vec3(0.0f), glm::vec3(0, 0, 1), 1, texture);
+    return runTestKernel(TEST_MODE_TEXTURE, static_cast<uint32_t>(at.size()), u.gpu.get(), std::as_bytes(std::span(at)),
+        glm::vec3(0.0f), glm::vec3(0, 0, 1), 1, texture);
 }
 
 class Textures : public GpuTest {};
@@ -90,7 +93,8 @@ TEST_F(Textures, ImageLookupsMatchReferenceForEveryFilterWrapAndEncoding) {
     std::vector<Texture> cases;
     for (bool bilinear : {false, true})
         for (TextureWrap w : {TextureWrap::Repeat, TextureWrap::Clamp, TextureWrap::Mirror})
-            for (Texture::Encoding e : {Texture::Encoding::Linear, Texture::Encoding::Srgb, Texture::Encoding::Gamma22}) {
+            for (Texture::Encoding e :
+                {Texture::Encoding::Linear, Texture::Encoding::Srgb, Texture::Encoding::Gamma22}) {
                 Texture t;
                 t.bilinear = bilinear;
                 t.wrapU = w;
@@ -111,7 +115,9 @@ TEST_F(Textures, ImageLookupsMatchReferenceForEveryFilterWrapAndEncoding) {
         for (size_t i = 0; i < at.size(); ++i) {
             // Nearest lookups exactly on a texel boundary may round either way: skip those.
             const glm::dvec2 st(double(at[i].x) * 5, double(at[i].y) * 3);
-            if (!cases[t].bilinear && (std::abs(st.x - std::round(st.x)) < 1e-4 || std::abs(st.y - std::round(st.y)) < 1e-4)) continue;
+            if (!cases[t].bilinear &&
+                (std::abs(st.x - std::round(st.x)) < 1e-4 || std::abs(st.y - std::round(st.y)) < 1e-4))
+                continue;
             const glm::dvec4 want = lookup(scene.textureImages[0], cases[t], glm::dvec2(at[i]));
             for (int c = 0; c < 4; ++c) worst = std::max(worst, std::abs(double(got[i][c]) - want[c]));
         }
@@ -227,7 +233,8 @@ void expectImageIs(const Image& got, const TextureImage& img, double scale) {
     for (int y = 0; y < got.height; ++y)
         for (int x = 0; x < got.width; ++x) {
             const uint32_t p = img.rgba8[static_cast<size_t>(y / step) * img.width + x / step];
-            for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(got.at(x, y)[c] - scale * ((p >> (8 * c)) & 255u) / 255.0));
+            for (int c = 0; c < 3; ++c)
+                worst = std::max(worst, std::abs(got.at(x, y)[c] - scale * ((p >> (8 * c)) & 255u) / 255.0));
         }
     EXPECT_LT(worst, 1e-4);
 }
@@ -293,7 +300,8 @@ double litQuadMean(std::optional<TextureImage> map, bool bump) {
 
 TEST_F(Textures, FlatNormalMapsAndConstantBumpMapsChangeNothing) {
     TextureImage flatNormals, constantHeight, tilted;
-    flatNormals.width = flatNormals.height = constantHeight.width = constantHeight.height = tilted.width = tilted.height = 2;
+    flatNormals.width = flatNormals.height = constantHeight.width = constantHeight.height = tilted.width =
+        tilted.height = 2;
     flatNormals.rgba8.assign(4, 128u | 128u << 8 | 255u << 16 | 255u << 24); // (0, 0, 1) up to 8-bit rounding
     constantHeight.rgba8.assign(4, 90u | 90u << 8 | 90u << 16 | 255u << 24);
     tilted.rgba8.assign(4, 230u | 128u << 8 | 180u << 16 | 255u << 24); // leans towards +u
@@ -340,8 +348,10 @@ TEST_F(Textures, AlphaMaskCutsOutWhereTheTextureIsTransparent) {
     for (int y = 0; y < 16; ++y)
         for (int x = 0; x < 16; ++x) {
             const float* p = r.mean.at(x, y);
-            if (x < 8) EXPECT_TRUE(p[0] == 1.0f && p[1] == 0.0f) << x << "," << y << ": the back quad shows through";
-            else EXPECT_TRUE(p[0] == 1.0f && p[1] == 1.0f) << x << "," << y << ": the front quad is opaque";
+            if (x < 8)
+                EXPECT_TRUE(p[0] == 1.0f && p[1] == 0.0f) << x << "," << y << ": the back quad shows through";
+            else
+                EXPECT_TRUE(p[0] == 1.0f && p[1] == 1.0f) << x << "," << y << ": the front quad is opaque";
         }
 }
 
