@@ -79,20 +79,28 @@ private:
 
 void putMagenta(uint8_t* q) { q[0] = 255, q[1] = 0, q[2] = 255; }
 
-void clampOperator(const Image& image, const TonemapSettings& s, float exposureStops, std::vector<uint8_t>& out) {
-    const Encoder encode(s);
-    // float, like writePng; a product that overflows to +inf still clamps to 1.
-    const float scale = s.scale * std::exp2(exposureStops);
+// Maps every pixel p (RGBA floats) to its 3 bytes q with map(p, q); pixels with a non-finite R,
+// G or B become magenta instead.
+template <class Map>
+void mapPixels(const Image& image, std::vector<uint8_t>& out, Map map) {
     const std::size_t n = out.size() / 3;
     for (std::size_t i = 0; i < n; ++i) {
         const float* p = image.rgba.data() + 4 * i;
         uint8_t* q = out.data() + 3 * i;
-        if (!finiteRgb(p)) {
+        if (finiteRgb(p))
+            map(p, q);
+        else
             putMagenta(q);
-            continue;
-        }
-        for (int c = 0; c < 3; ++c) q[c] = encode(p[c] * scale);
     }
+}
+
+void clampOperator(const Image& image, const TonemapSettings& s, float exposureStops, std::vector<uint8_t>& out) {
+    const Encoder encode(s);
+    // float, like writePng; a product that overflows to +inf still clamps to 1.
+    const float scale = s.scale * std::exp2(exposureStops);
+    mapPixels(image, out, [&](const float* p, uint8_t* q) {
+        for (int c = 0; c < 3; ++c) q[c] = encode(p[c] * scale);
+    });
 }
 
 // Luminance of the pixel with negative channels treated as 0, before exposure. Done in
@@ -148,17 +156,11 @@ void photographicOperator(
 
     // Pass 2: map each pixel. Colour ratios use the unscaled channels (scale cancels).
     const double sat = s.saturation;
-    for (std::size_t i = 0; i < n; ++i) {
-        const float* p = image.rgba.data() + 4 * i;
-        uint8_t* q = out.data() + 3 * i;
-        if (!finiteRgb(p)) {
-            putMagenta(q);
-            continue;
-        }
+    mapPixels(image, out, [&](const float* p, uint8_t* q) {
         const double y0 = luminance(p);
         if (y0 <= 0.0) { // all channels <= 0: black, and no 0/0 in the colour ratio
             q[0] = q[1] = q[2] = 0;
-            continue;
+            return;
         }
         const double l = toL * (scale * y0); // same rounding as the white point's L
         double ld = useWhite ? l * (1.0 + l * invWhite2) / (1.0 + l) : l / (1.0 + l);
@@ -171,7 +173,7 @@ void photographicOperator(
             const double co = ld * (sat == 1.0 ? ratio : std::pow(ratio, sat));
             q[c] = encode(static_cast<float>(std::min(co, 1.0)));
         }
-    }
+    });
 }
 
 // Error type of the PNG writer: its messages already carry the "<path>: " prefix.
