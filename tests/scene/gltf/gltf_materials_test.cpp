@@ -1,0 +1,248 @@
+// glTF materials and textures: metallic-roughness factors and KHR_materials_*, the default
+// material, texture slots, encodings, samplers, KHR_texture_transform, alpha modes and tangents.
+#include "gltf_test_documents.h"
+#include "scene/scene_error.h"
+
+#include <algorithm>
+
+namespace pt::test::gltf {
+namespace {
+
+// ---------------------------------------------------------------------------------------------
+// Material factors and KHR_materials_*: one triangle per material (materialDocument).
+
+TEST(GltfLoaderMaterials, MetallicRoughnessFactorsAndExtensions) {
+    const pt::Scene s = loadText(materialDocument(R"([
+      {"name": "plastic", "pbrMetallicRoughness": {"baseColorFactor": [0.2, 0.4, 0.6, 1], "metallicFactor": 0, "roughnessFactor": 0.5}},
+      {"name": "gold", "pbrMetallicRoughness": {"baseColorFactor": [1, 0.8, 0.3, 1], "metallicFactor": 1, "roughnessFactor": 0.3}},
+      {"name": "half", "pbrMetallicRoughness": {"metallicFactor": 0.25, "roughnessFactor": 0.7}},
+      {"name": "tinted-spec", "pbrMetallicRoughness": {"metallicFactor": 0, "roughnessFactor": 0.4},
+       "extensions": {"KHR_materials_specular": {"specularFactor": 0.5, "specularColorFactor": [1, 0.5, 0.25]},
+                      "KHR_materials_ior": {"ior": 1.33}}},
+      {"name": "frosted-glass", "pbrMetallicRoughness": {"baseColorFactor": [0.9, 1, 0.9, 1], "metallicFactor": 0, "roughnessFactor": 0.2},
+       "extensions": {"KHR_materials_transmission": {"transmissionFactor": 1},
+                      "KHR_materials_volume": {"thicknessFactor": 0.1, "attenuationColor": [0.5, 0.8, 1], "attenuationDistance": 2}}},
+      {"name": "thin-film", "pbrMetallicRoughness": {"metallicFactor": 0, "roughnessFactor": 0.3},
+       "extensions": {"KHR_materials_transmission": {"transmissionFactor": 0.6}}},
+      {"name": "partly-clear", "pbrMetallicRoughness": {"metallicFactor": 0, "roughnessFactor": 0},
+       "extensions": {"KHR_materials_transmission": {"transmissionFactor": 0.5}, "KHR_materials_volume": {"thicknessFactor": 1}}},
+      {"name": "lambert", "pbrMetallicRoughness": {"baseColorFactor": [0.5, 0.5, 0.5, 1], "metallicFactor": 0, "roughnessFactor": 0.8},
+       "extensions": {"KHR_materials_specular": {"specularFactor": 0}}},
+      {"name": "chrome", "pbrMetallicRoughness": {"metallicFactor": 1, "roughnessFactor": 0}},
+      {"name": "lamp", "emissiveFactor": [1, 0.5, 0.25], "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": 8}}}
+    ])",
+        10));
+    auto get = [&](const char* name) {
+        const pt::Material* m = findMaterial(s, name);
+        EXPECT_NE(m, nullptr) << name;
+        return m ? *m : pt::Material{};
+    };
+    const pt::Material plastic = get("plastic");
+    EXPECT_EQ(plastic.type, pt::MaterialType::Pbr);
+    EXPECT_TRUE(near3(plastic.baseColor, glm::vec3(0.2f, 0.4f, 0.6f), 1e-6f));
+    EXPECT_FLOAT_EQ(plastic.metallic, 0.0f);
+    EXPECT_FLOAT_EQ(plastic.roughness, 0.5f);
+    EXPECT_FLOAT_EQ(plastic.specularWeight, 1.0f);
+    EXPECT_TRUE(near3(plastic.specular, glm::vec3(1.0f), 0.0f));
+    EXPECT_FLOAT_EQ(plastic.ior, 1.5f);
+    EXPECT_FLOAT_EQ(plastic.transmission, 0.0f);
+
+    const pt::Material gold = get("gold");
+    EXPECT_EQ(gold.type, pt::MaterialType::Pbr) << "rough metal is the PBR metal lobe, not a mirror";
+    EXPECT_FLOAT_EQ(gold.metallic, 1.0f);
+    EXPECT_FLOAT_EQ(gold.roughness, 0.3f);
+
+    const pt::Material half = get("half");
+    EXPECT_EQ(half.type, pt::MaterialType::Pbr);
+    EXPECT_FLOAT_EQ(half.metallic, 0.25f);
+    EXPECT_FLOAT_EQ(half.roughness, 0.7f);
+    EXPECT_TRUE(near3(half.baseColor, glm::vec3(1.0f), 0.0f)) << "baseColorFactor defaults to white";
+
+    const pt::Material tinted = get("tinted-spec");
+    EXPECT_EQ(tinted.type, pt::MaterialType::Pbr);
+    EXPECT_FLOAT_EQ(tinted.specularWeight, 0.5f);
+    EXPECT_TRUE(near3(tinted.specular, glm::vec3(1.0f, 0.5f, 0.25f), 1e-6f));
+    EXPECT_FLOAT_EQ(tinted.ior, 1.33f);
+
+    // Full transmission with a volume and default specular is exactly a (rough) dielectric,
+    // which keeps its Beer-Lambert absorption.
+    const pt::Material glass = get("frosted-glass");
+    EXPECT_EQ(glass.type, pt::MaterialType::Dielectric);
+    EXPECT_FLOAT_EQ(glass.roughness, 0.2f);
+    EXPECT_FALSE(glass.thinWalled);
+    EXPECT_TRUE(near3(glass.baseColor, glm::vec3(0.9f, 1.0f, 0.9f), 1e-6f));
+    EXPECT_TRUE(near3(glass.attenuationColor, glm::vec3(0.5f, 0.8f, 1.0f), 1e-6f));
+    EXPECT_FLOAT_EQ(glass.attenuationDistance, 2.0f);
+
+    // No volume: thin-walled transmission, partly.
+    const pt::Material thin = get("thin-film");
+    EXPECT_EQ(thin.type, pt::MaterialType::Pbr);
+    EXPECT_TRUE(thin.thinWalled);
+    EXPECT_FLOAT_EQ(thin.transmission, 0.6f);
+    const pt::Material partly = get("partly-clear");
+    EXPECT_EQ(partly.type, pt::MaterialType::Pbr);
+    EXPECT_FALSE(partly.thinWalled);
+    EXPECT_FLOAT_EQ(partly.transmission, 0.5f);
+
+    // The exact special cases the Mitsuba references rely on.
+    EXPECT_EQ(get("lambert").type, pt::MaterialType::Diffuse);
+    EXPECT_TRUE(near3(get("lambert").baseColor, glm::vec3(0.5f), 1e-6f));
+    EXPECT_EQ(get("chrome").type, pt::MaterialType::Mirror);
+    EXPECT_TRUE(near3(get("lamp").emission, glm::vec3(8.0f, 4.0f, 2.0f), 1e-5f));
+
+    // All of it is modelled: nothing in the "not supported" warning.
+    EXPECT_TRUE(s.unsupported.empty()) << s.unsupported.front();
+}
+
+TEST(GltfLoaderMaterials, PrimitivesWithoutMaterialGetTheGltfDefault) {
+    std::string doc = materialDocument(R"([{"name": "unused"}])", 1);
+    const std::string withMaterial = R"(, "material": 0)";
+    doc.erase(doc.find(withMaterial), withMaterial.size());
+    const pt::Scene s = loadText(doc);
+    ASSERT_EQ(s.meshes.size(), 1u);
+    const pt::Material& m = s.materials[s.meshes[0].material];
+    EXPECT_EQ(m.type, pt::MaterialType::Pbr);
+    EXPECT_FLOAT_EQ(m.metallic, 1.0f);
+    EXPECT_FLOAT_EQ(m.roughness, 1.0f);
+    EXPECT_TRUE(near3(m.baseColor, glm::vec3(1.0f), 0.0f));
+}
+
+TEST(GltfLoaderMaterials, OutOfRangeFactorsAreErrors) {
+    for (const char* bad : {R"({"pbrMetallicRoughness": {"metallicFactor": 1.5}})",
+             R"({"pbrMetallicRoughness": {"roughnessFactor": -0.1}})",
+             R"({"extensions": {"KHR_materials_transmission": {"transmissionFactor": 2}}})",
+             R"({"extensions": {"KHR_materials_specular": {"specularFactor": -1}}})"}) {
+        EXPECT_THROW(loadText(materialDocument(std::string("[") + bad + "]", 1)), pt::SceneError) << bad;
+    }
+}
+// ---------------------------------------------------------------------------------------------
+// Textures: slots, encodings, samplers, KHR_texture_transform, alpha modes
+
+const char* const kOnePixelPng =
+    "data:image/"
+    "png;base64,iVBORw0KGgoAAAANSUhEUgAAAAEAAAABCAYAAAAfFcSJAAAADUlEQVR42mP8z8BQDwAEhQGAhKmMIQAAAABJRU5ErkJggg==";
+
+// materialDocument plus textures / images / samplers arrays.
+std::string texturedDocument(const std::string& materials, int materialCount, const std::string& textures,
+    const std::string& images, const std::string& samplers = "[]") {
+    std::string d = materialDocument(materials, materialCount);
+    const std::string head = R"({"asset": {"version": "2.0"},)";
+    const size_t at = d.find(head);
+    EXPECT_NE(at, std::string::npos);
+    d.insert(at + head.size(),
+        R"( "textures": )" + textures + R"(, "images": )" + images + R"(, "samplers": )" + samplers + ",");
+    return d;
+}
+
+TEST(GltfLoaderTextures, SlotsEncodingsSamplersAndTransforms) {
+    const std::string images = std::string(R"([{"uri": ")") + kOnePixelPng + R"("}])";
+    const pt::Scene s = loadText(texturedDocument(R"([
+      {"name": "painted", "pbrMetallicRoughness": {"baseColorTexture": {"index": 0}, "metallicRoughnessTexture": {"index": 1},
+                                                   "metallicFactor": 1, "roughnessFactor": 0},
+       "normalTexture": {"index": 1, "scale": 0.5}, "emissiveTexture": {"index": 0}, "emissiveFactor": [1, 1, 1],
+       "alphaMode": "MASK", "alphaCutoff": 0.3},
+      {"name": "moved", "pbrMetallicRoughness": {"baseColorFactor": [1, 1, 1, 0.4],
+        "baseColorTexture": {"index": 1, "extensions": {"KHR_texture_transform": {"offset": [0.5, 0.25], "rotation": 1.5707963, "scale": [2, 3]}}}},
+       "alphaMode": "BLEND"}
+    ])",
+        2, R"([{"source": 0}, {"source": 0, "sampler": 0}])", images,
+        R"([{"magFilter": 9728, "wrapS": 33071, "wrapT": 33648}])"));
+    const pt::Material* painted = findMaterial(s, "painted");
+    const pt::Material* moved = findMaterial(s, "moved");
+    ASSERT_TRUE(painted && moved);
+    ASSERT_TRUE(painted->baseColorTexture && painted->metallicRoughnessTexture && painted->normalTexture &&
+                painted->emissiveTexture);
+    // A metallic-roughness texture can make the factors' mirror rough: the full model is needed.
+    EXPECT_EQ(painted->type, pt::MaterialType::Pbr);
+    EXPECT_EQ(s.textures.at(*painted->baseColorTexture).encoding, pt::Texture::Encoding::Srgb);
+    EXPECT_EQ(s.textures.at(*painted->emissiveTexture).encoding, pt::Texture::Encoding::Srgb);
+    EXPECT_EQ(s.textures.at(*painted->metallicRoughnessTexture).encoding, pt::Texture::Encoding::Linear);
+    EXPECT_EQ(s.textures.at(*painted->normalTexture).encoding, pt::Texture::Encoding::Linear);
+    EXPECT_FLOAT_EQ(painted->normalScale, 0.5f);
+    EXPECT_FALSE(painted->normalMapYDown); // glTF: +y up the image
+    EXPECT_EQ(painted->alphaMode, pt::Material::AlphaMode::Mask);
+    EXPECT_FLOAT_EQ(painted->alphaCutoff, 0.3f);
+    // Sampler 0: nearest, clamp in u, mirror in v; no sampler: bilinear repeat.
+    const pt::Texture& sampled = s.textures.at(*painted->metallicRoughnessTexture);
+    EXPECT_FALSE(sampled.bilinear);
+    EXPECT_EQ(sampled.wrapU, pt::TextureWrap::Clamp);
+    EXPECT_EQ(sampled.wrapV, pt::TextureWrap::Mirror);
+    const pt::Texture& plain = s.textures.at(*painted->baseColorTexture);
+    EXPECT_TRUE(plain.bilinear);
+    EXPECT_EQ(plain.wrapU, pt::TextureWrap::Repeat);
+    // One image, decoded once, shared by every texture that reads it.
+    ASSERT_EQ(s.textureImages.size(), 1u);
+    EXPECT_EQ(s.textureImages[0].width, 1);
+    EXPECT_EQ(plain.image, sampled.image);
+    // KHR_texture_transform: uv' = T R S uv; (1, 0) -> S (2, 0) -> R(90 deg) (0, -2) -> T (0.5, -1.75).
+    const pt::Texture& t = s.textures.at(*moved->baseColorTexture);
+    const glm::vec2 uv(1, 0);
+    EXPECT_NEAR(t.uvRow0.x * uv.x + t.uvRow0.y * uv.y + t.uvRow0.z, 0.5f, 1e-5f);
+    EXPECT_NEAR(t.uvRow1.x * uv.x + t.uvRow1.y * uv.y + t.uvRow1.z, -1.75f, 1e-5f);
+    EXPECT_EQ(moved->alphaMode, pt::Material::AlphaMode::Blend);
+    EXPECT_FLOAT_EQ(moved->opacity, 0.4f);
+    EXPECT_TRUE(std::none_of(s.unsupported.begin(), s.unsupported.end(),
+        [](const std::string& n) { return n.find("texture") != std::string::npos; }));
+}
+
+TEST(GltfLoaderTextures, BadTexturesAreErrors) {
+    const std::string images = std::string(R"([{"uri": ")") + kOnePixelPng + R"("}])";
+    auto expectError = [&](const std::string& doc, const std::string& problem) {
+        try {
+            loadText(doc);
+            ADD_FAILURE() << "no error for " << problem;
+        } catch (const pt::SceneError& e) {
+            EXPECT_NE(std::string(e.what()).find(problem), std::string::npos) << e.what();
+        }
+    };
+    const std::string base = R"([{"pbrMetallicRoughness": {"baseColorTexture": {"index": 3}}}])";
+    expectError(texturedDocument(base, 1, R"([{"source": 0}])", images), "texture 3 does not exist");
+    expectError(texturedDocument(R"([{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}])", 1,
+                    R"([{"source": 0, "sampler": 4}])", images),
+        "sampler 4 does not exist");
+    expectError(texturedDocument(R"([{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}])", 1,
+                    R"([{"source": 0}])", R"([{"uri": "data:image/png;base64,iVBORw0KGgoAAAA"}])"),
+        "image 0");
+    expectError(texturedDocument(R"([{"alphaMode": "SOMETIMES"}])", 1, "[]", "[]"), "unknown alphaMode");
+}
+// TANGENT: read as VEC4, mapped with the node's matrix, the bitangent sign flipped by a
+// mirroring transform, invalid ones zeroed.
+TEST(GltfLoaderTextures, TangentsAreTransformedWithTheirHandedness) {
+    const glm::vec3 p[3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+    const glm::vec3 n(0, 0, 1);
+    const glm::vec4 t[3] = {{1, 0, 0, 1}, {1, 0, 0, 1}, {0, 0, 0, 1}}; // the last one is invalid
+    std::vector<unsigned char> bytes(3 * 12 + 3 * 12 + 3 * 16);
+    for (int i = 0; i < 3; ++i) {
+        std::memcpy(bytes.data() + 12 * i, &p[i], 12);
+        std::memcpy(bytes.data() + 36 + 12 * i, &n, 12);
+        std::memcpy(bytes.data() + 72 + 16 * i, &t[i], 16);
+    }
+    auto document = [&](const std::string& scale) {
+        return std::string(R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}],
+          "nodes": [{"mesh": 0, "scale": )") +
+               scale + R"(}],
+          "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "NORMAL": 1, "TANGENT": 2}, "material": 0}]}],
+          "materials": [{"normalTexture": {"index": 0}}],
+          "textures": [{"source": 0}], "images": [{"uri": ")" +
+               kOnePixelPng + R"("}],
+          "accessors": [
+            {"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]},
+            {"bufferView": 1, "componentType": 5126, "count": 3, "type": "VEC3"},
+            {"bufferView": 2, "componentType": 5126, "count": 3, "type": "VEC4"}],
+          "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 36}, {"buffer": 0, "byteOffset": 36, "byteLength": 36},
+                          {"buffer": 0, "byteOffset": 72, "byteLength": 48}],
+          "buffers": [{"byteLength": 120, "uri": "data:application/octet-stream;base64,)" +
+               base64(bytes) + R"("}]})";
+    };
+    const pt::Scene plain = loadText(document("[2, 1, 1]"));
+    ASSERT_EQ(plain.meshes.at(0).tangents.size(), 3u);
+    EXPECT_TRUE(near3(glm::vec3(plain.meshes[0].tangents[0]), glm::vec3(1, 0, 0), 1e-6f)); // renormalised after scaling
+    EXPECT_EQ(plain.meshes[0].tangents[0].w, 1.0f);
+    EXPECT_EQ(plain.meshes[0].tangents[2], glm::vec4(0.0f)); // invalid
+    const pt::Scene mirrored = loadText(document("[-1, 1, 1]"));
+    EXPECT_TRUE(near3(glm::vec3(mirrored.meshes.at(0).tangents[0]), glm::vec3(-1, 0, 0), 1e-6f));
+    EXPECT_EQ(mirrored.meshes[0].tangents[0].w, -1.0f);
+}
+
+} // namespace
+} // namespace pt::test::gltf
