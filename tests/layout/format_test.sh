@@ -6,10 +6,10 @@ repo=$(cd "$(dirname "$0")/../.." && pwd)
 cd "$repo"
 command -v clang-format >/dev/null || { echo "format: clang-format not found (scripts/setup.sh installs it)"; exit 1; }
 if git rev-parse --is-inside-work-tree >/dev/null 2>&1; then
-  mapfile -t files < <(git ls-files -- 'src/*.h' 'src/*.cpp' 'tests/*.h' 'tests/*.cpp' 'bench/*.cpp' \
+  mapfile -t files < <(git ls-files -- 'src/*.h' 'src/*.cpp' 'tests/*.h' 'tests/*.cpp' 'bench/*.cpp' 'tools/*.cpp' \
     'shaders/*.h' 'shaders/*.glsl' 'shaders/*.comp')
 else
-  mapfile -t files < <(find src tests bench shaders -type f \( -name '*.h' -o -name '*.cpp' -o -name '*.glsl' -o -name '*.comp' \) | sort)
+  mapfile -t files < <(find src tests bench shaders tools -type f \( -name '*.h' -o -name '*.cpp' -o -name '*.glsl' -o -name '*.comp' \) | sort)
 fi
 if [ "${1:-}" = "--fix" ]; then
   clang-format -i "${files[@]}"

@@ -10,7 +10,9 @@
 #include "render/renderer.h"
 #include "film/tonemap.h"
 
+#include <fcntl.h>
 #include <spawn.h>
+#include <unistd.h>
 #include <sys/wait.h>
 
 #include <cmath>
@@ -20,6 +22,8 @@
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
+#include <string>
+#include <vector>
 
 extern char** environ;
 
@@ -58,7 +62,38 @@ Image renderReference(VulkanContext& context, const FlatScene& flat, const Job& 
     return reference;
 }
 
-// Runs $PT_PYTHON (default python3) DIR/plot.py DIR; false when it cannot run or fails.
+// Runs `python` with `args`; true when it exits 0. Its output goes where pt's goes unless quiet.
+bool runPython(const std::string& python, const std::vector<std::string>& args, bool quiet) {
+    std::vector<char*> argv{const_cast<char*>(python.c_str())};
+    for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+    argv.push_back(nullptr);
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    if (quiet) {
+        posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
+        posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, "/dev/null", O_WRONLY, 0);
+    }
+    pid_t pid = 0;
+    const int spawned = posix_spawnp(&pid, python.c_str(), &actions, nullptr, argv.data(), environ);
+    posix_spawn_file_actions_destroy(&actions);
+    if (spawned != 0) return false;
+    int status = 0;
+    if (waitpid(pid, &status, 0) != pid) return false;
+    return WIFEXITED(status) && WEXITSTATUS(status) == 0;
+}
+
+// The interpreter for the plots: $PT_PYTHON when set; otherwise the first of python3 on PATH and
+// Debian's /usr/bin/python3 (whose python3-matplotlib scripts/setup.sh installs) that can import
+// matplotlib, since a python3 earlier on PATH (pyenv, a venv) often cannot.
+std::string plotInterpreter() {
+    const char* chosen = std::getenv("PT_PYTHON");
+    if (chosen && *chosen) return chosen;
+    for (const char* candidate : {"python3", "/usr/bin/python3"})
+        if (runPython(candidate, {"-c", "import matplotlib"}, true)) return candidate;
+    return "python3"; // fails below with the message that says what to install
+}
+
+// Runs the plot interpreter on DIR/plot.py DIR; false when it cannot run or fails.
 bool runPlotScript(const fs::path& dir) {
     const fs::path script = dir / "plot.py";
     {
@@ -66,16 +101,7 @@ bool runPlotScript(const fs::path& dir) {
         out << kBenchPlotScript;
         if (!out) throw std::runtime_error(script.string() + ": cannot write");
     }
-    const std::string scriptArg = script.string(), dirArg = dir.string();
-    const char* python = std::getenv("PT_PYTHON");
-    if (!python || !*python) python = "python3";
-    char* argv[] = {
-        const_cast<char*>(python), const_cast<char*>(scriptArg.c_str()), const_cast<char*>(dirArg.c_str()), nullptr};
-    pid_t pid = 0;
-    if (posix_spawnp(&pid, python, nullptr, nullptr, argv, environ) != 0) return false;
-    int status = 0;
-    if (waitpid(pid, &status, 0) != pid) return false;
-    return WIFEXITED(status) && WEXITSTATUS(status) == 0;
+    return runPython(plotInterpreter(), {script.string(), dir.string()}, false);
 }
 
 } // namespace
