@@ -189,21 +189,18 @@ std::vector<unsigned char> readExrBytes(const std::filesystem::path& path) {
 // An EXR file opened from memory, with the checks every reader makes before it reads pixels: a
 // plausible data window, and a complete file (checked before readPixels() so truncation gets a
 // clear message rather than whatever the decoder says when it runs out of bytes).
-class OpenedExr {
-public:
+struct OpenedExr {
     explicit OpenedExr(const std::filesystem::path& path)
-        : bytes_(readExrBytes(path)), stream_(path.string(), bytes_), in(stream_), header(in.header()),
+        : bytes(readExrBytes(path)), stream(path.string(), bytes), in(stream), header(in.header()),
           dw(header.dataWindow()), w(int64_t(dw.max.x) - dw.min.x + 1), h(int64_t(dw.max.y) - dw.min.y + 1) {
         if (w <= 0 || h <= 0 || w * h > kMaxPixels)
             fail(path, "implausible data window " + std::to_string(w) + "x" + std::to_string(h) + " (corrupt header?)");
         if (!in.isComplete()) fail(path, "truncated or incomplete OpenEXR file");
     }
 
-private:
-    std::vector<unsigned char> bytes_;
-    ExrMemStream stream_;
-
-public:
+    // In construction order: each member reads the one before it.
+    std::vector<unsigned char> bytes;
+    ExrMemStream stream;
     Imf::InputFile in;
     const Imf::Header& header;
     const Imath::Box2i dw;

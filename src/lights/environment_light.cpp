@@ -18,8 +18,8 @@ LightEntry environmentLight(double averageRadiance, float sceneRadius) {
     LightEntry e{};
     e.light.type = LIGHT_ENVIRONMENT;
     // The power it sends through a disc the size of the scene: pi R^2 x (pi x average radiance).
-    e.power =
-        kLightPi * double(sceneRadius) * sceneRadius * kLightPi * std::max(averageRadiance, kMinEnvironmentRadiance);
+    e.power = std::numbers::pi * double(sceneRadius) * sceneRadius * std::numbers::pi *
+              std::max(averageRadiance, kMinEnvironmentRadiance);
     return e;
 }
 

@@ -12,11 +12,10 @@
 #include <glm/glm.hpp>
 
 #include <cstdint>
+#include <numbers>
 #include <optional>
 
 namespace pt {
-
-inline constexpr double kLightPi = 3.14159265358979323846;
 
 struct LightEntry {
     gpu::GpuLight light;

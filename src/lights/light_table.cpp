@@ -24,7 +24,7 @@ double selectionWeight(const glm::vec3& c) {
 }
 
 double lambertianEmitterPower(const Material& m, double area) {
-    return kLightPi * selectionWeight(m.emission) * area * (m.doubleSided ? 2.0 : 1.0);
+    return std::numbers::pi * selectionWeight(m.emission) * area * (m.doubleSided ? 2.0 : 1.0);
 }
 
 std::optional<LightEntry> areaEmitter(uint32_t type, uint32_t index, float samplingArea, double power) {

@@ -41,7 +41,7 @@ std::optional<LightEntry> sphereLight(const gpu::GpuSphere& sphere, uint32_t ind
     const double det = std::abs(glm::determinant(a));
     if (!(det > 0.0)) return std::nullopt;
     // Area estimate for the power only: 4 pi times the squared geometric-mean radius.
-    const double area = 4.0 * kLightPi * std::pow(det, 2.0 / 3.0);
+    const double area = 4.0 * std::numbers::pi * std::pow(det, 2.0 / 3.0);
     std::optional<LightEntry> e =
         areaEmitter(LIGHT_SPHERE, index, static_cast<float>(det), lambertianEmitterPower(m, area));
     if (!e) return std::nullopt;
