@@ -88,6 +88,9 @@ void addSceneOptions(CLI::App* cmd, pt::RenderOptions& o, SwitchWords& w) {
         ->check(CLI::Range(0.0f, 1e30f));
     cmd->add_option("--env-rotate", o.environmentRotation, "Rotate the environment about +y, in degrees");
     cmd->add_flag("--validation", o.validation, "Enable the Vulkan validation layer; fail if it reports anything");
+    cmd->add_flag("--no-pipeline-cache", o.noPipelineCache,
+        "Neither read nor write the pipeline cache ($XDG_CACHE_HOME/pt, else ~/.cache/pt: specialised kernels "
+        "and the driver's cache, which make a kernel's second start-up fast)");
     cmd->add_flag("--all-features", o.allFeatures,
         "Use the kernel with every feature compiled in instead of one specialised "
         "to the scene (to measure what specialisation saves; same image)");

@@ -29,7 +29,8 @@ struct RenderOptions {
     uint32_t tileSize = 0; // 0: whole image per dispatch
     uint32_t passSpp = 0;  // 0: choose passes of about half a second
     bool validation = false;
-    bool allFeatures = false; // compile every feature into the kernel (benchmarking specialisation)
+    bool noPipelineCache = false; // --no-pipeline-cache: nothing read from or written to the disk cache
+    bool allFeatures = false;     // compile every feature into the kernel (benchmarking specialisation)
     bool quiet = false;
     bool varianceAov = false; // --variance: variance-of-the-mean channels in the EXR
     float exposure = 0.0f;

@@ -1,5 +1,6 @@
 #include "app/render_command.h"
 
+#include "app/context_options.h"
 #include "app/render_session.h"
 #include "app/scene_setup.h"
 
@@ -60,8 +61,9 @@ int renderJob(VulkanContext& context, const Scene& scene, const FlatScene& flat,
     Renderer renderer(
         context, flat, features, job.settings, job.camera, FilmSettings{job.width, job.height, scene.background});
     if (!o.quiet) {
-        std::fprintf(stderr, "pt: %s: %dx%d, kernel features: %s; pipeline %.3f s\n", job.camera.name.c_str(),
-            job.width, job.height, features.describe().c_str(), renderer.pipelineSeconds());
+        std::fprintf(stderr, "pt: %s: %dx%d, kernel features: %s; pipeline %.3f s (%s kernel)\n",
+            job.camera.name.c_str(), job.width, job.height, features.describe().c_str(), renderer.pipelineSeconds(),
+            renderer.pipelineSource());
         std::fprintf(stderr, "pt: %s\n", job.settings.describe().c_str());
     }
     ImageMetadata meta;
@@ -154,10 +156,7 @@ int runRender(const RenderOptions& o) {
     FlatScene flat = flattenWithNotes(scene);
     const double loadSeconds = secondsSince(loadStart);
 
-    ContextOptions contextOptions;
-    contextOptions.validation = o.validation;
-    contextOptions.deviceSubstring = o.device;
-    VulkanContext context(contextOptions);
+    VulkanContext context(contextOptionsFor(o));
     if (context.isSlowLavapipe() && !o.quiet)
         std::fprintf(stderr, "pt: note: lavapipe from Mesa older than 24 runs about 3.5x slower; install Mesa 25 "
                              "from bookworm-backports (scripts/setup.sh does)\n");

@@ -1,5 +1,7 @@
 #include "app/render_identity.h"
 
+#include "base/hash.h"
+
 #include <cstdio>
 #include <fstream>
 #include <iterator>
@@ -30,18 +32,6 @@ std::string exact(float v) {
 std::string exact(glm::vec3 v) { return exact(v.x) + "," + exact(v.y) + "," + exact(v.z); }
 
 } // namespace
-
-uint64_t fnv1a64(const void* data, size_t bytes, uint64_t hash) {
-    const auto* p = static_cast<const unsigned char*>(data);
-    for (size_t i = 0; i < bytes; ++i) hash = (hash ^ p[i]) * 0x100000001b3ull;
-    return hash;
-}
-
-std::string hexDigits(uint64_t value) {
-    char text[17];
-    std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(value));
-    return text;
-}
 
 RenderIdentity renderIdentity(const RenderOptions& o, const Scene& scene, const Job& job) {
     std::ostringstream s;

@@ -25,8 +25,4 @@ RenderIdentity renderIdentity(const RenderOptions& o, const Scene& scene, const 
 // Empty when `metadata` has the same identity, else one line saying what differs.
 std::string identityMismatch(const RenderIdentity& expected, const ImageMetadata& metadata);
 
-// FNV-1a 64-bit, continuing from `hash` (for hashing several pieces).
-uint64_t fnv1a64(const void* data, size_t bytes, uint64_t hash = 0xcbf29ce484222325ull);
-std::string hexDigits(uint64_t value);
-
 } // namespace pt

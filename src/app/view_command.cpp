@@ -1,5 +1,6 @@
 #include "app/view_command.h"
 
+#include "app/context_options.h"
 #include "app/scene_setup.h"
 #include "gpu/vulkan_context.h"
 #include "viewer/script.h"
@@ -49,9 +50,7 @@ int runView(const ViewOptions& v) {
 
     try {
         viewer::Window window(config.job.width, config.job.height, "pt view: " + config.sceneStem);
-        ContextOptions contextOptions;
-        contextOptions.validation = o.validation;
-        contextOptions.deviceSubstring = o.device;
+        ContextOptions contextOptions = contextOptionsFor(o);
         contextOptions.instanceExtensions = viewer::Window::requiredInstanceExtensions();
         contextOptions.createSurface = [&](VkInstance instance) { return window.createSurface(instance); };
         std::unique_ptr<VulkanContext> context;

@@ -17,9 +17,12 @@ ComputePipeline::ComputePipeline(VulkanContext& context, std::span<const uint32_
                                  std::to_string(context.properties().limits.maxPushConstantsSize) +
                                  " bytes of push constants");
 
+    PipelineCache& cache = context.pipelineCache();
+    const SpecializedKernel kernel = cache.specialize(spirv, constants, name);
+    specializedFromCache_ = kernel.fromCache;
     VkShaderModuleCreateInfo moduleInfo{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
-    moduleInfo.codeSize = spirv.size_bytes();
-    moduleInfo.pCode = spirv.data();
+    moduleInfo.codeSize = kernel.spirv.size() * sizeof(uint32_t);
+    moduleInfo.pCode = kernel.spirv.data();
     VkShaderModule module = VK_NULL_HANDLE;
     vkCheck(vkCreateShaderModule(context.device(), &moduleInfo, nullptr, &module), what.c_str());
 
@@ -33,31 +36,19 @@ ComputePipeline::ComputePipeline(VulkanContext& context, std::span<const uint32_
         throw VulkanError(result, what);
     }
 
-    std::vector<VkSpecializationMapEntry> entries;
-    std::vector<uint32_t> values;
-    for (const auto& c : constants) {
-        entries.push_back({c.id, static_cast<uint32_t>(values.size() * sizeof(uint32_t)), sizeof(uint32_t)});
-        values.push_back(c.value);
-    }
-    VkSpecializationInfo specialization{};
-    specialization.mapEntryCount = static_cast<uint32_t>(entries.size());
-    specialization.pMapEntries = entries.data();
-    specialization.dataSize = values.size() * sizeof(uint32_t);
-    specialization.pData = values.data();
-
     VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
     info.stage.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
     info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
     info.stage.module = module;
     info.stage.pName = "main";
-    info.stage.pSpecializationInfo = entries.empty() ? nullptr : &specialization;
     info.layout = layout_;
-    result = vkCreateComputePipelines(context.device(), VK_NULL_HANDLE, 1, &info, nullptr, &pipeline_);
+    result = vkCreateComputePipelines(context.device(), cache.handle(), 1, &info, nullptr, &pipeline_);
     vkDestroyShaderModule(context.device(), module, nullptr);
     if (result != VK_SUCCESS) {
         vkDestroyPipelineLayout(context.device(), layout_, nullptr);
         throw VulkanError(result, what);
     }
+    cache.save();
     creationSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 

@@ -1,6 +1,9 @@
 #pragma once
 // A compute pipeline from embedded SPIR-V, with push constants only (every buffer is reached
-// through its device address) and specialization constants chosen per scene.
+// through its device address) and specialization constants chosen per scene. The constants are
+// baked into the SPIR-V before the driver sees it (spirv_specialization.h), through the context's
+// pipeline cache, so a kernel's second creation, in any process, skips that step.
+#include "gpu/spirv_specialization.h"
 #include "gpu/vulkan_context.h"
 
 #include <cstdint>
@@ -9,11 +12,6 @@
 #include <vector>
 
 namespace pt {
-
-struct SpecializationConstant {
-    uint32_t id;
-    uint32_t value; // booleans are 0 or 1, as VkBool32
-};
 
 class ComputePipeline {
 public:
@@ -26,6 +24,8 @@ public:
     VkPipeline handle() const { return pipeline_; }
     VkPipelineLayout layout() const { return layout_; }
     double creationSeconds() const { return creationSeconds_; }
+    // Whether the specialised SPIR-V came from the disk cache (for the log line).
+    bool specializedFromCache() const { return specializedFromCache_; }
 
     void bindAndPush(VkCommandBuffer cmd, const void* pushData, uint32_t bytes) const;
 
@@ -34,6 +34,7 @@ private:
     VkPipelineLayout layout_ = VK_NULL_HANDLE;
     VkPipeline pipeline_ = VK_NULL_HANDLE;
     double creationSeconds_ = 0;
+    bool specializedFromCache_ = false;
 };
 
 } // namespace pt

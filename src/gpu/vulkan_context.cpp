@@ -260,6 +260,7 @@ VulkanContext::VulkanContext(const ContextOptions& options) {
         vkCheck(vkCreateCommandPool(device_, &poolInfo, nullptr, &commandPool_), "creating a command pool");
         VkFenceCreateInfo fenceInfo{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
         vkCheck(vkCreateFence(device_, &fenceInfo, nullptr, &fence_), "creating a fence");
+        pipelineCache_ = std::make_unique<PipelineCache>(device_, properties_, options.pipelineCacheDirectory);
     } catch (...) {
         this->~VulkanContext();
         throw;
@@ -269,6 +270,7 @@ VulkanContext::VulkanContext(const ContextOptions& options) {
 VulkanContext::~VulkanContext() {
     if (device_) {
         vkDeviceWaitIdle(device_);
+        pipelineCache_.reset();
         if (fence_) vkDestroyFence(device_, fence_, nullptr);
         if (commandPool_) vkDestroyCommandPool(device_, commandPool_, nullptr);
         vkDestroyDevice(device_, nullptr);

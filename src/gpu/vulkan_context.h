@@ -1,7 +1,11 @@
 #pragma once
 // Vulkan instance, device selection and the one compute queue everything runs on.
+#include "gpu/pipeline_cache.h"
+
 #include <cstdint>
+#include <filesystem>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 #include <vulkan/vulkan.h>
@@ -29,6 +33,10 @@ struct ContextOptions {
     // VK_KHR_swapchain and picks a device whose compute queue family can present to it.
     std::vector<std::string> instanceExtensions;
     std::function<VkSurfaceKHR(VkInstance)> createSurface;
+
+    // Where pipelines are cached between processes (ShaderCacheDirectory::defaultPath() for pt's
+    // commands); empty: nothing persists (--no-pipeline-cache).
+    std::filesystem::path pipelineCacheDirectory;
 };
 
 class VulkanContext {
@@ -58,6 +66,9 @@ public:
     uint32_t validationMessageCount() const { return validationMessages_; }
     const std::string& firstValidationMessage() const { return firstValidationMessage_; }
 
+    // Specialised kernels and the driver's pipeline cache, shared by every pipeline.
+    PipelineCache& pipelineCache() { return *pipelineCache_; }
+
     // Records commands into a one-shot command buffer, submits it and waits for completion.
     void submitAndWait(const std::function<void(VkCommandBuffer)>& record);
 
@@ -74,6 +85,7 @@ private:
     uint32_t queueFamily_ = 0;
     VkCommandPool commandPool_ = VK_NULL_HANDLE;
     VkFence fence_ = VK_NULL_HANDLE;
+    std::unique_ptr<PipelineCache> pipelineCache_;
     DeviceInfo info_;
     VkPhysicalDeviceProperties properties_{};
     VkPhysicalDeviceMemoryProperties memoryProperties_{};

@@ -78,6 +78,8 @@ public:
     int width() const { return film_.width; }
     int height() const { return film_.height; }
     double pipelineSeconds() const { return pipeline_->creationSeconds(); }
+    // "cached" when the specialised kernel was made before (this process or an earlier one).
+    const char* pipelineSource() const { return pipeline_->specializedFromCache() ? "cached" : "specialised"; }
 
     // Reads the sums back: the mean image, per-pixel variance of that mean, non-finite samples dropped.
     using Readback = AccumulatedImage;

@@ -51,8 +51,8 @@ Session::Session(Window& window, VulkanContext& context, const FlatScene& flat, 
     FeatureSet features = computeFeatures(flat, settings_);
     renderer_ = std::make_unique<Renderer>(context, flat, features, settings_, config.job.camera,
         FilmSettings{windowSize_.x, windowSize_.y, config.background});
-    std::fprintf(stderr, "pt: view: kernel features: %s; pipeline %.3f s\n", features.describe().c_str(),
-        renderer_->pipelineSeconds());
+    std::fprintf(stderr, "pt: view: kernel features: %s; pipeline %.3f s (%s kernel)\n", features.describe().c_str(),
+        renderer_->pipelineSeconds(), renderer_->pipelineSource());
 
     swapchain_ = std::make_unique<Swapchain>(context, windowSize_.x, windowSize_.y);
     windowSize_ = glm::ivec2(swapchain_->extent().width, swapchain_->extent().height);

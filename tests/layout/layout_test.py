@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Checks that includes run with the data flow (README: Layout).
 
-src/: image < scene < {accel, lights, gpu} < flatten < film < render < viewer < app.
+src/: base < image < scene < {accel, lights, gpu} < flatten < film < render < viewer < app.
 shaders/: shared < common < textures < geometry < {material, bsdf, lights} < {integrator, viewer} < tests.
 A file may include its own folder and folders of a lower level, never one of its own level or
 above (siblings in braces do not include each other); scene/gltf and scene/ceng795 do not
@@ -15,7 +15,7 @@ import os
 import re
 import sys
 
-SRC_LEVELS = {"image": 0, "scene": 1, "accel": 2, "lights": 2, "gpu": 2, "flatten": 3,
+SRC_LEVELS = {"base": -1, "image": 0, "scene": 1, "accel": 2, "lights": 2, "gpu": 2, "flatten": 3,
               "film": 4, "render": 5, "viewer": 6, "app": 7}
 SHADER_LEVELS = {"shared": 0, "common": 1, "textures": 2, "geometry": 3, "material": 4, "bsdf": 4,
                  "lights": 4, "integrator": 5, "viewer": 5, "tests": 6}

@@ -1,5 +1,6 @@
 #include "app/bench/bench_command.h"
 
+#include "app/context_options.h"
 #include "app/scene_setup.h"
 #include "gpu/vulkan_context.h"
 #include "app/bench/bench_config.h"
@@ -137,10 +138,7 @@ int runBench(const BenchOptions& b) {
     }
 
     FlatScene flat = flattenWithNotes(scene);
-    ContextOptions contextOptions;
-    contextOptions.validation = o.validation;
-    contextOptions.deviceSubstring = o.device;
-    VulkanContext context(contextOptions);
+    VulkanContext context(contextOptionsFor(o));
     const std::string device = context.info().name + " (" + context.info().driver + ")";
     const Image reference =
         given ? *given : renderReference(context, flat, job, scene, b.referenceSpp, dir / "reference.exr");
