@@ -8,17 +8,11 @@ set -euo pipefail
 
 if [ "$(id -u)" -ne 0 ]; then SUDO=sudo; else SUDO=; fi
 
-packages=(
-  build-essential cmake ninja-build pkg-config
-  libvulkan-dev vulkan-validationlayers glslang-tools spirv-tools vulkan-tools
-  libglm-dev libtinygltf-dev nlohmann-json3-dev libstb-dev libopenexr-dev libcli11-dev libpugixml-dev libjpeg-dev
-  libgtest-dev mesa-vulkan-drivers
-  libglfw3-dev xvfb xauth
-  python3-venv # scripts/setup_ray_venv.sh: the Ray driver's venv (tools/pt_ray)
-  python3-matplotlib # pt bench's plots and contact sheets (tools/bench_plot.py)
-  clang-format # the formatting test (tests/layout/format_test.sh) checks the tree against .clang-format
-  clang libclang-rt-14-dev # scripts/sanitizers.sh: ASan + UBSan build and libFuzzer targets
-)
+here=$(dirname "$0")
+# The packages: scripts/debian-packages.txt, one a line with what uses it after a `#`
+# (tests/setup/setup_completeness_test.py checks that it covers everything the repository uses).
+mapfile -t packages < <(sed -e 's/#.*//' -e 's/[[:space:]]//g' -e '/^$/d' "$here/debian-packages.txt")
+[ ${#packages[@]} -gt 0 ] || { echo "setup: $here/debian-packages.txt: no packages read"; exit 1; }
 
 backports=/etc/apt/sources.list.d/bookworm-backports.sources
 if [ ! -f "$backports" ] && grep -qs bookworm /etc/os-release; then
@@ -44,7 +38,7 @@ if grep -qs bookworm /etc/os-release && [[ ! "$mesa_version" =~ ^2[4-9]\. ]]; th
 fi
 
 if [ ${#missing[@]} -eq 0 ] && [ $want_backports_mesa -eq 0 ]; then
-  bash "$(dirname "$0")/setup_ray_venv.sh"
+  bash "$here/setup_ray_venv.sh"
   exit 0
 fi
 
@@ -60,4 +54,4 @@ if [ $want_backports_mesa -eq 1 ]; then
   $SUDO apt-get install -y -qq --no-install-recommends mesa-vulkan-drivers/bookworm-backports >/dev/null \
     || echo "setup: bookworm-backports Mesa unavailable; using Debian 12's Mesa (slower lavapipe)"
 fi
-bash "$(dirname "$0")/setup_ray_venv.sh"
+bash "$here/setup_ray_venv.sh"
