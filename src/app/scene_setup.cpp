@@ -5,6 +5,7 @@
 #include "scene/scene_loader.h"
 #include "image/texture_image.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -72,29 +73,113 @@ bool isCourseScene(const std::string& scene) {
     return ext == ".xml";
 }
 
+namespace {
+
+// Calls f(p) for every point the framing camera must see: each vertex (at both ends of its motion)
+// and 26 points on each ellipsoid (the directions of a cube's faces, edges and corners), which bound
+// its silhouette within 5%.
+template <typename F>
+void forEachFramingPoint(const Scene& scene, F&& f) {
+    for (const Mesh& m : scene.meshes)
+        for (const glm::vec3& p : m.positions) {
+            f(p);
+            if (m.motion != glm::vec3(0.0f)) f(p + m.motion);
+        }
+    for (const Sphere& s : scene.spheres)
+        for (int x = -1; x <= 1; ++x)
+            for (int y = -1; y <= 1; ++y)
+                for (int z = -1; z <= 1; ++z) {
+                    if (x == 0 && y == 0 && z == 0) continue;
+                    const glm::vec3 p(s.objectToWorld * glm::vec4(glm::normalize(glm::vec3(x, y, z)), 1.0f));
+                    f(p);
+                    if (s.motion != glm::vec3(0.0f)) f(p + s.motion);
+                }
+}
+
+// The image aspect of a camera without settings, sized as makeJob sizes it: the command line, then
+// the scene's hints, then 512 wide; square unless a height is given.
+float framingAspect(const Scene& scene, const RenderOptions& o) {
+    const int width = o.width.value_or(scene.hints.width.value_or(512));
+    int height = width;
+    if (o.height)
+        height = *o.height;
+    else if (!o.width && scene.hints.height)
+        height = *scene.hints.height;
+    return width > 0 && height > 0 ? static_cast<float>(width) / static_cast<float>(height) : 1.0f;
+}
+
+} // namespace
+
+Camera framingCamera(const Scene& scene, float aspect) {
+    Camera c;
+    c.name = "framing camera";
+    c.yfov = 0.8f;
+    glm::vec3 lo(INFINITY), hi(-INFINITY);
+    forEachFramingPoint(scene, [&](const glm::vec3& p) { lo = glm::min(lo, p), hi = glm::max(hi, p); });
+    if (!(lo.x <= hi.x)) return c; // nothing to frame
+    const glm::vec3 extent = hi - lo;
+    const float largest = std::max({extent.x, extent.y, extent.z});
+    // glTF's front is +z: look down -z, unless that sees a flat scene edge-on: a floor (flat in y)
+    // is seen from 45 degrees above the front, a wall facing x from +x.
+    if (extent.y <= 0.1f * largest && extent.y <= extent.x && extent.y <= extent.z) {
+        c.forward = glm::normalize(glm::vec3(0, -1, -1));
+        c.up = glm::normalize(glm::vec3(0, 1, -1));
+    } else if (extent.x <= 0.1f * largest && extent.x <= extent.z) {
+        c.forward = glm::vec3(-1, 0, 0);
+    }
+    // The renderer's frame (toGpuCamera); a point p - centre = u right + v up + w forward, seen from
+    // centre + s right + q up - t forward, is at x = (u - s) / ((t + w) tan(xfov / 2)) of the
+    // half-width. Every point lies within kFramingFill of the half-width and half-height when
+    // t >= |u - s| / tx - w and t >= |v - q| / ty - w, with tx, ty kFramingFill times the tangents.
+    const glm::vec3 right = glm::normalize(glm::cross(c.forward, c.up));
+    const glm::vec3 up = glm::cross(right, c.forward);
+    const float ty = kFramingFill * std::tan(0.5f * c.yfov), tx = ty * aspect;
+    const glm::vec3 centre = 0.5f * (lo + hi);
+    const float margin = 1e-2f * 0.5f * glm::length(extent); // never closer to a point than this
+    float s = 0.0f, q = 0.0f;
+    const auto distance = [&] {
+        float t = -INFINITY;
+        forEachFramingPoint(scene, [&](const glm::vec3& p) {
+            const glm::vec3 d = p - centre;
+            const float w = glm::dot(d, c.forward);
+            t = std::max(
+                {t, std::abs(glm::dot(d, right) - s) / tx - w, std::abs(glm::dot(d, up) - q) / ty - w, margin - w});
+        });
+        return t;
+    };
+    // Centred: shifted sideways until the outermost points on either side project symmetrically
+    // (perspective makes a near edge look larger than a far one), then moved back to fit.
+    for (int iteration = 0; iteration < 4; ++iteration) {
+        const float t = distance();
+        struct Extreme {
+            float ndc, offset, depth;
+        };
+        Extreme xlo{INFINITY, 0, 1}, xhi{-INFINITY, 0, 1}, ylo{INFINITY, 0, 1}, yhi{-INFINITY, 0, 1};
+        forEachFramingPoint(scene, [&](const glm::vec3& p) {
+            const glm::vec3 d = p - centre;
+            const float depth = t + glm::dot(d, c.forward), u = glm::dot(d, right), v = glm::dot(d, up);
+            const float x = (u - s) / depth, y = (v - q) / depth;
+            if (x < xlo.ndc) xlo = {x, u, depth};
+            if (x > xhi.ndc) xhi = {x, u, depth};
+            if (y < ylo.ndc) ylo = {y, v, depth};
+            if (y > yhi.ndc) yhi = {y, v, depth};
+        });
+        // (hi.offset - s') / hi.depth = (s' - lo.offset) / lo.depth
+        s = (xhi.offset * xlo.depth + xlo.offset * xhi.depth) / (xlo.depth + xhi.depth);
+        q = (yhi.offset * ylo.depth + ylo.offset * yhi.depth) / (ylo.depth + yhi.depth);
+    }
+    const float t = distance();
+    c.position = centre + s * right + q * up - (std::isfinite(t) && t > 0.0f ? t : 1.0f) * c.forward;
+    return c;
+}
+
 std::vector<Camera> chooseCameras(const Scene& scene, const RenderOptions& o, bool course) {
     if (scene.cameras.empty()) {
         if (o.camera && *o.camera != 0)
             throw std::runtime_error(
                 scene.source + ": --camera " + std::to_string(*o.camera) + ": the scene has no cameras");
-        // No camera in the file: look at the scene's bounding box from +z.
-        glm::vec3 lo(INFINITY), hi(-INFINITY);
-        for (const auto& m : scene.meshes)
-            for (const auto& p : m.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
-        for (const auto& s : scene.spheres) {
-            const glm::vec3 c(s.objectToWorld[3]);
-            const float r = glm::length(glm::vec3(s.objectToWorld[0])) + glm::length(glm::vec3(s.objectToWorld[1])) +
-                            glm::length(glm::vec3(s.objectToWorld[2]));
-            lo = glm::min(lo, c - r), hi = glm::max(hi, c + r);
-        }
-        Camera c;
-        c.name = "framing camera";
-        c.yfov = 0.8f;
-        const glm::vec3 centre = 0.5f * (lo + hi);
-        const float radius = 0.5f * glm::length(hi - lo);
-        c.position = centre + glm::vec3(0, 0, radius / std::tan(0.5f * c.yfov) + radius);
         std::fprintf(stderr, "pt: note: %s has no camera; using one that frames the scene\n", scene.source.c_str());
-        return {c};
+        return {framingCamera(scene, framingAspect(scene, o))};
     }
     if (course) {
         if (!o.camera) return scene.cameras;

@@ -27,8 +27,16 @@ Scene loadSceneWithOptions(const RenderOptions& o);
 // flattenScene plus the notes about dropped primitives and the warning for a scene without light.
 FlatScene flattenWithNotes(const Scene& scene);
 
+// The camera for a scene without one (most glTF sample models): it looks down -z at the scene
+// (glTF's front; a scene flat in y from 45 degrees above, one flat in x from +x) and stands where
+// every vertex lies within kFramingFill of the image's half-width and half-height, centred, for an
+// image of `aspect` (width / height): the scene fills that fraction of its limiting dimension.
+constexpr float kFramingFill = 0.9f;
+Camera framingCamera(const Scene& scene, float aspect);
+
 // The cameras to render: --camera picks one (a glTF index, a course camera id); glTF renders
-// its first camera by default, a course scene every camera (one image each, as the course does).
+// its first camera by default, a course scene every camera (one image each, as the course does);
+// a scene without cameras gets framingCamera for the image size the options give.
 std::vector<Camera> chooseCameras(const Scene& scene, const RenderOptions& o, bool course);
 Job makeJob(const Scene& scene, const Camera& camera, const RenderOptions& o, bool severalImages, bool course);
 
