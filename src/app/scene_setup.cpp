@@ -230,13 +230,9 @@ Job makeJob(const Scene& scene, const Camera& camera, const RenderOptions& o, bo
     s.rr = o.rr.value_or(cs.russianRoulette.value_or(true));
     s.sampling = o.sampling.value_or(
         cs.importanceSampling.value_or(true) ? DirectionSampling::Cosine : DirectionSampling::Uniform);
-    // The course's official path-tracing images apply Russian roulette without a depth cap
-    // (docs/ceng795-format.md section 8): such cameras get a cap so high that only roulette ends paths.
-    const bool uncapped = course && cs.russianRoulette.value_or(false) && !cs.maxDepth;
-    const int fallbackDepth = uncapped ? kUncappedDepth : scene.hints.maxDepth.value_or(16);
-    const int depth = o.maxDepth ? static_cast<int>(*o.maxDepth) : cs.maxDepth.value_or(fallbackDepth);
-    if (depth < 1) throw std::runtime_error("max depth must be at least 1");
-    s.maxDepth = static_cast<uint32_t>(depth);
+    const DepthChoice depth = chooseMaxDepth(scene, camera, o, course);
+    if (depth.depth < 1) throw std::runtime_error("max depth must be at least 1");
+    s.maxDepth = static_cast<uint32_t>(depth.depth);
 
     job.target.spp = o.spp.value_or(o.seconds || o.targetError ? 0u : cs.spp.value_or(64u));
     job.target.seconds = o.seconds.value_or(0.0);
@@ -263,6 +259,39 @@ Job makeJob(const Scene& scene, const Camera& camera, const RenderOptions& o, bo
         job.output = fs::path("out") / name;
     }
     return job;
+}
+
+DepthChoice chooseMaxDepth(const Scene& scene, const Camera& camera, const RenderOptions& o, bool course) {
+    const CameraRenderSettings& cs = camera.settings;
+    if (o.maxDepth) return {static_cast<int>(*o.maxDepth), ""};
+    // The course's official path-tracing images apply Russian roulette without a depth cap
+    // (docs/ceng795-format.md section 8): such cameras get a cap so high that only roulette ends paths.
+    if (course && cs.russianRoulette.value_or(false) && !cs.maxDepth)
+        return {kUncappedDepth, "course: Russian roulette without a depth cap"};
+    if (course && cs.maxDepth) {
+        // The loader gives MaxRecursionDepth + 1: the camera ray plus MaxRecursionDepth bounces,
+        // which is how the course's renderer counts without NEE (and in its classic ray tracer).
+        // With NEE it also adds the light sampled at the last vertex, one segment deeper: its NEE
+        // images match pt at MaxRecursionDepth + 2 (bench/RESULTS.md, the HW6 boxes). The camera's
+        // own NEE decides, not --nee: a switch changes the estimator, never the image.
+        const int recursion = *cs.maxDepth - 1;
+        const std::string base = "course: MaxRecursionDepth " + std::to_string(recursion);
+        if (cs.classic.value_or(false)) return {recursion + 1, base + " + 1"};
+        if (cs.nee.value_or(false)) return {recursion + 2, base + " + 2 with NEE"};
+        return {recursion + 1, base + " + 1 without NEE"};
+    }
+    if (cs.maxDepth) return {*cs.maxDepth, "the camera's"};
+    if (scene.hints.maxDepth) return {*scene.hints.maxDepth, "the scene's"};
+    return {16, course ? "pt's default: the file has no MaxRecursionDepth" : "pt's default"};
+}
+
+std::string describeIntegrator(const Scene& scene, const Job& job, const RenderOptions& o) {
+    std::string text = job.settings.describe();
+    const std::string reason = chooseMaxDepth(scene, job.camera, o, isCourseScene(o.scene)).reason;
+    const std::string key = "max-depth=" + std::to_string(job.settings.maxDepth);
+    const size_t at = text.find(key);
+    if (!reason.empty() && at != std::string::npos) text.insert(at + key.size(), " (" + reason + ")");
+    return text;
 }
 
 } // namespace pt

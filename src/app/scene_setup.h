@@ -40,4 +40,16 @@ Camera framingCamera(const Scene& scene, float aspect);
 std::vector<Camera> chooseCameras(const Scene& scene, const RenderOptions& o, bool course);
 Job makeJob(const Scene& scene, const Camera& camera, const RenderOptions& o, bool severalImages, bool course);
 
+// The max depth a camera renders at, and why: --max-depth; else a course camera's own convention
+// (path tracing: MaxRecursionDepth + 1, the camera ray plus MaxRecursionDepth bounces, or + 2 when
+// the camera uses NEE, whose renderer adds direct light at the last vertex, one segment deeper;
+// Russian roulette: no cap; classic: MaxRecursionDepth + 1); else the scene's; else 16.
+struct DepthChoice {
+    int depth = 16;
+    std::string reason; // for the log line; empty when the command line chose
+};
+DepthChoice chooseMaxDepth(const Scene& scene, const Camera& camera, const RenderOptions& o, bool course);
+// IntegratorSettings::describe() with the depth's reason after max-depth, for the log line.
+std::string describeIntegrator(const Scene& scene, const Job& job, const RenderOptions& o);
+
 } // namespace pt
