@@ -20,6 +20,11 @@ std::string joinNotes(const std::vector<std::string>& notes) {
     return s;
 }
 
+// One warning line per value the scene file lacks and pt filled in.
+void warnAssumed(const Scene& scene, const Camera& camera, const std::string& what) {
+    std::fprintf(stderr, "pt: warning: %s: %s: %s\n", scene.source.c_str(), camera.name.c_str(), what.c_str());
+}
+
 } // namespace
 
 Scene loadSceneWithOptions(const RenderOptions& o) {
@@ -39,9 +44,24 @@ Scene loadSceneWithOptions(const RenderOptions& o) {
         scene.environment->scale *= o.environmentScale;
         scene.environment->rotationDegrees += o.environmentRotation;
     }
-    if (!scene.unsupported.empty())
+    // The loaders' notes: features not modelled yet, and values the file lacks (or gives out of
+    // range) that the loader filled in, which say "... assumed)"; one warning line each.
+    std::vector<std::string> approximated, assumed;
+    for (const std::string& n : scene.unsupported)
+        (n.find(" assumed)") != std::string::npos ? assumed : approximated).push_back(n);
+    if (!approximated.empty())
         std::fprintf(stderr, "pt: warning: %s: not supported yet, rendered approximately: %s\n", scene.source.c_str(),
-            joinNotes(scene.unsupported).c_str());
+            joinNotes(approximated).c_str());
+    if (!assumed.empty())
+        std::fprintf(stderr, "pt: warning: %s: values assumed: %s\n", scene.source.c_str(), joinNotes(assumed).c_str());
+    // Without MaxRecursionDepth the course parser's default of 0 would stop at the camera ray.
+    const bool capped = std::any_of(scene.cameras.begin(), scene.cameras.end(),
+        [](const Camera& c) { return !c.settings.russianRoulette.value_or(false); });
+    if (isCourseScene(o.scene) && !scene.hints.maxDepth && !o.maxDepth && capped)
+        std::fprintf(stderr,
+            "pt: warning: %s: no MaxRecursionDepth: max depth 16, pt's default (the course parser's 0 would trace "
+            "camera rays only; --max-depth to choose)\n",
+            scene.source.c_str());
     return scene;
 }
 
@@ -221,6 +241,11 @@ Job makeJob(const Scene& scene, const Camera& camera, const RenderOptions& o, bo
         if (o.width && o.height) throw;
         throw std::runtime_error(scene.source + ": " + e.what());
     }
+    // A course camera names its image size, samples and file; where one lacks a value that the
+    // command line does not give either, say what pt assumed.
+    if (course && !cs.width && !(o.width && o.height))
+        warnAssumed(scene, camera,
+            "no ImageResolution: rendered at " + std::to_string(job.width) + "x" + std::to_string(job.height));
 
     IntegratorSettings& s = job.settings;
     s = o.integrator;
@@ -235,6 +260,11 @@ Job makeJob(const Scene& scene, const Camera& camera, const RenderOptions& o, bo
     s.maxDepth = static_cast<uint32_t>(depth.depth);
 
     job.target.spp = o.spp.value_or(o.seconds || o.targetError ? 0u : cs.spp.value_or(64u));
+    if (course && !o.spp && !o.seconds && !o.targetError && !cs.spp)
+        warnAssumed(scene, camera,
+            "no NumSamples: " + std::to_string(job.target.spp) +
+                " samples per pixel (the course's default of 1 suits only its deterministic ray tracer; --spp to "
+                "choose)");
     job.target.seconds = o.seconds.value_or(0.0);
     job.target.targetError = o.targetError.value_or(0.0);
     job.target.passSpp = o.passSpp;
@@ -258,6 +288,8 @@ Job makeJob(const Scene& scene, const Camera& camera, const RenderOptions& o, bo
     } else {
         job.output = fs::path("out") / name;
     }
+    if (course && cs.imageName.empty() && requested.extension() != ".exr")
+        warnAssumed(scene, camera, "no ImageName: written to " + job.output.string());
     return job;
 }
 

@@ -38,6 +38,8 @@ Camera framingCamera(const Scene& scene, float aspect);
 // its first camera by default, a course scene every camera (one image each, as the course does);
 // a scene without cameras gets framingCamera for the image size the options give.
 std::vector<Camera> chooseCameras(const Scene& scene, const RenderOptions& o, bool course);
+// Warns (stderr) about every render setting the camera's file leaves out and pt fills in, unless
+// the command line gives it (course cameras: ImageResolution, NumSamples, ImageName).
 Job makeJob(const Scene& scene, const Camera& camera, const RenderOptions& o, bool severalImages, bool course);
 
 // The max depth a camera renders at, and why: --max-depth; else a course camera's own convention

@@ -1,8 +1,10 @@
 // pt render on course scenes, for what pt decides when the command line does not: the depth of
-// each camera (the course's convention, stated in the log line; --max-depth overrides).
+// each camera (the course's convention, stated in the log line; --max-depth overrides), and a
+// warning naming the file for every value the file leaves out and pt fills in.
 #include "cli_fixture.h"
 #include "image/image_io.h"
 
+#include <fstream>
 #include <sstream>
 
 namespace pt::test {
@@ -69,6 +71,43 @@ TEST_F(CliTest, CourseCamerasRenderAtTheCourseDepthAndTheLogSaysWhy) {
     // The official files give every value: no warning about assumed values.
     EXPECT_FALSE(anyContains(warningsAbout(given, scene), "assumed")) << given;
     EXPECT_FALSE(anyContains(warningsAbout(given, scene), "camera 3:")) << given;
+}
+
+// A course file that leaves out what its cameras and materials usually give: each value pt fills
+// in is named in a warning that starts with the file's name.
+TEST_F(CliTest, CourseValuesTheFileLeavesOutAreWarnedAbout) {
+    const fs::path ply = dir_ / "short.ply";
+    std::ofstream(ply) << "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                          "property float z\nelement face 2\nproperty list uchar int vertex_indices\nend_header\n"
+                          "-1 -1 -2\n1 -1 -2\n0 1 -2\n3 0 1 2\n2 0 1\n";
+    const fs::path scene = dir_ / "sparse.xml";
+    std::ofstream(scene)
+        << "<Scene><Cameras><Camera id=\"1\"><Position>0 0 0</Position><Gaze>0 0 -1</Gaze><Up>0 1 0</Up>"
+           "<FovY>60</FovY><Tonemap><TMO>Photographic</TMO></Tonemap></Camera></Cameras>"
+           "<Lights><PointLight id=\"1\"><Position>0 0 0</Position><Intensity>10 10 10</Intensity></PointLight>"
+           "</Lights><Materials><Material id=\"1\"><DiffuseReflectance>0.5 0.5 0.5</DiffuseReflectance>"
+           "<SpecularReflectance>0.5 0.5 0.5</SpecularReflectance></Material></Materials>"
+           "<Objects><Mesh id=\"1\"><Material>1</Material><Faces plyFile=\"short.ply\"/></Mesh></Objects></Scene>";
+    const std::string file = scene.string();
+    // No size, samples or output name on the command line either: a 512x512, 1-sample render
+    // would need --spp, so the samples are checked at a tiny size in a second run.
+    const PtRun r = run({"render", file, "--spp", "1"}, {}, 60);
+    EXPECT_EXIT_STATUS(r, 0);
+    const std::vector<std::string> w = warningsAbout(r, file);
+    for (const char* expected : {"camera 1: no ImageResolution: rendered at 512x512",
+             "camera 1: no ImageName: written to out/sparse.exr", "no MaxRecursionDepth: max depth 16, pt's default",
+             "values assumed: ", "Camera id=1: Tonemap without TMOOptions (key 0.18, burn 0% assumed)",
+             "Material id=1: no PhongExponent for its SpecularReflectance (1 assumed)",
+             "Mesh id=1: Faces: plyFile 'short.ply': 1 face with fewer than 3 vertices (dropped)"})
+        EXPECT_TRUE(anyContains(w, expected)) << expected << " missing from\n" << r;
+    EXPECT_TRUE(fs::exists(dir_ / "out" / "sparse.exr"));
+    EXPECT_FALSE(anyContains(w, "NumSamples")) << r; // --spp gave it
+    const PtRun sized = run({"render", file, "--width", "4", "--height", "4", "-o", (dir_ / "x.exr").string()});
+    EXPECT_EXIT_STATUS(sized, 0);
+    const std::vector<std::string> ws = warningsAbout(sized, file);
+    EXPECT_TRUE(anyContains(ws, "camera 1: no NumSamples: 64 samples per pixel")) << sized;
+    EXPECT_FALSE(anyContains(ws, "ImageResolution")) << sized;
+    EXPECT_FALSE(anyContains(ws, "ImageName")) << sized;
 }
 
 } // namespace

@@ -156,12 +156,20 @@ TonemapSettings readTonemap(Context& ctx, pugi::xml_node e) {
         if (!(v[1] >= 0.0 && v[1] <= 100.0)) ctx.fail(o, "burn percentage must be in [0, 100]");
         tm.key = static_cast<float>(v[0]);
         tm.burnPercent = static_cast<float>(v[1]);
+    } else {
+        ctx.note(label(t) + " without TMOOptions (key " + formatNumber(tm.key) + ", burn " +
+                 formatNumber(tm.burnPercent) + "% assumed)");
     }
     if (pugi::xml_node s = t.child("Saturation")) {
         tm.saturation = scalar(ctx, s);
         if (tm.saturation < 0.0f) ctx.fail(s, "must not be negative");
+    } else {
+        ctx.note(label(t) + " without Saturation (" + formatNumber(tm.saturation) + " assumed)");
     }
-    if (pugi::xml_node g = t.child("Gamma")) readGamma(ctx, g, tm);
+    if (pugi::xml_node g = t.child("Gamma"))
+        readGamma(ctx, g, tm);
+    else if (!e.child("GammaCorrection"))
+        ctx.note(label(t) + " without Gamma (1, no gamma correction, assumed)");
     return tm;
 }
 
@@ -234,6 +242,8 @@ Camera readCamera(Context& ctx, pugi::xml_node e, size_t index, std::optional<in
         const long long id = idOf(ctx, e);
         if (id < 0 || id > std::numeric_limits<int>::max()) ctx.fail(e, "id is out of range");
         c.id = static_cast<int>(id);
+    } else {
+        ctx.note("Camera without an id (the name '" + c.name + "' from its position assumed)");
     }
     readView(ctx, e, c);
     readResolution(ctx, e, c);

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 
 namespace pt::ceng795 {
@@ -36,6 +37,12 @@ std::string printable(std::string_view text) {
 }
 
 std::string quote(std::string_view text) { return "'" + printable(text) + "'"; }
+
+std::string formatNumber(double v) {
+    char buffer[32];
+    std::snprintf(buffer, sizeof buffer, "%g", v);
+    return buffer;
+}
 
 std::string label(pugi::xml_node node) {
     std::vector<std::string> parts;

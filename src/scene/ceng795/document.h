@@ -27,7 +27,9 @@ public:
     [[noreturn]] void fail(pugi::xml_node where, const std::string& problem) const;
     [[noreturn]] void fail(const std::string& problem) const;
 
-    // Records a feature used but not modelled; each distinct note once, in first-seen order.
+    // Records a feature used but not modelled, or a value the file lacks and the loader filled in
+    // (such notes say "(... assumed)" and are shown in a warning of their own); each distinct note
+    // once, in first-seen order.
     void note(const std::string& feature);
     const std::vector<std::string>& notes() const { return notes_; }
 
@@ -46,6 +48,8 @@ std::string label(pugi::xml_node node);
 // single quotes around it.
 std::string printable(std::string_view text);
 std::string quote(std::string_view text);
+// A number for a message, shortest form ("0.18", "512", "1e-06").
+std::string formatNumber(double v);
 
 // All text content of an element (comments may split it into several pieces).
 std::string textOf(pugi::xml_node node);

@@ -124,6 +124,9 @@ std::shared_ptr<const ObjectMesh> FaceReader::fromPly(pugi::xml_node faces) {
         if (t.x >= mesh->positions.size() || t.y >= mesh->positions.size() || t.z >= mesh->positions.size())
             ctx_.fail(faces, "plyFile " + quote(relative) + ": face index out of range");
     if (mesh->triangles.empty()) ctx_.fail(faces, "plyFile " + quote(relative) + " has no faces");
+    if (ply.shortFaces > 0)
+        ctx_.note(label(faces) + ": plyFile " + quote(relative) + ": " + std::to_string(ply.shortFaces) +
+                  (ply.shortFaces == 1 ? " face" : " faces") + " with fewer than 3 vertices (dropped)");
     plyCache_.emplace(path, mesh);
     return mesh;
 }

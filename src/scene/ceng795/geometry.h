@@ -33,7 +33,7 @@ struct ObjectMesh {
 
 class FaceReader {
 public:
-    FaceReader(const Context& ctx, const VertexPool& pool) : ctx_(ctx), pool_(pool) {}
+    FaceReader(Context& ctx, const VertexPool& pool) : ctx_(ctx), pool_(pool) {}
 
     // The <Faces> of a Mesh or LightMesh. PLY files used by several meshes are read once.
     std::shared_ptr<const ObjectMesh> faces(pugi::xml_node faces);
@@ -50,7 +50,7 @@ private:
     long long poolIndex(long long id, long long offset) const { return id + offset - (pool_.zeroBased ? 0 : 1); }
     long long boundedOffset(pugi::xml_node faces, const char* name) const;
 
-    const Context& ctx_;
+    Context& ctx_; // notes what a PLY file leaves out
     const VertexPool& pool_;
     std::map<std::filesystem::path, std::shared_ptr<const ObjectMesh>> plyCache_;
 };

@@ -100,14 +100,20 @@ float angleDegrees(const Context& ctx, pugi::xml_node e, const char* child) {
 }
 
 // SpotLight: CoverageAngle and FalloffAngle are full cone angles in degrees.
-PunctualLight readSpotLight(const Context& ctx, pugi::xml_node e) {
+PunctualLight readSpotLight(Context& ctx, pugi::xml_node e) {
     PunctualLight l;
     l.type = PunctualLight::Type::Spot;
     l.position = vec3(ctx, required(ctx, e, "Position"));
     l.direction = unitDirection(ctx, e, "Direction");
     l.intensity = nonNegativeColour(ctx, e, "Intensity");
     const float coverage = angleDegrees(ctx, e, "CoverageAngle");
-    const float falloff = std::min(angleDegrees(ctx, e, "FalloffAngle"), coverage);
+    float falloff = angleDegrees(ctx, e, "FalloffAngle");
+    // The falloff cone lies inside the coverage cone; a wider one is cut to it.
+    if (falloff > coverage) {
+        ctx.note(label(e) + ": FalloffAngle " + formatNumber(falloff) + " wider than CoverageAngle (" +
+                 formatNumber(coverage) + " assumed)");
+        falloff = coverage;
+    }
     l.cosCoverage = std::cos(glm::radians(0.5f * coverage));
     l.cosFalloff = std::cos(glm::radians(0.5f * falloff));
     return l;

@@ -50,6 +50,26 @@ float positiveScalar(const Context& ctx, pugi::xml_node material, const char* ch
     return v;
 }
 
+// The Blinn-Phong exponent; 1 when the file has none, which it says when the material has a
+// specular term for the exponent to shape (`used`).
+float phongExponent(const Context& ctx, Notes& notes, pugi::xml_node material, bool used) {
+    if (const auto p = optionalScalar(ctx, material, "PhongExponent")) return *p;
+    if (used) notes.push_back(label(material) + ": no PhongExponent for its SpecularReflectance (1 assumed)");
+    return 1.0f;
+}
+
+// The conductor's (or Torrance-Sparrow Fresnel's) k; 0, a dielectric's Fresnel, when absent.
+float absorptionIndex(const Context& ctx, Notes& notes, pugi::xml_node material) {
+    pugi::xml_node n = material.child("AbsorptionIndex");
+    if (!n) {
+        notes.push_back(label(material) + ": no AbsorptionIndex (0 assumed)");
+        return 0.0f;
+    }
+    const float k = scalar(ctx, n);
+    if (k < 0.0f) ctx.fail(n, "must not be negative");
+    return k;
+}
+
 // A course BRDF model by its element name.
 GlossyModel glossyModel(const Context& ctx, pugi::xml_node brdf) {
     const std::string name = brdf.name();
@@ -80,13 +100,11 @@ void convertDiffuse(const Context& ctx, Notes& notes, pugi::xml_node e, const Co
             brdf->attribute("kdfresnel") && booleanValue(ctx, *brdf, brdf->attribute("kdfresnel").value(), "kdfresnel");
         if (m.glossyModel == GlossyModel::TorranceSparrow) {
             m.conductorEta = glm::vec3(positiveScalar(ctx, e, "RefractionIndex"));
-            const float k = optionalScalar(ctx, e, "AbsorptionIndex").value_or(0.0f);
-            if (k < 0.0f) ctx.fail(e.child("AbsorptionIndex"), "must not be negative");
-            m.conductorK = glm::vec3(k);
+            m.conductorK = glm::vec3(absorptionIndex(ctx, notes, e));
         }
     } else {
         m.glossyModel = GlossyModel::OriginalBlinnPhong; // the course's shading before HW6
-        m.exponent = optionalScalar(ctx, e, "PhongExponent").value_or(1.0f);
+        m.exponent = phongExponent(ctx, notes, e, true);
         if (!(m.exponent > 0.0f)) ctx.fail(e.child("PhongExponent"), "must be positive");
     }
 }
@@ -125,9 +143,7 @@ void convertConductor(const Context& ctx, Notes& notes, pugi::xml_node e, const 
     m.type = MaterialType::Conductor;
     m.baseColor = reflectance(notes, colour.required("MirrorReflectance"));
     m.conductorEta = glm::vec3(positiveScalar(ctx, e, "RefractionIndex"));
-    const float k = optionalScalar(ctx, e, "AbsorptionIndex").value_or(0.0f);
-    if (k < 0.0f) ctx.fail(e.child("AbsorptionIndex"), "must not be negative");
-    m.conductorK = glm::vec3(k);
+    m.conductorK = glm::vec3(absorptionIndex(ctx, notes, e));
     noteExtraLayers(notes, colour, "conductor");
 }
 
@@ -154,7 +170,7 @@ void makeRough(Material& m, float courseRoughness) {
 // The terms the course's classic ray tracer adds on every surface (the CLASSIC kernel feature), kept as the
 // file gives them: ka, and, unless a BRDF replaces it, Blinn-Phong kd cos + ks cos^p(alpha_h)
 // (kd without 1/pi, and on mirrors, conductors and dielectrics too).
-void readClassicShading(const Context& ctx, pugi::xml_node e, const ColourReader& colour,
+void readClassicShading(const Context& ctx, Notes& notes, pugi::xml_node e, const ColourReader& colour,
     const std::optional<pugi::xml_node>& brdf, Material& m) {
     m.ambient = colour("AmbientReflectance", glm::vec3(0.0f));
     // A normalised BRDF (and Torrance-Sparrow) shades as in path tracing, kd / pi included,
@@ -171,7 +187,7 @@ void readClassicShading(const Context& ctx, pugi::xml_node e, const ColourReader
     m.classicPhong = true;
     m.classicDiffuse = colour("DiffuseReflectance", glm::vec3(0.0f));
     m.classicSpecular = colour("SpecularReflectance", glm::vec3(0.0f));
-    m.classicExponent = optionalScalar(ctx, e, "PhongExponent").value_or(1.0f);
+    m.classicExponent = phongExponent(ctx, notes, e, anyPositive(m.classicSpecular));
     // 0 is allowed (course files use it with black ks): the lobe is then constant.
     if (!(m.classicExponent >= 0.0f)) ctx.fail(e.child("PhongExponent"), "must not be negative");
 }
@@ -211,7 +227,7 @@ Material convertMaterial(
         if (!type.empty()) notes.push_back("material type " + quote(type) + " (rendered diffuse)");
         convertDiffuse(ctx, notes, e, colour, brdfElement, m);
     }
-    readClassicShading(ctx, e, colour, brdfElement, m);
+    readClassicShading(ctx, notes, e, colour, brdfElement, m);
     if (const auto r = optionalScalar(ctx, e, "Roughness"); r && *r != 0.0f) {
         if (!(*r > 0.0f)) ctx.fail(e.child("Roughness"), "must not be negative");
         if (m.type == MaterialType::Mirror || m.type == MaterialType::Conductor || m.type == MaterialType::Dielectric)

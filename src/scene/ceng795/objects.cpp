@@ -170,7 +170,10 @@ private:
         const bool reset = e.attribute("resetTransform") &&
                            booleanValue(ctx_, e, e.attribute("resetTransform").value(), "resetTransform");
         p.transform = reset ? own : own * base.transform;
-        if (pugi::xml_node m = e.child("Material")) p.material = materials_.lookup(ctx_, m);
+        if (pugi::xml_node m = e.child("Material"))
+            p.material = materials_.lookup(ctx_, m);
+        else
+            ctx_.note("MeshInstances without a Material (their base's assumed)");
         p.smooth = smoothShading(e).value_or(base.smooth);
         if (pugi::xml_node t = e.child("Textures")) p.textures = t;
         if (auto m = motionBlur(e)) p.motion = *m;

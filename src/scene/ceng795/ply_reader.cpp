@@ -579,10 +579,12 @@ uint32_t readIndex(Cursor& in, Type t, uint64_t vertexCount) {
 }
 
 // Reads one polygon and appends it as a fan (v0, v[k-1], v[k]). Polygons with fewer than three
-// vertices yield nothing but their indices are still validated.
+// vertices yield nothing (counted in shortFaces) but their indices are still validated.
 template <class Cursor>
-void readPolygon(Cursor& in, const Property& p, uint64_t vertexCount, std::vector<glm::uvec3>& triangles) {
+void readPolygon(Cursor& in, const Property& p, uint64_t vertexCount, PlyMesh& mesh) {
+    std::vector<glm::uvec3>& triangles = mesh.triangles;
     const uint64_t n = readListCount(in, p);
+    if (n < 3) ++mesh.shortFaces;
     uint32_t first = 0, previous = 0;
     for (uint64_t k = 0; k < n; ++k) {
         const uint32_t index = readIndex(in, p.type, vertexCount);
@@ -600,7 +602,7 @@ void readFaces(Cursor& in, const Element& e, const Header& h, PlyMesh& mesh) {
     forEachEntry(e, [&](uint64_t) {
         for (const Property& p : e.properties) {
             if (p.role == Role::Indices)
-                readPolygon(in, p, h.vertex->count, mesh.triangles);
+                readPolygon(in, p, h.vertex->count, mesh);
             else
                 skipProperty(in, p);
         }

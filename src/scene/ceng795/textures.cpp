@@ -3,6 +3,7 @@
 #include "image/texture_image.h"
 
 #include <cmath>
+#include <utility>
 
 namespace pt::ceng795 {
 namespace {
@@ -90,16 +91,22 @@ uint32_t TextureTable::texture(Context& ctx, MapDefinition& map, Scene& out) {
         // HDR texels are used as they are unless a Normalizer is given.
         const std::optional<float> normalizer = optionalScalar(ctx, e, "Normalizer");
         if (normalizer && !(*normalizer > 0.0f)) ctx.fail(e.child("Normalizer"), "must be positive");
-        if (img.rgbaF.empty())
+        if (img.rgbaF.empty()) {
             t.valueScale = 255.0f / normalizer.value_or(255.0f);
-        else
+        } else {
             t.valueScale = 1.0f / normalizer.value_or(1.0f);
+            // The course's default of 255 is for 8-bit texels.
+            if (!normalizer) ctx.note(label(e) + ": no Normalizer for an HDR image (1, texels as stored, assumed)");
+        }
         if (pugi::xml_node interp = e.child("Interpolation")) {
             const std::string mode = lowercase(textOf(interp));
             if (mode.find("nearest") != std::string::npos)
                 t.bilinear = false;
             else if (mode.find("bilinear") == std::string::npos)
                 ctx.fail(interp, "is not nearest or bilinear");
+        } else {
+            // The format leaves it unspecified (docs/ceng795-format.md section 12).
+            ctx.note(label(e) + ": no Interpolation (bilinear assumed)");
         }
         if (degamma(ctx, e)) t.encoding = Texture::Encoding::Gamma22;
     } else if (type == "checkerboard") {
@@ -108,6 +115,9 @@ uint32_t TextureTable::texture(Context& ctx, MapDefinition& map, Scene& out) {
         t.white = optionalVec3(ctx, e, "WhiteColor").value_or(glm::vec3(1.0f));
         t.scale = optionalScalar(ctx, e, "Scale").value_or(1.0f);
         t.offset = optionalScalar(ctx, e, "Offset").value_or(0.0f);
+        for (auto [child, value] : {std::pair{"BlackColor", "0 0 0"}, std::pair{"WhiteColor", "1 1 1"},
+                 std::pair{"Scale", "1"}, std::pair{"Offset", "0"}})
+            if (!e.child(child)) ctx.note(label(e) + ": no " + child + " (" + value + " assumed)");
         if (degamma(ctx, e)) {
             t.black = glm::pow(t.black, glm::vec3(2.2f));
             t.white = glm::pow(t.white, glm::vec3(2.2f));
@@ -120,6 +130,7 @@ uint32_t TextureTable::texture(Context& ctx, MapDefinition& map, Scene& out) {
             t.perlinAbs = true;
         else if (!conversion.empty() && conversion.find("linear") == std::string::npos)
             ctx.fail(e.child("NoiseConversion"), "is not absval or linear");
+        if (!e.child("NoiseConversion")) ctx.note(label(e) + ": no NoiseConversion (linear assumed)");
     } else {
         ctx.fail(e, "unknown TextureMap type " + quote(e.attribute("type").value()));
     }

@@ -33,14 +33,22 @@ void GltfImporter::readHints() {
     if (sceneIndex >= static_cast<int>(model_.scenes.size())) return;
     const tinygltf::Value& extras = model_.scenes[sceneIndex].extras;
     if (!extras.IsObject()) return;
+    // extras are free-form: a value of another type may mean something else to another tool, so it
+    // is ignored, with a note; a fractional one is rounded down, also with a note.
     auto intHint = [&](const char* key, std::optional<int>& out, int lo, int hi) {
         if (!extras.Has(key)) return;
         const tinygltf::Value& v = extras.Get(key);
-        if (!v.IsNumber()) return;
+        if (!v.IsNumber()) {
+            unsupported(std::string("scene extras: ") + key + " that is not a number (ignored)");
+            return;
+        }
         double d = v.GetNumberAsDouble();
         if (!(d >= lo && d <= hi))
             fail(std::string("scene extras: ") + key + " " + std::to_string(d) + " is out of range");
         out = static_cast<int>(d);
+        if (double(*out) != d)
+            unsupported(std::string("scene extras: ") + key + " " + formatNumber(d) + " is not an integer (" +
+                        std::to_string(*out) + " assumed)");
     };
     intHint("width", scene_.hints.width, 1, 1 << 16);
     intHint("height", scene_.hints.height, 1, 1 << 16);
@@ -52,6 +60,9 @@ std::vector<int> GltfImporter::rootNodes() {
     std::vector<int> roots;
     if (!model_.scenes.empty()) {
         int s = model_.defaultScene >= 0 ? model_.defaultScene : 0;
+        // The spec leaves the choice to the application when `scene` is absent.
+        if (model_.defaultScene < 0 && model_.scenes.size() > 1)
+            unsupported("no default scene among " + std::to_string(model_.scenes.size()) + " (scene 0 assumed)");
         if (s >= static_cast<int>(model_.scenes.size())) fail("default scene " + std::to_string(s) + " does not exist");
         roots = model_.scenes[s].nodes;
     } else {

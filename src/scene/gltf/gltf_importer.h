@@ -16,6 +16,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <cstdio>
 #include <map>
 #include <optional>
 #include <string>
@@ -32,6 +33,13 @@ constexpr size_t kMaxRepeatedNodeVisits = size_t(1) << 12;
 constexpr size_t kMaxInstanced = size_t(1) << 27; // vertices, and triangles
 
 inline bool finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+// A number for a note, shortest form ("1.5", "512", "1e-06").
+inline std::string formatNumber(double v) {
+    char buffer[32];
+    std::snprintf(buffer, sizeof buffer, "%g", v);
+    return buffer;
+}
 
 class GltfImporter {
 public:
@@ -52,6 +60,8 @@ private:
     void noteUnsupportedExtensions();
 
     // ---- gltf_materials.cpp ----
+    double number(const tinygltf::Value& obj, const char* key, double fallback, const std::string& where);
+    glm::vec3 color(const tinygltf::Value& obj, const char* key, glm::vec3 fallback, const std::string& where);
     void convertMaterials();
     void convertFactors(const tinygltf::Material& src, const std::string& label, Material& m);
     void convertTextures(const tinygltf::Material& src, const std::string& label, Material& m);

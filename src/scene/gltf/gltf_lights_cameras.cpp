@@ -52,8 +52,11 @@ void GltfImporter::addLight(const tinygltf::Value& ref, int nodeIndex, const glm
     if (index < 0 || index >= static_cast<int>(model_.lights.size())) fail(where + " light index out of range");
     const tinygltf::Light& src = model_.lights[index];
     const std::string label = "light " + std::to_string(index) + (src.name.empty() ? "" : " '" + src.name + "'");
-    glm::vec3 colour(1.0f);
-    if (src.color.size() >= 3) colour = glm::vec3(src.color[0], src.color[1], src.color[2]);
+    glm::vec3 colour(1.0f); // the extension's default, when absent
+    if (src.color.size() == 3)
+        colour = glm::vec3(src.color[0], src.color[1], src.color[2]);
+    else if (!src.color.empty())
+        unsupported(label + ": color is not 3 numbers (1 1 1 assumed)");
     if (!finite(colour) || glm::any(glm::lessThan(colour, glm::vec3(0))) || !(src.intensity >= 0.0) ||
         !std::isfinite(src.intensity))
         fail(label + ": colour and intensity must be finite and non-negative");

@@ -7,26 +7,39 @@
 namespace pt::gltf {
 namespace {
 
-double number(const tinygltf::Value& obj, const char* key, double fallback) {
-    if (!obj.IsObject() || !obj.Has(key)) return fallback;
-    const tinygltf::Value& v = obj.Get(key);
-    return v.IsNumber() ? v.GetNumberAsDouble() : fallback;
-}
-glm::vec3 color(const tinygltf::Value& obj, const char* key, glm::vec3 fallback) {
-    if (!obj.IsObject() || !obj.Has(key)) return fallback;
-    const tinygltf::Value& v = obj.Get(key);
-    if (!v.IsArray() || v.ArrayLen() < 3) return fallback;
-    glm::vec3 c;
-    for (int i = 0; i < 3; ++i)
-        c[i] = v.Get(i).IsNumber() ? static_cast<float>(v.Get(i).GetNumberAsDouble()) : fallback[i];
-    return c;
-}
 const tinygltf::Value* extension(const tinygltf::Material& m, const char* name) {
     auto it = m.extensions.find(name);
     return it == m.extensions.end() ? nullptr : &it->second;
 }
 
 } // namespace
+
+// An extension's number: absent, the extension's default (no note: the glTF spec defines it);
+// present but not a number, the default too, and a note saying so.
+double GltfImporter::number(const tinygltf::Value& obj, const char* key, double fallback, const std::string& where) {
+    if (!obj.IsObject() || !obj.Has(key)) return fallback;
+    const tinygltf::Value& v = obj.Get(key);
+    if (v.IsNumber()) return v.GetNumberAsDouble();
+    unsupported(where + ": " + key + " is not a number (" + formatNumber(fallback) + " assumed)");
+    return fallback;
+}
+
+// An extension's RGB colour, the same way: three numbers, else the default and a note.
+glm::vec3 GltfImporter::color(
+    const tinygltf::Value& obj, const char* key, glm::vec3 fallback, const std::string& where) {
+    if (!obj.IsObject() || !obj.Has(key)) return fallback;
+    const tinygltf::Value& v = obj.Get(key);
+    bool ok = v.IsArray() && v.ArrayLen() == 3;
+    glm::vec3 c = fallback;
+    for (int i = 0; ok && i < 3; ++i) {
+        ok = v.Get(i).IsNumber();
+        if (ok) c[i] = static_cast<float>(v.Get(i).GetNumberAsDouble());
+    }
+    if (ok) return c;
+    unsupported(where + ": " + key + " is not 3 numbers (" + formatNumber(fallback.x) + " " + formatNumber(fallback.y) +
+                " " + formatNumber(fallback.z) + " assumed)");
+    return fallback;
+}
 
 void GltfImporter::convertMaterials() {
     for (size_t i = 0; i < model_.materials.size(); ++i) {
@@ -36,14 +49,17 @@ void GltfImporter::convertMaterials() {
         m.name = src.name.empty() ? "material " + std::to_string(i) : src.name;
         m.doubleSided = src.doubleSided;
         const auto& pbr = src.pbrMetallicRoughness;
+        // tinygltf fills in the spec's defaults and rejects any other length.
         for (int c = 0; c < 3; ++c)
             m.baseColor[c] = pbr.baseColorFactor.size() > 2 ? static_cast<float>(pbr.baseColorFactor[c]) : 1.0f;
         for (int c = 0; c < 3; ++c)
             m.emission[c] = src.emissiveFactor.size() > 2 ? static_cast<float>(src.emissiveFactor[c]) : 0.0f;
         if (const auto* e = extension(src, "KHR_materials_emissive_strength"))
-            m.emission *= static_cast<float>(number(*e, "emissiveStrength", 1.0));
+            m.emission *= static_cast<float>(number(*e, "emissiveStrength", 1.0, label));
         if (!finite(m.baseColor) || !finite(m.emission) || glm::any(glm::lessThan(m.emission, glm::vec3(0))))
             fail(label + ": base colour and emission must be finite and non-negative");
+        if (glm::any(glm::greaterThan(m.baseColor, glm::vec3(1.0f))))
+            unsupported("baseColorFactor above 1 (clamped to 1)");
         m.baseColor = glm::clamp(m.baseColor, 0.0f, 1.0f);
 
         convertFactors(src, label, m);
@@ -69,13 +85,13 @@ void GltfImporter::convertFactors(const tinygltf::Material& src, const std::stri
     m.metallic = unit(pbr.metallicFactor, "metallicFactor");
     m.roughness = unit(pbr.roughnessFactor, "roughnessFactor");
     if (const auto* e = extension(src, "KHR_materials_transmission"))
-        m.transmission = unit(number(*e, "transmissionFactor", 0.0), "transmissionFactor");
-    if (const auto* e = extension(src, "KHR_materials_ior")) m.ior = static_cast<float>(number(*e, "ior", 1.5));
+        m.transmission = unit(number(*e, "transmissionFactor", 0.0, label), "transmissionFactor");
+    if (const auto* e = extension(src, "KHR_materials_ior")) m.ior = static_cast<float>(number(*e, "ior", 1.5, label));
     if (!(m.ior >= 1.0f && m.ior < 10.0f)) fail(label + ": ior " + std::to_string(m.ior) + " must be in [1, 10)");
     m.specular = glm::vec3(1.0f);
     if (const auto* e = extension(src, "KHR_materials_specular")) {
-        m.specularWeight = unit(number(*e, "specularFactor", 1.0), "specularFactor");
-        m.specular = color(*e, "specularColorFactor", glm::vec3(1.0f));
+        m.specularWeight = unit(number(*e, "specularFactor", 1.0, label), "specularFactor");
+        m.specular = color(*e, "specularColorFactor", glm::vec3(1.0f), label);
         if (!finite(m.specular) || glm::any(glm::lessThan(m.specular, glm::vec3(0))))
             fail(label + ": specularColorFactor must be finite and non-negative");
     }
@@ -83,10 +99,10 @@ void GltfImporter::convertFactors(const tinygltf::Material& src, const std::stri
     // depth for rasterisers (the path tracer has the mesh itself), so only 0 -- "thin
     // walled" -- is used from it.
     const tinygltf::Value* volume = extension(src, "KHR_materials_volume");
-    m.thinWalled = volume == nullptr || number(*volume, "thicknessFactor", 0.0) <= 0.0;
+    m.thinWalled = volume == nullptr || number(*volume, "thicknessFactor", 0.0, label) <= 0.0;
     if (volume) {
-        m.attenuationColor = color(*volume, "attenuationColor", glm::vec3(1.0f));
-        m.attenuationDistance = static_cast<float>(number(*volume, "attenuationDistance", INFINITY));
+        m.attenuationColor = color(*volume, "attenuationColor", glm::vec3(1.0f), label);
+        m.attenuationDistance = static_cast<float>(number(*volume, "attenuationDistance", INFINITY, label));
         if (!(m.attenuationDistance > 0) || !finite(m.attenuationColor) ||
             glm::any(glm::lessThan(m.attenuationColor, glm::vec3(0))))
             fail(label + ": KHR_materials_volume attenuation must be positive");
@@ -166,12 +182,17 @@ std::optional<uint32_t> GltfImporter::texture(int index, int texCoord, const tin
     // KHR_texture_transform: uv' = T(offset) R(rotation) S(scale) uv.
     if (auto e = extensions.find("KHR_texture_transform"); e != extensions.end()) {
         const tinygltf::Value& x = e->second;
-        const double rotation = number(x, "rotation", 0.0);
+        const double rotation = number(x, "rotation", 0.0, where + ": KHR_texture_transform");
         glm::dvec2 offset(0.0), scale(1.0);
         auto pair = [&](const char* key, glm::dvec2& out) {
-            if (!x.Has(key) || !x.Get(key).IsArray() || x.Get(key).ArrayLen() < 2) return;
-            for (int i = 0; i < 2; ++i)
-                if (x.Get(key).Get(i).IsNumber()) out[i] = x.Get(key).Get(i).GetNumberAsDouble();
+            if (!x.IsObject() || !x.Has(key)) return;
+            const tinygltf::Value& v = x.Get(key);
+            if (v.IsArray() && v.ArrayLen() == 2 && v.Get(0).IsNumber() && v.Get(1).IsNumber()) {
+                out = glm::dvec2(v.Get(0).GetNumberAsDouble(), v.Get(1).GetNumberAsDouble());
+                return;
+            }
+            unsupported(where + ": KHR_texture_transform: " + key + " is not 2 numbers (" + formatNumber(out.x) + " " +
+                        formatNumber(out.y) + " assumed)");
         };
         pair("offset", offset);
         pair("scale", scale);

@@ -130,11 +130,14 @@ void GltfImporter::addMesh(const tinygltf::Mesh& mesh, int meshIndex, const glm:
             out.normals = readVectors<3>(n->second, label + " NORMAL", false);
             if (out.normals.size() != out.positions.size()) fail(label + ": NORMAL count differs from POSITION count");
             // Invalid normals become zero: the triangle then shades with its geometric normal.
+            bool invalid = false;
             for (auto& v : out.normals) {
                 glm::vec3 w = normalMatrix * v;
                 float len = glm::length(w);
+                invalid = invalid || !(std::isfinite(len) && len > 0.0f);
                 v = (std::isfinite(len) && len > 0.0f) ? w / len : glm::vec3(0.0f);
             }
+            if (invalid) unsupported("zero or non-finite NORMAL vectors (the geometric normal used there)");
         }
         if (auto t = prim.attributes.find("TANGENT"); t != prim.attributes.end() && !out.normals.empty()) {
             // Tangents map with the model matrix (they lie in the surface); a mirroring
@@ -143,12 +146,15 @@ void GltfImporter::addMesh(const tinygltf::Mesh& mesh, int meshIndex, const glm:
             if (out.tangents.size() != out.positions.size())
                 fail(label + ": TANGENT count differs from POSITION count");
             const float handedness = mirrored ? -1.0f : 1.0f;
+            bool invalid = false;
             for (auto& v : out.tangents) {
                 const glm::vec3 w = glm::mat3(world) * glm::vec3(v);
                 const float len = glm::length(w);
                 const bool ok = std::isfinite(len) && len > 0.0f && std::isfinite(v.w);
+                invalid = invalid || !ok;
                 v = ok ? glm::vec4(w / len, (v.w < 0.0f ? -1.0f : 1.0f) * handedness) : glm::vec4(0.0f);
             }
+            if (invalid) unsupported("zero or non-finite TANGENT vectors (the triangle's own frame used there)");
         }
         if (auto t = prim.attributes.find("TEXCOORD_0"); t != prim.attributes.end()) {
             out.uvs = readVectors<2>(t->second, label + " TEXCOORD_0", true);

@@ -98,6 +98,29 @@ TEST_F(Ceng795, TonemapSettings) {
     EXPECT_FALSE(s.cameras[2].settings.spp.has_value());
 }
 
+// A Tonemap that leaves out its options, and a camera without an id: each value the loader fills
+// in is named in a note (the "values assumed" warning; the CLI tests check its file name).
+TEST_F(Ceng795, TonemapWithoutOptionsAndCameraWithoutIdSayWhatIsAssumed) {
+    const pt::Scene s = load(cameraScene(
+        "<Camera id=\"1\"><Position>0 0 0</Position><Gaze>0 0 -1</Gaze><Up>0 1 0</Up><FovY>45</FovY>"
+        "<Tonemap><TMO>Photographic</TMO></Tonemap></Camera>"
+        "<Camera><Position>0 0 0</Position><Gaze>0 0 -1</Gaze><Up>0 1 0</Up><FovY>45</FovY>"
+        "<GammaCorrection>sRGB</GammaCorrection><Tonemap><TMO>Photographic</TMO><TMOOptions>0.18 1</TMOOptions>"
+        "<Saturation>1</Saturation></Tonemap></Camera>"));
+    const std::vector<std::string> expected = {"Camera id=1: Tonemap without TMOOptions (key 0.18, burn 0% assumed)",
+        "Camera id=1: Tonemap without Saturation (1 assumed)",
+        "Camera id=1: Tonemap without Gamma (1, no gamma correction, assumed)",
+        "Camera without an id (the name 'camera 2' from its position assumed)"};
+    EXPECT_EQ(s.unsupported, expected); // camera 2's gamma comes from GammaCorrection: nothing assumed
+    const pt::TonemapSettings& a = *s.cameras[0].settings.tonemap;
+    EXPECT_FLOAT_EQ(a.key, 0.18f);
+    EXPECT_FLOAT_EQ(a.burnPercent, 0.0f);
+    EXPECT_FLOAT_EQ(a.gamma, 1.0f);
+    EXPECT_FALSE(a.srgb);
+    EXPECT_TRUE(s.cameras[1].settings.tonemap->srgb);
+    EXPECT_EQ(s.cameras[1].id, -1);
+}
+
 TEST_F(Ceng795, RendererParamsMapToIntegratorSwitches) {
     auto camera = [](int id, const std::string& renderer) {
         return "<Camera id=\"" + std::to_string(id) +

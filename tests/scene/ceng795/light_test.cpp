@@ -31,6 +31,18 @@ TEST_F(Ceng795, PointAndDirectionalLightsArePunctualLights) {
         "DirectionalLight id=2: Direction", "non-zero");
 }
 
+// A falloff cone wider than the coverage cone is cut to it, and the note says so.
+TEST_F(Ceng795, SpotFalloffWiderThanCoverageIsCutWithANote) {
+    const pt::Scene s = load(triangleScene("", "",
+        "<Lights><SpotLight id=\"3\"><Position>0 0 1</Position><Direction>0 0 -1</Direction>"
+        "<Intensity>10 10 10</Intensity><CoverageAngle>10</CoverageAngle><FalloffAngle>12.5</FalloffAngle>"
+        "</SpotLight></Lights>"));
+    ASSERT_EQ(s.punctualLights.size(), 1u);
+    EXPECT_FLOAT_EQ(s.punctualLights[0].cosFalloff, s.punctualLights[0].cosCoverage);
+    EXPECT_EQ(s.unsupported,
+        std::vector<std::string>{"SpotLight id=3: FalloffAngle 12.5 wider than CoverageAngle (10 assumed)"});
+}
+
 TEST_F(Ceng795, OtherLightsAreNamedOnce) {
     const pt::Scene s = load(triangleScene("", "",
         "<Lights><AmbientLight>25 25 25</AmbientLight>"

@@ -110,6 +110,32 @@ TEST_F(Ceng795, ConductorMaterialAndRoughness) {
     EXPECT_FALSE(contains(s.unsupported, "rough specular (rendered smooth)"));
 }
 
+// Values the course's files give and these leave out: each named with what the loader took
+// (noted only for materials in use, as the other material notes).
+TEST_F(Ceng795, MissingPhongExponentAndAbsorptionIndexAreNoted) {
+    const pt::Scene glossy =
+        load(materialScene("<Material id=\"5\"><DiffuseReflectance>0.5 0.5 0.5</DiffuseReflectance>"
+                           "<SpecularReflectance>0.2 0.2 0.2</SpecularReflectance></Material>"));
+    EXPECT_FLOAT_EQ(glossy.materials[0].exponent, 1.0f);
+    EXPECT_FLOAT_EQ(glossy.materials[0].classicExponent, 1.0f);
+    EXPECT_EQ(glossy.unsupported,
+        std::vector<std::string>{"Material id=5: no PhongExponent for its SpecularReflectance (1 assumed)"});
+    // Without a specular term there is nothing for the exponent to shape.
+    const pt::Scene matte =
+        load(materialScene("<Material id=\"5\"><DiffuseReflectance>0.5 0.5 0.5</DiffuseReflectance></Material>"));
+    EXPECT_TRUE(matte.unsupported.empty());
+    const pt::Scene conductor =
+        load(materialScene("<Material id=\"5\" type=\"conductor\"><MirrorReflectance>1 1 1</MirrorReflectance>"
+                           "<RefractionIndex>0.37</RefractionIndex></Material>"));
+    EXPECT_TRUE(near3(conductor.materials[0].conductorK, glm::vec3(0.0f)));
+    EXPECT_EQ(conductor.unsupported, std::vector<std::string>{"Material id=5: no AbsorptionIndex (0 assumed)"});
+    const pt::Scene unused =
+        load(materialScene("<Material id=\"5\"><DiffuseReflectance>1 1 1</DiffuseReflectance>"
+                           "</Material><Material id=\"6\" type=\"conductor\"><MirrorReflectance>1 "
+                           "1 1</MirrorReflectance><RefractionIndex>2</RefractionIndex></Material>"));
+    EXPECT_TRUE(unused.unsupported.empty());
+}
+
 TEST_F(Ceng795, DegammaLinearisesColours) {
     const pt::Scene s = load(materialScene(
         "<Material id=\"5\" degamma=\"true\"><DiffuseReflectance>0.5 1 0</DiffuseReflectance></Material>"));

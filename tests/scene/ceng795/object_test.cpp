@@ -130,6 +130,21 @@ TEST_F(Ceng795, PlyFacesRelativeToTheSceneFile) {
     ASSERT_EQ(s.meshes.size(), 2u);
     EXPECT_EQ(s.meshes[0].triangles.size(), 2u); // the quad split in two
     EXPECT_TRUE(near3(s.meshes[1].positions[2], glm::vec3(1, 1, 3)));
+    EXPECT_TRUE(s.unsupported.empty());
+}
+
+// Faces of one or two vertices make no triangle: dropped, and said so, naming the PLY file.
+TEST_F(Ceng795, PlyFacesWithFewerThanThreeVerticesAreDroppedWithANote) {
+    write("models/short.ply",
+        "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+        "element face 3\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n1 1 0\n3 0 1 2\n2 0 1\n1 "
+        "2\n");
+    const pt::Scene s = load(sceneXml(kOneMaterial + "<Objects><Mesh id=\"4\"><Material>1</Material>"
+                                                     "<Faces plyFile=\"models/short.ply\"/></Mesh></Objects>"));
+    ASSERT_EQ(s.meshes.size(), 1u);
+    EXPECT_EQ(s.meshes[0].triangles.size(), 1u);
+    EXPECT_EQ(s.unsupported, std::vector<std::string>{"Mesh id=4: Faces: plyFile 'models/short.ply': 2 faces with "
+                                                      "fewer than 3 vertices (dropped)"});
 }
 
 // ---------------------------------------------------------------------------------------------

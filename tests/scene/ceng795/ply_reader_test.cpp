@@ -402,6 +402,7 @@ TEST_F(PlyReader, PolygonsAreFannedAndShortFacesSkipped) {
     const pt::PlyMesh m = pt::readPly(write("fan.ply", ply));
     const std::vector<glm::uvec3> expected = {{0, 1, 2}, {0, 2, 3}, {0, 3, 4}, {4, 3, 2}};
     EXPECT_EQ(m.triangles, expected);
+    EXPECT_EQ(m.shortFaces, 3u); // counted, for the course loader's note
 }
 
 TEST_F(PlyReader, CrlfCommentsAndSpacing) {

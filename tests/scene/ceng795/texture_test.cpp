@@ -1,6 +1,7 @@
 // The CENG795 loader's textures (HW4): TextureMaps, decal modes, images, per-object material
 // variants, and texture errors.
 #include "ceng795_fixture.h"
+#include "image/image_io.h"
 
 namespace pt::test {
 namespace {
@@ -103,6 +104,36 @@ TEST_F(Ceng795, ReplaceBackgroundBecomesTheSceneBackgroundTexture) {
     EXPECT_EQ(s.textures.at(*s.backgroundTexture).type, pt::Texture::Type::Image);
     EXPECT_TRUE(std::none_of(s.unsupported.begin(), s.unsupported.end(),
         [](const std::string& n) { return n.find("texture") != std::string::npos; }));
+}
+
+// Parameters the format leaves unspecified or to the file, when left out: each named with the
+// value taken. (NoiseScale and BumpFactor default to 1 and Normalizer to 255 in the format itself.)
+TEST_F(Ceng795, TextureParametersLeftOutAreNoted) {
+    write("tex/tiny.ppm", tinyPpm());
+    pt::Image hdr;
+    hdr.width = hdr.height = 1;
+    hdr.rgba = {2.0f, 2.0f, 2.0f, 1.0f};
+    pt::writeExr(dir_ / "tex" / "bright.exr", hdr, {});
+    const std::string maps =
+        "<Textures><Images><Image id=\"1\">tex/tiny.ppm</Image><Image id=\"2\">tex/bright.exr</Image></Images>"
+        "<TextureMap id=\"1\" type=\"image\"><ImageId>1</ImageId><DecalMode>replace_kd</DecalMode></TextureMap>"
+        "<TextureMap id=\"2\" type=\"image\"><ImageId>2</ImageId><DecalMode>replace_ks</DecalMode>"
+        "<Interpolation>nearest</Interpolation></TextureMap>"
+        "<TextureMap id=\"3\" type=\"checkerboard\"><DecalMode>replace_kd</DecalMode><Scale>2</Scale></TextureMap>"
+        "<TextureMap id=\"4\" type=\"perlin\"><DecalMode>bump_normal</DecalMode></TextureMap></Textures>";
+    const std::string glossy = "<Materials><Material id=\"1\"><DiffuseReflectance>0.5 0.5 0.5</DiffuseReflectance>"
+                               "<SpecularReflectance>0.5 0.5 0.5</SpecularReflectance><PhongExponent>10</PhongExponent>"
+                               "</Material></Materials>";
+    const pt::Scene s = load(sceneXml(glossy + kSquare + "<TexCoordData>0 0 1 0 1 1 0 1</TexCoordData>" + maps +
+                                      "<Objects><Mesh id=\"1\"><Material>1</Material><Textures>1 2</Textures>"
+                                      "<Faces>1 2 3</Faces></Mesh><Mesh id=\"2\"><Material>1</Material>"
+                                      "<Textures>3 4</Textures><Faces>1 3 4</Faces></Mesh></Objects>"));
+    const std::vector<std::string> expected = {"TextureMap id=1: no Interpolation (bilinear assumed)",
+        "TextureMap id=2: no Normalizer for an HDR image (1, texels as stored, assumed)",
+        "TextureMap id=3: no BlackColor (0 0 0 assumed)", "TextureMap id=3: no WhiteColor (1 1 1 assumed)",
+        "TextureMap id=3: no Offset (0 assumed)", "TextureMap id=4: no NoiseConversion (linear assumed)"};
+    EXPECT_EQ(s.unsupported, expected);
+    EXPECT_TRUE(s.textures.at(0).bilinear);
 }
 
 TEST_F(Ceng795, BadTexturesAreNamedErrors) {

@@ -71,6 +71,13 @@ TEST(GltfLoaderLights, RangeIsNotedAndBadLightsAreErrors) {
     ASSERT_EQ(ranged.unsupported.size(), 1u);
     EXPECT_NE(ranged.unsupported[0].find("range"), std::string::npos) << ranged.unsupported[0];
 
+    // A colour that is not an RGB triple: white, the extension's default, and a note.
+    const pt::Scene odd =
+        loadText(materialDocument(R"([{}])", 1, R"([{"type": "point", "intensity": 2, "color": [1, 0]}])", node));
+    ASSERT_EQ(odd.punctualLights.size(), 1u);
+    EXPECT_TRUE(near3(odd.punctualLights[0].intensity, glm::vec3(2.0f), 0.0f));
+    EXPECT_EQ(odd.unsupported, std::vector<std::string>{"light 0: color is not 3 numbers (1 1 1 assumed)"});
+
     EXPECT_THROW(
         loadText(materialDocument(R"([{}])", 1, R"([{"type": "point", "intensity": -1}])", node)), pt::SceneError);
     EXPECT_THROW(loadText(materialDocument(R"([{}])", 1,

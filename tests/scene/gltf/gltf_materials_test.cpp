@@ -94,6 +94,26 @@ TEST(GltfLoaderMaterials, MetallicRoughnessFactorsAndExtensions) {
     EXPECT_TRUE(s.unsupported.empty()) << s.unsupported.front();
 }
 
+// An extension value of the wrong type is not the spec's default silently: the default is used
+// and a note names the material, the value and the default.
+TEST(GltfLoaderMaterials, MalformedExtensionValuesAreNotedWithTheDefaultTaken) {
+    const pt::Scene s = loadText(materialDocument(R"([
+      {"name": "odd", "extensions": {"KHR_materials_ior": {"ior": "glass"},
+                                     "KHR_materials_specular": {"specularColorFactor": [1, 0.5]},
+                                     "KHR_materials_transmission": {"transmissionFactor": true}}}])",
+        1));
+    const pt::Material* m = findMaterial(s, "odd");
+    ASSERT_NE(m, nullptr);
+    EXPECT_FLOAT_EQ(m->ior, 1.5f);
+    EXPECT_TRUE(near3(m->specular, glm::vec3(1.0f), 0.0f));
+    EXPECT_FLOAT_EQ(m->transmission, 0.0f);
+    // One note each (the importer lists its notes in sorted order).
+    const std::vector<std::string> expected = {"material 0 'odd': ior is not a number (1.5 assumed)",
+        "material 0 'odd': specularColorFactor is not 3 numbers (1 1 1 assumed)",
+        "material 0 'odd': transmissionFactor is not a number (0 assumed)"};
+    EXPECT_EQ(s.unsupported, expected);
+}
+
 TEST(GltfLoaderMaterials, PrimitivesWithoutMaterialGetTheGltfDefault) {
     std::string doc = materialDocument(R"([{"name": "unused"}])", 1);
     const std::string withMaterial = R"(, "material": 0)";
@@ -183,6 +203,22 @@ TEST(GltfLoaderTextures, SlotsEncodingsSamplersAndTransforms) {
     EXPECT_FLOAT_EQ(moved->opacity, 0.4f);
     EXPECT_TRUE(std::none_of(s.unsupported.begin(), s.unsupported.end(),
         [](const std::string& n) { return n.find("texture") != std::string::npos; }));
+}
+
+// A KHR_texture_transform value of the wrong shape: the identity's part for it, and a note.
+TEST(GltfLoaderTextures, MalformedTextureTransformIsNotedWithTheDefaultTaken) {
+    const std::string images = std::string(R"([{"uri": ")") + kOnePixelPng + R"("}])";
+    const pt::Scene s = loadText(texturedDocument(R"([
+      {"name": "odd", "pbrMetallicRoughness": {"baseColorTexture": {"index": 0,
+        "extensions": {"KHR_texture_transform": {"offset": [0.5], "scale": [2, 2], "rotation": "quarter"}}}}}])",
+        1, R"([{"source": 0}])", images, "[]"));
+    const pt::Texture& t = s.textures.at(0);
+    EXPECT_TRUE(near3(t.uvRow0, glm::vec3(2, 0, 0), 0.0f));
+    EXPECT_TRUE(near3(t.uvRow1, glm::vec3(0, 2, 0), 0.0f));
+    const std::vector<std::string> expected = {
+        "material 0 'odd': baseColorTexture: KHR_texture_transform: offset is not 2 numbers (0 0 assumed)",
+        "material 0 'odd': baseColorTexture: KHR_texture_transform: rotation is not a number (0 assumed)"};
+    EXPECT_EQ(s.unsupported, expected);
 }
 
 TEST(GltfLoaderTextures, BadTexturesAreErrors) {

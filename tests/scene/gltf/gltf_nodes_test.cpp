@@ -18,12 +18,12 @@ std::string vec3Json(const glm::vec3& v) {
 }
 
 // `nodes` is the JSON array of nodes; the mesh is mesh 0, the camera camera 0; the scene's roots
-// are `roots`.
-std::string triangleDocument(const std::string& nodes, const std::string& roots) {
+// are `roots`; every vertex has the shading normal `normal`.
+std::string triangleDocument(const std::string& nodes, const std::string& roots, const glm::vec3& normal = kN) {
     std::vector<unsigned char> bytes(72);
     for (int i = 0; i < 3; ++i) {
         std::memcpy(bytes.data() + 12 * i, &kP[i], 12);
-        std::memcpy(bytes.data() + 36 + 12 * i, &kN, 12);
+        std::memcpy(bytes.data() + 36 + 12 * i, &normal, 12);
     }
     std::ostringstream d;
     d << R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": )" << roots << R"(}],
@@ -167,5 +167,25 @@ TEST(GltfLoader, NodeUsedTwiceIsInstancedTwice) {
     EXPECT_TRUE(near3(s.meshes[0].positions[0], glm::vec3(10, 0, 0), 0.0f));
     EXPECT_TRUE(near3(s.meshes[1].positions[0], glm::vec3(-10, 0, 0), 0.0f));
 }
+// What the file leaves to the application, or gives malformed, is taken with a note: with two
+// scenes and no default, scene 0; extras of the wrong type ignored, fractional ones rounded down;
+// zero shading normals replaced by the geometric normal.
+TEST(GltfLoader, ChoicesTheFileLeavesOpenAreNoted) {
+    std::string doc = triangleDocument(R"([{"mesh": 0}])", "[0]", glm::vec3(0.0f));
+    const std::string scenes = R"("scene": 0, "scenes": [{"nodes": [0]}])";
+    ASSERT_NE(doc.find(scenes), std::string::npos);
+    doc.replace(doc.find(scenes), scenes.size(),
+        R"("scenes": [{"nodes": [0], "extras": {"width": "wide", "height": 64.5}}, {"nodes": [0]}])");
+    const pt::Scene s = loadText(doc);
+    EXPECT_FALSE(s.hints.width.has_value());
+    EXPECT_EQ(s.hints.height, std::optional<int>(64));
+    EXPECT_EQ(onlyTriangle(s).n[0], glm::vec3(0.0f));
+    const std::vector<std::string> expected = {"no default scene among 2 (scene 0 assumed)",
+        "scene extras: height 64.5 is not an integer (64 assumed)",
+        "scene extras: width that is not a number (ignored)",
+        "zero or non-finite NORMAL vectors (the geometric normal used there)"};
+    EXPECT_EQ(s.unsupported, expected);
+}
+
 } // namespace
 } // namespace pt::test::gltf
