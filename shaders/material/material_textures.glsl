@@ -7,8 +7,8 @@
 #include "textures/texture.glsl"
 
 bool hasAnyTexture(GpuMaterial m) {
-    return (m.baseColorTexture & m.specularTexture & m.metallicRoughnessTexture & m.normalTexture &
-               m.emissiveTexture) != NO_TEXTURE;
+    return (m.baseColorTexture & m.specularTexture & m.metallicRoughnessTexture & m.normalTexture & m.emissiveTexture &
+               m.specularWeightTexture & m.transmissionTexture) != NO_TEXTURE;
 }
 
 // Shading normal from a tangent-space normal map: +x along dp/du, +y up the image (towards
@@ -84,6 +84,8 @@ void applyTextures(inout GpuMaterial m, inout SurfaceInteraction si) {
         m.specular *= ks;
         if (CLASSIC) m.classicSpecular *= ks;
     }
+    if (m.specularWeightTexture != NO_TEXTURE) m.specularWeight *= evalTexture(m.specularWeightTexture, si.uv, si.p).a;
+    if (m.transmissionTexture != NO_TEXTURE) m.transmission *= evalTexture(m.transmissionTexture, si.uv, si.p).r;
     if (m.metallicRoughnessTexture != NO_TEXTURE) {
         vec4 c = evalTexture(m.metallicRoughnessTexture, si.uv, si.p);
         // alpha = roughness^2, so the roughness channel scales sqrt(alpha).

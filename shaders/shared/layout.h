@@ -196,20 +196,20 @@ struct GpuMaterial {
     // Texture slots (index into the texture table, or NO_TEXTURE). Colour slots multiply the
     // factor above (course replace_* sets the factor to 1).
     uint baseColorTexture;         // rgb: baseColor (course kd), a: opacity
-    uint specularTexture;          // course replace_ks
+    uint specularTexture;          // rgb x specular: course replace_ks, glTF specularColorTexture
     uint metallicRoughnessTexture; // glTF: g roughness, b metallic
     uint normalTexture;            // tangent-space normals, or heights with MATERIAL_FLAG_BUMP_MAP
     uint emissiveTexture;
-    float alphaCutoff; // MATERIAL_FLAG_ALPHA_MASK threshold
-    float opacity;     // baseColor alpha factor
-    uint pad0;
+    float alphaCutoff;          // MATERIAL_FLAG_ALPHA_MASK threshold
+    float opacity;              // baseColor alpha factor
+    uint specularWeightTexture; // a x specularWeight: glTF KHR_materials_specular specularTexture
     // The course's classic shading (CLASSIC): ka * Ia + sum over lights of
     // (kd cos(theta) + ks cos^p(alpha_h)) E, added on every surface type, mirrors included.
-    vec3 ambient;          // ka
-    float classicExponent; // Blinn-Phong p
-    vec3 classicDiffuse;   // kd (no 1/pi: the course's convention)
-    float pad1;
-    vec3 classicSpecular; // ks
+    vec3 ambient;             // ka
+    float classicExponent;    // Blinn-Phong p
+    vec3 classicDiffuse;      // kd (no 1/pi: the course's convention)
+    uint transmissionTexture; // r x transmission: glTF KHR_materials_transmission transmissionTexture
+    vec3 classicSpecular;     // ks
     float pad2;
 };
 PT_CHECK_SIZE(GpuMaterial, 192);

@@ -56,8 +56,8 @@ bool usesTextureKind(const FlatScene& scene, bool image) {
         return slot != NO_TEXTURE && (scene.textures[slot].type == TEXTURE_IMAGE) == image;
     };
     for (const auto& m : scene.materials)
-        for (uint32_t slot :
-            {m.baseColorTexture, m.specularTexture, m.metallicRoughnessTexture, m.normalTexture, m.emissiveTexture})
+        for (uint32_t slot : {m.baseColorTexture, m.specularTexture, m.metallicRoughnessTexture, m.normalTexture,
+                 m.emissiveTexture, m.specularWeightTexture, m.transmissionTexture})
             if (matches(slot)) return true;
     return matches(scene.backgroundTexture);
 }

@@ -43,6 +43,8 @@ gpu::GpuMaterial toGpu(const Material& m) {
     auto slot = [](const std::optional<uint32_t>& t) { return t ? *t : NO_TEXTURE; };
     g.baseColorTexture = slot(m.baseColorTexture);
     g.specularTexture = slot(m.specularTexture);
+    g.specularWeightTexture = slot(m.specularWeightTexture);
+    g.transmissionTexture = slot(m.transmissionTexture);
     g.metallicRoughnessTexture = slot(m.metallicRoughnessTexture);
     g.normalTexture = slot(m.normalTexture);
     g.emissiveTexture = slot(m.emissiveTexture);

@@ -51,8 +51,11 @@ struct Material {
     bool thinWalled = true;      // Pbr transmission: no KHR_materials_volume, so no bending
 
     // Textures: indices into Scene::textures. Colour slots multiply the factor above.
-    std::optional<uint32_t> baseColorTexture; // rgb: baseColor, a: opacity
-    std::optional<uint32_t> specularTexture;  // the course's replace_ks
+    std::optional<uint32_t> baseColorTexture;      // rgb: baseColor, a: opacity
+    std::optional<uint32_t> specularTexture;       // rgb multiplies `specular`: the course's replace_ks,
+                                                   // glTF's KHR_materials_specular specularColorTexture
+    std::optional<uint32_t> specularWeightTexture; // a multiplies specularWeight (specularTexture)
+    std::optional<uint32_t> transmissionTexture;   // r multiplies transmission (KHR_materials_transmission)
     std::optional<uint32_t> metallicRoughnessTexture;
     std::optional<uint32_t> normalTexture; // tangent-space normal map, or heights if bumpMap
     std::optional<uint32_t> emissiveTexture;

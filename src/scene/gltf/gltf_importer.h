@@ -66,6 +66,8 @@ private:
     void convertFactors(const tinygltf::Material& src, const std::string& label, Material& m);
     void convertTextures(const tinygltf::Material& src, const std::string& label, Material& m);
     static int wrap(int mode, const std::string& where, const GltfImporter& self);
+    std::optional<uint32_t> extensionTexture(
+        const tinygltf::Value* ext, const char* key, Texture::Encoding encoding, const std::string& where);
     std::optional<uint32_t> texture(int index, int texCoord, const tinygltf::ExtensionMap& extensions,
         Texture::Encoding encoding, const std::string& where);
     uint32_t imageIndex(int index, const std::string& where);

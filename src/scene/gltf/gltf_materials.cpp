@@ -134,8 +134,20 @@ void GltfImporter::convertTextures(const tinygltf::Material& src, const std::str
     if (!std::isfinite(m.normalScale)) fail(label + ": normalTexture scale must be finite");
     m.emissiveTexture = texture(src.emissiveTexture.index, src.emissiveTexture.texCoord, src.emissiveTexture.extensions,
         Texture::Encoding::Srgb, label + ": emissiveTexture");
-    // A texture can make a "mirror" rough or part-metal: only the full model covers that.
+    // The extensions' textures: specularTexture's alpha scales specularFactor, specularColorTexture
+    // (sRGB) the specular colour, transmissionTexture's red channel the transmission factor.
+    const tinygltf::Value* specular = extension(src, "KHR_materials_specular");
+    m.specularWeightTexture =
+        extensionTexture(specular, "specularTexture", Texture::Encoding::Linear, label + ": KHR_materials_specular");
+    m.specularTexture =
+        extensionTexture(specular, "specularColorTexture", Texture::Encoding::Srgb, label + ": KHR_materials_specular");
+    m.transmissionTexture = extensionTexture(extension(src, "KHR_materials_transmission"), "transmissionTexture",
+        Texture::Encoding::Linear, label + ": KHR_materials_transmission");
+    // A texture can make a "mirror" rough or part-metal, and a "glass" part-transmissive or of
+    // varying specular: only the full model covers those.
     if (m.metallicRoughnessTexture && m.type == MaterialType::Mirror) m.type = MaterialType::Pbr;
+    if ((m.specularWeightTexture || m.specularTexture || m.transmissionTexture) && m.type == MaterialType::Dielectric)
+        m.type = MaterialType::Pbr;
 
     m.opacity = pbr.baseColorFactor.size() > 3 ? static_cast<float>(pbr.baseColorFactor[3]) : 1.0f;
     if (!(m.opacity >= 0.0f && m.opacity <= 1.0f)) fail(label + ": baseColorFactor alpha must be in [0, 1]");
@@ -157,6 +169,22 @@ int GltfImporter::wrap(int mode, const std::string& where, const GltfImporter& s
     case 33648: return static_cast<int>(TextureWrap::Mirror);
     default: self.fail(where + ": unknown wrap mode " + std::to_string(mode));
     }
+}
+
+// The textureInfo `key` of a material extension's object, or none.
+std::optional<uint32_t> GltfImporter::extensionTexture(
+    const tinygltf::Value* ext, const char* key, Texture::Encoding encoding, const std::string& where) {
+    if (ext == nullptr || !ext->IsObject() || !ext->Has(key)) return std::nullopt;
+    const tinygltf::Value& info = ext->Get(key);
+    const std::string what = where + ": " + key;
+    if (!info.IsObject() || !info.Has("index") || !info.Get("index").IsInt()) fail(what + " has no texture index");
+    const int texCoord =
+        info.Has("texCoord") && info.Get("texCoord").IsInt() ? info.Get("texCoord").GetNumberAsInt() : 0;
+    tinygltf::ExtensionMap extensions;
+    if (info.Has("extensions") && info.Get("extensions").IsObject())
+        for (const std::string& name : info.Get("extensions").Keys())
+            extensions[name] = info.Get("extensions").Get(name);
+    return texture(info.Get("index").GetNumberAsInt(), texCoord, extensions, encoding, what);
 }
 
 // A scene texture for one textureInfo (with its KHR_texture_transform), or none.

@@ -205,6 +205,35 @@ TEST(GltfLoaderTextures, SlotsEncodingsSamplersAndTransforms) {
         [](const std::string& n) { return n.find("texture") != std::string::npos; }));
 }
 
+// The material extensions' textures land in their slots with their encodings (specularTexture:
+// alpha, linear; specularColorTexture: sRGB; transmissionTexture: red, linear), with their own
+// KHR_texture_transform, and make a factors' glass the full PBR model.
+TEST(GltfLoaderTextures, ExtensionTexturesOfSpecularAndTransmission) {
+    const std::string images = std::string(R"([{"uri": ")") + kOnePixelPng + R"("}])";
+    const pt::Scene s = loadText(texturedDocument(R"([
+      {"name": "glass", "extensions": {
+         "KHR_materials_transmission": {"transmissionFactor": 1, "transmissionTexture": {"index": 1}},
+         "KHR_materials_specular": {"specularTexture": {"index": 0},
+           "specularColorTexture": {"index": 1, "extensions": {"KHR_texture_transform": {"offset": [0.5, 0]}}}},
+         "KHR_materials_volume": {"thicknessFactor": 1}}}
+    ])",
+        1, R"([{"source": 0}, {"source": 0}])", images, "[]"));
+    const pt::Material* glass = findMaterial(s, "glass");
+    ASSERT_TRUE(glass);
+    ASSERT_TRUE(glass->specularWeightTexture && glass->specularTexture && glass->transmissionTexture);
+    EXPECT_EQ(glass->type, pt::MaterialType::Pbr); // not the factors' dielectric
+    EXPECT_EQ(s.textures.at(*glass->specularWeightTexture).encoding, pt::Texture::Encoding::Linear);
+    EXPECT_EQ(s.textures.at(*glass->specularTexture).encoding, pt::Texture::Encoding::Srgb);
+    EXPECT_EQ(s.textures.at(*glass->transmissionTexture).encoding, pt::Texture::Encoding::Linear);
+    EXPECT_FLOAT_EQ(s.textures.at(*glass->specularTexture).uvRow0.z, 0.5f);
+    EXPECT_TRUE(s.unsupported.empty()) << ::testing::PrintToString(s.unsupported);
+
+    EXPECT_THROW(
+        loadText(texturedDocument(R"([{"extensions": {"KHR_materials_specular": {"specularTexture": {"index": 7}}}}])",
+            1, R"([{"source": 0}])", images, "[]")),
+        pt::SceneError);
+}
+
 // A KHR_texture_transform value of the wrong shape: the identity's part for it, and a note.
 TEST(GltfLoaderTextures, MalformedTextureTransformIsNotedWithTheDefaultTaken) {
     const std::string images = std::string(R"([{"uri": ")") + kOnePixelPng + R"("}])";

@@ -3,25 +3,13 @@
 // white sky with no dropped (non-finite) samples and a non-black image.
 #include "support/gpu_test_support.h"
 
+#include "app/scene_setup.h"
 #include "scene/scene_loader.h"
 
 namespace pt::test {
 namespace {
 
 class GltfSamples : public GpuTest, public ::testing::WithParamInterface<const char*> {};
-
-// The camera a scene without one gets from `pt render`: looking down -z at the scene's box.
-Camera framingCamera(const FlatScene& flat) {
-    glm::vec3 lo(1e30f), hi(-1e30f);
-    for (const auto& t : flat.triangles)
-        for (const glm::vec3& p : {t.p0, t.p1, t.p2}) lo = glm::min(lo, p), hi = glm::max(hi, p);
-    const glm::vec3 centre = 0.5f * (lo + hi);
-    const float radius = 0.5f * glm::length(hi - lo);
-    Camera c;
-    c.yfov = 0.8f;
-    c.position = centre + glm::vec3(0, 0, radius / std::tan(0.4f) + radius);
-    return c;
-}
 
 TEST_P(GltfSamples, LoadsWithoutWarningsAndRendersFinite) {
     const std::string model = GetParam();
@@ -31,8 +19,8 @@ TEST_P(GltfSamples, LoadsWithoutWarningsAndRendersFinite) {
     Environment sky;
     sky.colour = glm::vec3(1.0f);
     scene.environment = sky;
-    const FlatScene flat = flattenScene(scene);
-    const Camera camera = scene.cameras.empty() ? framingCamera(flat) : scene.cameras[0];
+    // The camera a scene without one gets from `pt render`.
+    const Camera camera = scene.cameras.empty() ? framingCamera(scene, 1.0f) : scene.cameras[0];
     const Renderer::Readback r = renderScene(scene, IntegratorSettings{}, camera, 32, 32, 4);
     EXPECT_EQ(r.droppedSamples, 0u) << model;
     double sum = 0;

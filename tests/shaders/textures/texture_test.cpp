@@ -313,6 +313,75 @@ TEST_F(Textures, FlatNormalMapsAndConstantBumpMapsChangeNothing) {
     EXPECT_LT(litQuadMean(tilted, false) / plain, 0.9);
 }
 
+// Mean radiance of a glTF PBR quad lit from the front (reflection) and from behind (thin-walled
+// transmission), with `m`'s factors and a 2x2 constant texture `texel` in `slot`.
+double pbrQuadMean(Material m, std::optional<uint32_t> Material::*slot, uint32_t texel, Texture::Encoding encoding) {
+    Scene scene;
+    m.type = MaterialType::Pbr;
+    m.baseColor = glm::vec3(0.6f, 0.5f, 0.4f);
+    m.roughness = 0.4f;
+    if (slot) {
+        TextureImage img;
+        img.width = img.height = 2;
+        img.rgba8.assign(4, texel);
+        scene.textureImages.push_back(img);
+        Texture t;
+        t.encoding = encoding;
+        scene.textures.push_back(t);
+        m.*slot = 0;
+    }
+    scene.materials.push_back(m);
+    scene.meshes.push_back(texturedQuad(0));
+    PunctualLight front, behind;
+    front.position = glm::vec3(0.3f, 0.8f, 1.0f);
+    front.intensity = glm::vec3(2.0f);
+    behind.position = glm::vec3(0.6f, 0.4f, -1.0f);
+    behind.intensity = glm::vec3(2.0f);
+    scene.punctualLights = {front, behind};
+    const Renderer::Readback r = renderScene(scene, IntegratorSettings{}, quadCamera(), 16, 16, 16);
+    double sum = 0;
+    for (size_t i = 0; i < r.mean.rgba.size(); ++i)
+        if (i % 4 != 3) sum += r.mean.rgba[i];
+    return sum / (r.mean.rgba.size() / 4 * 3);
+}
+
+// KHR_materials_specular's specularTexture (alpha) and specularColorTexture (sRGB rgb) and
+// KHR_materials_transmission's transmissionTexture (red) scale their factors: a constant texture
+// renders as the factor times its value, and changes the image.
+TEST_F(Textures, ExtensionTexturesScaleTheirFactors) {
+    Material base;
+    base.specularWeight = 1.0f;
+    base.specular = glm::vec3(1.0f);
+    base.transmission = 0.5f;
+    const double plain = pbrQuadMean(base, nullptr, 0, Texture::Encoding::Linear);
+    ASSERT_GT(plain, 0.005);
+
+    Material weight = base;
+    weight.specularWeight = 0.2f; // 51 / 255
+    const double byWeightFactor = pbrQuadMean(weight, nullptr, 0, Texture::Encoding::Linear);
+    const double byWeightTexture =
+        pbrQuadMean(base, &Material::specularWeightTexture, 0x33ffffffu, Texture::Encoding::Linear); // a = 51
+    EXPECT_NEAR(byWeightTexture / byWeightFactor, 1.0, 1e-4);
+    EXPECT_GT(std::abs(byWeightFactor / plain - 1.0), 0.02);
+
+    Material colour = base;
+    const float linear = float(srgbToLinear(100.0 / 255.0)); // sRGB-encoded texel 100
+    colour.specular = glm::vec3(linear);
+    const double byColourFactor = pbrQuadMean(colour, nullptr, 0, Texture::Encoding::Linear);
+    const double byColourTexture =
+        pbrQuadMean(base, &Material::specularTexture, 0xff646464u, Texture::Encoding::Srgb); // rgb = 100
+    EXPECT_NEAR(byColourTexture / byColourFactor, 1.0, 1e-4);
+    EXPECT_GT(std::abs(byColourFactor / plain - 1.0), 0.02);
+
+    Material transmission = base;
+    transmission.transmission = 0.5f * 0.2f; // red 51 / 255
+    const double byTransmissionFactor = pbrQuadMean(transmission, nullptr, 0, Texture::Encoding::Linear);
+    const double byTransmissionTexture =
+        pbrQuadMean(base, &Material::transmissionTexture, 0xff000033u, Texture::Encoding::Linear); // r = 51
+    EXPECT_NEAR(byTransmissionTexture / byTransmissionFactor, 1.0, 1e-4);
+    EXPECT_GT(std::abs(byTransmissionFactor / plain - 1.0), 0.02);
+}
+
 // An unlit white quad at z = 0 in front of an unlit red one at z = -1, seen by quadCamera().
 Scene layeredQuads(Material front) {
     Scene scene;
