@@ -577,7 +577,7 @@ def inside_sphere(file_name, radius):
     target = [f32(centre[0] - r), centre[1], centre[2]]
     x = CourseScene("The camera inside an emissive diffuse sphere of radius %g (Le 1, albedo 0.5), off centre: "
                     "L = Le (1 - rho^D) / (1 - rho) for D = 6 ray segments, no Russian roulette." % radius)
-    x.max_recursion = 5  # 6 segments including the camera ray
+    x.max_recursion = 4  # with NEE the course counts MaxRecursionDepth + 2 = 6 segments, camera ray included
     x.camera(eye, target, 1.5, 24, "NextEventEstimation ImportanceSampling")
     x.sphere(x.diffuse(0.5), centre, r, radiance=1.0)
     x.write(file_name)
