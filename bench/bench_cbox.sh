@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Speed against error on the two Mitsuba reference scenes: renders each at several time
 # budgets and prints a Markdown table of seconds, spp, M paths/s and relMSE against the
-# reference, beside Mitsuba 3's relMSE at the same time on the same kind of machine.
+# reference. For Mitsuba 3 at the same budgets, measured in the same run on this machine, use
+# bench/bench_vs_mitsuba.py (figures from another machine compare nothing).
 #
 #   bash bench/bench_cbox.sh [BUDGETS...]      (default: 5 10 30 60; needs build/pt)
 set -euo pipefail
@@ -12,30 +13,12 @@ pt=./build/pt
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 
-# Mitsuba 3.9.1 (llvm_ad_rgb, 2 cores, warm), from bench/MITSUBA_SPEED.md
-# (copied from the shared reference set): (seconds relMSE) pairs, interpolated log-log below.
-declare -A mitsuba=(
-  [cbox-diffuse]="0.12 0.277 0.45 0.064 1.74 0.0163 6.9 0.0042 26.4 0.00115 53.4 0.00064"
-  [cbox-glass-mirror]="0.18 3.05 0.70 0.733 2.74 0.187 10.7 0.047 42.8 0.0128 85.4 0.0071"
-)
-interpolate() { # seconds, then the (s, e) pairs: log-log interpolation, linear extrapolation at the ends
-  python3 - "$@" <<'PY'
-import math, sys
-t = float(sys.argv[1]); v = list(map(float, sys.argv[2:]))
-pts = list(zip(v[0::2], v[1::2]))
-for (s0, e0), (s1, e1) in zip(pts, pts[1:]):
-    if t <= s1 or (s1, e1) == pts[-1]:
-        a = (math.log(e1) - math.log(e0)) / (math.log(s1) - math.log(s0))
-        print(f"{math.exp(math.log(e0) + a * (math.log(t) - math.log(s0))):.5f}"); break
-PY
-}
-
 device=$($pt devices | head -n 1)
 echo "Device: $device"
 echo "Machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs)"
 echo
-echo "| scene | budget (s) | seconds | spp | M paths/s | relMSE | Mitsuba 3 relMSE at that time | ratio (ours / Mitsuba) |"
-echo "|---|---|---|---|---|---|---|---|"
+echo "| scene | budget (s) | seconds | spp | M paths/s | relMSE |"
+echo "|---|---|---|---|---|---|"
 for scene in cbox-diffuse cbox-glass-mirror; do
   dir=tests/references/$scene
   for budget in "${budgets[@]}"; do
@@ -44,8 +27,6 @@ for scene in cbox-diffuse cbox-glass-mirror; do
         -o "$out/$scene-$budget.exr" -q 2>/dev/null
     IFS=, read -r spp seconds relmse < <(tail -n 1 "$log")
     mpaths=$(python3 -c "print(f'{256*256*$spp/$seconds/1e6:.3f}')")
-    mi=$(interpolate "$seconds" ${mitsuba[$scene]})
-    ratio=$(python3 -c "print(f'{$relmse/$mi:.2f}')")
-    printf '| %s | %s | %.2f | %s | %s | %.5f | %s | %s |\n' "$scene" "$budget" "$seconds" "$spp" "$mpaths" "$relmse" "$mi" "$ratio"
+    printf '| %s | %s | %.2f | %s | %s | %.5f |\n' "$scene" "$budget" "$seconds" "$spp" "$mpaths" "$relmse"
   done
 done

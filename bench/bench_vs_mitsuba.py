@@ -10,7 +10,8 @@ budget is interpolated log-log between the two ladder rungs around it. Prints th
 model and vector ISA, a Markdown table and, with --json, everything measured.
 
   python3 bench/bench_vs_mitsuba.py [--budgets 10,60] [--scenes cbox-diffuse,cbox-glass-mirror]
-                                    [--pt build/pt] [--pt-args "--sampler sobol"] [--json OUT]
+                                    [--pt build/pt] [--pt-args "--sampler sobol" ...] [--json OUT]
+(--pt-args may be given several times: each is a pt configuration, all measured in the same run.)
 
 Needs numpy and the OpenEXR module in the Python that runs it (Debian: python3-numpy; OpenEXR
 from PyPI) and the Mitsuba venv made by scripts/setup_mitsuba_venv.sh (/opt/mitsuba, or
@@ -121,7 +122,9 @@ def main():
     ap.add_argument("--budgets", default="10,60")
     ap.add_argument("--scenes", default="cbox-diffuse,cbox-glass-mirror")
     ap.add_argument("--pt", default=os.path.join(REPO, "build", "pt"))
-    ap.add_argument("--pt-args", default="", help="extra pt render arguments, e.g. '--sampler sobol'")
+    ap.add_argument("--pt-args", action="append",
+                    help="extra pt render arguments, e.g. '--sampler sobol'; repeat for several configurations "
+                         "(default: one, pt's defaults)")
     ap.add_argument("--json")
     ap.add_argument("--mitsuba-worker", nargs=2, metavar=("SCENE_DIR", "SPP_LIST"), help=argparse.SUPPRESS)
     a = ap.parse_args()
@@ -132,34 +135,36 @@ def main():
     if not os.path.exists(python):
         sys.exit(f"bench_vs_mitsuba: {python} not found: run scripts/setup_mitsuba_venv.sh first")
     budgets = [float(b) for b in a.budgets.split(",")]
-    extra = shlex.split(a.pt_args)
+    configs = a.pt_args or [""]
     print(f"Machine: {machine()}")
     results = {}
     with tempfile.TemporaryDirectory() as work:
         for name in a.scenes.split(","):
             scene_dir = os.path.join(REFERENCES, name)
             version, ladder = run_mitsuba(python, scene_dir, budgets)
-            ours = [run_pt(a.pt, extra, scene_dir, b, work) for b in budgets]
+            ours = {c: [run_pt(a.pt, shlex.split(c), scene_dir, b, work) for b in budgets] for c in configs}
             results[name] = dict(mitsuba_version=version, mitsuba=ladder, pt=ours)
             print(f"{name}: Mitsuba {version} ladder: " +
                   ", ".join(f"{r['spp']} spp {r['seconds']:.2f} s {r['mpaths']:.2f} M paths/s relMSE {r['relmse']:.4g}"
                             for r in ladder), flush=True)
     print()
-    print(f"pt render {' '.join(extra) or '(defaults)'} against Mitsuba 3 `path` (llvm_ad_rgb), same machine, same run")
+    print("pt render against Mitsuba 3 `path` (llvm_ad_rgb), same machine, same run")
     print()
-    print("| scene | budget (s) | pt spp | pt M paths/s | pt relMSE | Mitsuba M paths/s | Mitsuba relMSE | "
-          "ratio (pt / Mitsuba relMSE) |")
-    print("|---|---|---|---|---|---|---|---|")
+    print("| scene | pt settings | budget (s) | pt spp | pt M paths/s | pt relMSE | Mitsuba M paths/s | "
+          "Mitsuba relMSE | ratio (pt / Mitsuba relMSE) |")
+    print("|---|---|---|---|---|---|---|---|---|")
     for name, r in results.items():
-        for ours in r["pt"]:
-            theirs = at_time(r["mitsuba"], ours["seconds"])
-            rate = max(r["mitsuba"], key=lambda row: row["seconds"])["mpaths"]
-            print(f"| {name} | {ours['seconds']:.1f} | {ours['spp']} | {ours['mpaths']:.2f} | {ours['relmse']:.5f} | "
-                  f"{rate:.2f} | {theirs:.5f} | {ours['relmse'] / theirs:.2f} |")
-            ours["mitsuba_relmse_at_time"] = theirs
+        rate = max(r["mitsuba"], key=lambda row: row["seconds"])["mpaths"]
+        for config, rows in r["pt"].items():
+            for ours in rows:
+                theirs = at_time(r["mitsuba"], ours["seconds"])
+                ours["mitsuba_relmse_at_time"] = theirs
+                print(f"| {name} | {config or 'defaults'} | {ours['seconds']:.1f} | {ours['spp']} | "
+                      f"{ours['mpaths']:.2f} | {ours['relmse']:.5f} | {rate:.2f} | {theirs:.5f} | "
+                      f"{ours['relmse'] / theirs:.2f} |")
     if a.json:
         with open(a.json, "w") as f:
-            json.dump(dict(machine=machine(), pt_args=extra, results=results), f, indent=1)
+            json.dump(dict(machine=machine(), results=results), f, indent=1)
 
 
 if __name__ == "__main__":
