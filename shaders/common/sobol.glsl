@@ -10,13 +10,20 @@
 // First Sobol' dimension: the van der Corput radical inverse in base 2.
 uint sobolDimension0(uint index) { return bitfieldReverse(index); }
 
-// Second Sobol' dimension: direction numbers v_0 = 2^31, v_k = v_(k-1) ^ (v_(k-1) >> 1)
-// (the Pascal matrix mod 2).
+// Second Sobol' dimension: direction numbers v_0 = 2^31, v_k = v_(k-1) ^ (v_(k-1) >> 1), the
+// Pascal matrix mod 2. By Lucas' theorem C(k, j) is odd exactly when the bits of j are a subset
+// of those of k, so bit j of the result (counted from the top) is the parity of the index bits
+// k that are supersets of j: a superset-parity transform, five masked shifts, then the reversal.
+// Branch-free, unlike the loop over set bits (the same value for all 2^32 indices, checked on
+// the CPU), so the lanes of a SIMD group no longer wait for the one with the longest index.
 uint sobolDimension1(uint index) {
-    uint result = 0u;
-    for (uint v = 1u << 31u; index != 0u; index >>= 1u, v ^= v >> 1u)
-        if ((index & 1u) != 0u) result ^= v;
-    return result;
+    uint x = index;
+    x ^= (x >> 1u) & 0x55555555u;
+    x ^= (x >> 2u) & 0x33333333u;
+    x ^= (x >> 4u) & 0x0f0f0f0fu;
+    x ^= (x >> 8u) & 0x00ff00ffu;
+    x ^= (x >> 16u) & 0x0000ffffu;
+    return bitfieldReverse(x);
 }
 
 // A random permutation of 32-bit words in which each bit is flipped by a function of the bits
