@@ -64,7 +64,7 @@ int renderJob(VulkanContext& context, const Scene& scene, const FlatScene& flat,
         std::fprintf(stderr, "pt: %s: %dx%d, kernel features: %s; pipeline %.3f s (%s kernel)\n",
             job.camera.name.c_str(), job.width, job.height, features.describe().c_str(), renderer.pipelineSeconds(),
             renderer.pipelineSource());
-        std::fprintf(stderr, "pt: %s\n", describeIntegrator(scene, job, o).c_str());
+        std::fprintf(stderr, "pt: %s\n", describeIntegrator(job).c_str());
     }
     ImageMetadata meta;
     meta["seed"] = std::to_string(job.settings.seed);

@@ -258,6 +258,7 @@ Job makeJob(const Scene& scene, const Camera& camera, const RenderOptions& o, bo
     const DepthChoice depth = chooseMaxDepth(scene, camera, o, course);
     if (depth.depth < 1) throw std::runtime_error("max depth must be at least 1");
     s.maxDepth = static_cast<uint32_t>(depth.depth);
+    job.maxDepthReason = depth.reason;
 
     job.target.spp = o.spp.value_or(o.seconds || o.targetError ? 0u : cs.spp.value_or(64u));
     if (course && !o.spp && !o.seconds && !o.targetError && !cs.spp)
@@ -317,12 +318,12 @@ DepthChoice chooseMaxDepth(const Scene& scene, const Camera& camera, const Rende
     return {16, course ? "pt's default: the file has no MaxRecursionDepth" : "pt's default"};
 }
 
-std::string describeIntegrator(const Scene& scene, const Job& job, const RenderOptions& o) {
+std::string describeIntegrator(const Job& job) {
     std::string text = job.settings.describe();
-    const std::string reason = chooseMaxDepth(scene, job.camera, o, isCourseScene(o.scene)).reason;
     const std::string key = "max-depth=" + std::to_string(job.settings.maxDepth);
     const size_t at = text.find(key);
-    if (!reason.empty() && at != std::string::npos) text.insert(at + key.size(), " (" + reason + ")");
+    if (!job.maxDepthReason.empty() && at != std::string::npos)
+        text.insert(at + key.size(), " (" + job.maxDepthReason + ")");
     return text;
 }
 

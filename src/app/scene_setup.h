@@ -52,6 +52,6 @@ struct DepthChoice {
 };
 DepthChoice chooseMaxDepth(const Scene& scene, const Camera& camera, const RenderOptions& o, bool course);
 // IntegratorSettings::describe() with the depth's reason after max-depth, for the log line.
-std::string describeIntegrator(const Scene& scene, const Job& job, const RenderOptions& o);
+std::string describeIntegrator(const Job& job);
 
 } // namespace pt

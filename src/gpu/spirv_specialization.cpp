@@ -34,13 +34,17 @@ void forEachInstruction(std::span<const uint32_t> words, const char* name, Visit
     }
 }
 
+// OpDecorate <target> SpecId <id>: the target is a specialization constant.
+bool isSpecIdDecoration(std::span<const uint32_t> words, size_t at, uint32_t opcode, uint32_t count) {
+    return opcode == kOpDecorate && count == 4 && words[at + 2] == kDecorationSpecId;
+}
+
 // Writes each listed value into its constant's declaration, so that freezing the constants
 // afterwards gives them the values a VkSpecializationInfo would have given.
 void setDefaults(std::vector<uint32_t>& words, std::span<const SpecializationConstant> constants, const char* name) {
     std::unordered_map<uint32_t, uint32_t> specIdOfResult;
     forEachInstruction(words, name, [&](size_t at, uint32_t opcode, uint32_t count) {
-        if (opcode == kOpDecorate && count == 4 && words[at + 2] == kDecorationSpecId)
-            specIdOfResult[words[at + 1]] = words[at + 3];
+        if (isSpecIdDecoration(words, at, opcode, count)) specIdOfResult[words[at + 1]] = words[at + 3];
     });
     std::unordered_map<uint32_t, uint32_t> valueOfSpecId;
     for (const SpecializationConstant& c : constants) valueOfSpecId[c.id] = c.value;
@@ -90,7 +94,7 @@ std::vector<uint32_t> specializeSpirv(
 size_t countSpecializationConstants(std::span<const uint32_t> spirv) {
     size_t n = 0;
     forEachInstruction(spirv, "module", [&](size_t at, uint32_t opcode, uint32_t count) {
-        if (opcode == kOpDecorate && count == 4 && spirv[at + 2] == kDecorationSpecId) ++n;
+        if (isSpecIdDecoration(spirv, at, opcode, count)) ++n;
     });
     return n;
 }

@@ -6,6 +6,7 @@
 #include "scene/scene.h"
 
 #include <filesystem>
+#include <string>
 
 namespace pt {
 
@@ -13,6 +14,7 @@ struct Job {
     Camera camera;
     int width = 0, height = 0;
     IntegratorSettings settings;
+    std::string maxDepthReason; // why settings.maxDepth, for the log line; empty when --max-depth chose
     ProgressiveTarget target;
     std::filesystem::path output; // .exr; the PNG goes beside it
     TonemapSettings tonemap;

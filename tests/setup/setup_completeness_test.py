@@ -805,18 +805,14 @@ def local_python_modules(repo, files):
 
 def resolve(kind, name, context):
     """("packages", [(package, evidence)]) | ("base", package) | ("ok", why) | ("unknown", advice)."""
-    if kind == "cmake":
-        row = CMAKE_PACKAGES.get(name)
-        return ("packages", row) if row else ("unknown", "CMAKE_PACKAGES")
-    if kind == "language":
-        row = CMAKE_LANGUAGES.get(name)
-        return ("packages", row) if row else ("unknown", "CMAKE_LANGUAGES")
-    if kind == "pkg-config":
-        row = PKG_CONFIG_MODULES.get(name)
-        return ("packages", row) if row else ("unknown", "PKG_CONFIG_MODULES")
-    if kind == "cmake-library":
-        row = CMAKE_LIBRARIES.get(name)
-        return ("packages", row) if row else ("unknown", "CMAKE_LIBRARIES")
+    # The kinds that are one table lookup: (table, its name for the advice).
+    tables = {"cmake": (CMAKE_PACKAGES, "CMAKE_PACKAGES"), "language": (CMAKE_LANGUAGES, "CMAKE_LANGUAGES"),
+              "pkg-config": (PKG_CONFIG_MODULES, "PKG_CONFIG_MODULES"),
+              "cmake-library": (CMAKE_LIBRARIES, "CMAKE_LIBRARIES")}
+    if kind in tables:
+        table, table_name = tables[kind]
+        row = table.get(name)
+        return ("packages", row) if row else ("unknown", table_name)
     if kind == "runtime":
         return ("packages", RUNTIME_STRINGS[name])
     if kind == "header":

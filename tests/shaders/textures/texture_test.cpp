@@ -356,30 +356,26 @@ TEST_F(Textures, ExtensionTexturesScaleTheirFactors) {
     const double plain = pbrQuadMean(base, nullptr, 0, Texture::Encoding::Linear);
     ASSERT_GT(plain, 0.005);
 
+    // The factor times the texel value, set directly, against the factor 1 with the texture.
+    auto expectTextureActsAsFactor = [&](const Material& byFactor, std::optional<uint32_t> Material::*slot,
+                                         uint32_t texel, Texture::Encoding encoding, const char* what) {
+        const double factor = pbrQuadMean(byFactor, nullptr, 0, Texture::Encoding::Linear);
+        const double texture = pbrQuadMean(base, slot, texel, encoding);
+        EXPECT_NEAR(texture / factor, 1.0, 1e-4) << what;
+        EXPECT_GT(std::abs(factor / plain - 1.0), 0.02) << what;
+    };
     Material weight = base;
     weight.specularWeight = 0.2f; // 51 / 255
-    const double byWeightFactor = pbrQuadMean(weight, nullptr, 0, Texture::Encoding::Linear);
-    const double byWeightTexture =
-        pbrQuadMean(base, &Material::specularWeightTexture, 0x33ffffffu, Texture::Encoding::Linear); // a = 51
-    EXPECT_NEAR(byWeightTexture / byWeightFactor, 1.0, 1e-4);
-    EXPECT_GT(std::abs(byWeightFactor / plain - 1.0), 0.02);
-
+    expectTextureActsAsFactor(weight, &Material::specularWeightTexture, 0x33ffffffu, Texture::Encoding::Linear,
+        "specularTexture"); // a = 51
     Material colour = base;
-    const float linear = float(srgbToLinear(100.0 / 255.0)); // sRGB-encoded texel 100
-    colour.specular = glm::vec3(linear);
-    const double byColourFactor = pbrQuadMean(colour, nullptr, 0, Texture::Encoding::Linear);
-    const double byColourTexture =
-        pbrQuadMean(base, &Material::specularTexture, 0xff646464u, Texture::Encoding::Srgb); // rgb = 100
-    EXPECT_NEAR(byColourTexture / byColourFactor, 1.0, 1e-4);
-    EXPECT_GT(std::abs(byColourFactor / plain - 1.0), 0.02);
-
+    colour.specular = glm::vec3(float(srgbToLinear(100.0 / 255.0))); // sRGB-encoded texel 100
+    expectTextureActsAsFactor(colour, &Material::specularTexture, 0xff646464u, Texture::Encoding::Srgb,
+        "specularColorTexture"); // rgb = 100
     Material transmission = base;
     transmission.transmission = 0.5f * 0.2f; // red 51 / 255
-    const double byTransmissionFactor = pbrQuadMean(transmission, nullptr, 0, Texture::Encoding::Linear);
-    const double byTransmissionTexture =
-        pbrQuadMean(base, &Material::transmissionTexture, 0xff000033u, Texture::Encoding::Linear); // r = 51
-    EXPECT_NEAR(byTransmissionTexture / byTransmissionFactor, 1.0, 1e-4);
-    EXPECT_GT(std::abs(byTransmissionFactor / plain - 1.0), 0.02);
+    expectTextureActsAsFactor(transmission, &Material::transmissionTexture, 0xff000033u, Texture::Encoding::Linear,
+        "transmissionTexture"); // r = 51
 }
 
 // An unlit white quad at z = 0 in front of an unlit red one at z = -1, seen by quadCamera().
