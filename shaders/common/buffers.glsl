@@ -9,7 +9,7 @@
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer SceneParamsRef { GpuSceneParams p; };
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer TriangleRef { GpuTriangle v[]; };
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer ShadingRef { GpuTriangleShading v[]; };
-layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer NodeRef { GpuBvhNode v[]; };
+layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer Bvh4Ref { GpuBvh4Node v[]; };
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer MaterialRef { GpuMaterial v[]; };
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer LightRef { GpuLight v[]; };
 layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer FloatRef { float v[]; };
@@ -25,7 +25,7 @@ layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer Ta
 GpuSceneParams scene;
 TriangleRef sceneTriangles;
 ShadingRef sceneShading;
-NodeRef sceneNodes;
+Bvh4Ref sceneNodes;
 MaterialRef sceneMaterials;
 LightRef sceneLights;
 FloatRef sceneLightCdf;
@@ -34,7 +34,7 @@ void bindScene(uint64_t paramsAddress) {
     scene = SceneParamsRef(paramsAddress).p;
     sceneTriangles = TriangleRef(scene.triangles);
     sceneShading = ShadingRef(scene.shading);
-    sceneNodes = NodeRef(scene.nodes);
+    sceneNodes = Bvh4Ref(scene.nodes);
     sceneMaterials = MaterialRef(scene.materials);
     sceneLights = LightRef(scene.lights);
     sceneLightCdf = FloatRef(scene.lightCdf);

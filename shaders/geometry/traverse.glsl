@@ -1,5 +1,6 @@
-// Stack-based traversal of the binary BVH: closest hit for path segments, any hit for shadow rays.
-// Both children's boxes are tested before descending and the nearer one is visited first.
+// Stack-based traversal of the four-wide BVH (GpuBvh4Node, src/accel/wide_bvh.cpp): closest
+// hit for path segments, any hit for shadow rays. A node's four child boxes are tested
+// together, the children hit are visited nearest first and the others pushed.
 #ifndef PT_GEOMETRY_TRAVERSE_GLSL
 #define PT_GEOMETRY_TRAVERSE_GLSL
 #include "common/buffers.glsl"
@@ -9,10 +10,6 @@
 #include "shared/features.glsl"
 #include "textures/alpha.glsl"
 #include "geometry/motion.glsl"
-
-// Depth of the traversal stack (shared/layout.h). The builder caps tree depth below this
-// (src/accel/bvh.cpp).
-const int TRAVERSAL_STACK_SIZE = MAX_TRAVERSAL_DEPTH;
 
 // Slab tests round in both directions; growing the far distance by 1 + 2 gamma(3) makes them
 // conservative (Ize, "Robust BVH Ray Traversal", JCGT 2013), so a triangle lying on a box face
@@ -46,68 +43,108 @@ BoxRay makeBoxRay(Ray ray) {
     return r;
 }
 
-// Entry distance into the box (>= 0), or MISS when the ray misses it within (0, tMax).
-float boxEntry(vec3 lo, vec3 hi, BoxRay r, float tMax) {
-    vec3 t0 = (lo - r.origin) * r.invDir;
-    vec3 t1 = (hi - r.origin) * r.invDir;
-    vec3 tNear = min(t0, t1);
-    vec3 tFar = max(t0, t1);
+// A ray parallel to a slab is inside it for every t (origin between the planes, on them
+// included) or for none; 0 * (1/d) would otherwise give an empty interval on the hi plane.
+void parallelSlab(float origin, vec4 lo, vec4 hi, inout vec4 tNear, inout vec4 tFar) {
+    bvec4 inside = bvec4(uvec4(greaterThanEqual(vec4(origin), lo)) & uvec4(lessThanEqual(vec4(origin), hi)));
+    tNear = mix(vec4(FLOAT_MAX), vec4(-FLOAT_MAX), inside);
+    tFar = mix(vec4(-FLOAT_MAX), vec4(FLOAT_MAX), inside);
+}
+
+// Entry distances (>= 0) into a wide node's four child boxes, MISS for each the ray misses
+// within (0, tMax) and for unused slots.
+vec4 childEntries(GpuBvh4Node node, BoxRay r, float tMax) {
+    vec4 x0 = (node.loX - r.origin.x) * r.invDir.x, x1 = (node.hiX - r.origin.x) * r.invDir.x;
+    vec4 y0 = (node.loY - r.origin.y) * r.invDir.y, y1 = (node.hiY - r.origin.y) * r.invDir.y;
+    vec4 z0 = (node.loZ - r.origin.z) * r.invDir.z, z1 = (node.hiZ - r.origin.z) * r.invDir.z;
+    vec4 nearX = min(x0, x1), farX = max(x0, x1);
+    vec4 nearY = min(y0, y1), farY = max(y0, y1);
+    vec4 nearZ = min(z0, z1), farZ = max(z0, z1);
     if (r.anyParallel) {
-        // A ray parallel to a slab is inside it for every t (origin between the planes, on them
-        // included) or for none; 0 * (1/d) would otherwise give an empty interval on the hi plane.
-        bvec3 inside = bvec3(uvec3(greaterThanEqual(r.origin, lo)) & uvec3(lessThanEqual(r.origin, hi)));
-        tNear = mix(tNear, mix(vec3(FLOAT_MAX), vec3(-FLOAT_MAX), inside), r.parallel);
-        tFar = mix(tFar, mix(vec3(-FLOAT_MAX), vec3(FLOAT_MAX), inside), r.parallel);
+        if (r.parallel.x) parallelSlab(r.origin.x, node.loX, node.hiX, nearX, farX);
+        if (r.parallel.y) parallelSlab(r.origin.y, node.loY, node.hiY, nearY, farY);
+        if (r.parallel.z) parallelSlab(r.origin.z, node.loZ, node.hiZ, nearZ, farZ);
     }
-    float entry = max(max(tNear.x, tNear.y), max(tNear.z, 0.0));
-    float exit = min(min(tFar.x, tFar.y), min(tFar.z, tMax)) * BOX_FAR_SCALE;
-    return entry <= exit ? entry : MISS;
+    vec4 entry = max(max(nearX, nearY), max(nearZ, vec4(0.0)));
+    vec4 exit = min(min(farX, farY), min(farZ, vec4(tMax))) * BOX_FAR_SCALE;
+    bvec4 hit = bvec4(uvec4(lessThanEqual(entry, exit)) & uvec4(notEqual(node.child, uvec4(BVH4_EMPTY))));
+    return mix(vec4(MISS), entry, hit);
+}
+
+// Orders (distance, child) pairs a and b so that a is the nearer; misses count as farthest.
+void orderPair(inout float da, inout uint ca, inout float db, inout uint cb) {
+    bool swap = db < da;
+    float d = da;
+    uint c = ca;
+    da = swap ? db : da;
+    ca = swap ? cb : ca;
+    db = swap ? d : db;
+    cb = swap ? c : cb;
 }
 
 // Nodes visited by this invocation's traversals, counted only for the viewer's BVH-cost view
 // (the increment is removed by specialization otherwise). debug_view.glsl resets and reads it.
 uint traversalNodeVisits = 0u;
 
+// The traversal stack's two operations (macros: GLSL passes arrays by value). A pop skips the
+// children entered beyond the closest hit found since they were pushed, without loading them;
+// the far-distance scale keeps that as conservative as the box test that admitted them.
+#define PUSH_CHILD(child, entry)                                                                                       \
+    {                                                                                                                  \
+        stackT[stackSize] = entry;                                                                                     \
+        stack[stackSize++] = child;                                                                                    \
+    }
+#define POP_CHILD()                                                                                                    \
+    {                                                                                                                  \
+        do {                                                                                                           \
+            if (stackSize == 0) return found;                                                                          \
+            --stackSize;                                                                                               \
+        } while (stackT[stackSize] > hit.t * BOX_FAR_SCALE);                                                           \
+        current = stack[stackSize];                                                                                    \
+    }
+
 // One traversal loop for both trees (triangles, spheres): `sphereTree` is a literal at every
 // call, so the compiler keeps only one kind of leaf test in each inlined copy. `anyHit` stops
 // at the first hit (shadow rays).
 bool traverseTree(bool sphereTree, bool anyHit, Ray ray, WatertightRay wray, BoxRay boxRay, inout Hit hit) {
-    NodeRef nodes = sphereTree ? NodeRef(scene.sphereNodes) : sceneNodes;
+    Bvh4Ref nodes = sphereTree ? Bvh4Ref(scene.sphereNodes) : sceneNodes;
     uint numNodes = sphereTree ? scene.numSphereNodes : scene.numNodes;
     if (numNodes == 0u) return false;
-    GpuBvhNode root = nodes.v[0];
-    if (boxEntry(root.lo, root.hi, boxRay, hit.t) == MISS) return false;
-    uint stack[TRAVERSAL_STACK_SIZE];
+    uint stack[TRAVERSAL_STACK_SIZE];   // child words
+    float stackT[TRAVERSAL_STACK_SIZE]; // their entry distances
     int stackSize = 0;
-    uint nodeIndex = 0u;
+    uint current = 0u; // a child word: the root node
     bool found = false;
     while (true) {
         // Inner nodes first, down to a leaf: the lanes of a SIMD group then test their leaves
         // together instead of paying for inner-node and leaf steps in every iteration
         // (Aila and Laine's "while-while" traversal, 2009).
-        if (DEBUG_VIEW == DEBUG_VIEW_BVH_COST) ++traversalNodeVisits;
-        GpuBvhNode node = nodes.v[nodeIndex];
-        while (node.count == 0u) {
-            uint left = node.leftOrFirst;
-            GpuBvhNode a = nodes.v[left];
-            GpuBvhNode b = nodes.v[left + 1u];
-            float ta = boxEntry(a.lo, a.hi, boxRay, hit.t);
-            float tb = boxEntry(b.lo, b.hi, boxRay, hit.t);
-            bool hitA = ta != MISS;
-            bool hitB = tb != MISS;
-            if (hitA || hitB) {
-                bool aFirst = hitA && (!hitB || ta <= tb);
-                if (hitA && hitB && stackSize < TRAVERSAL_STACK_SIZE) stack[stackSize++] = aFirst ? left + 1u : left;
-                nodeIndex = aFirst ? left : left + 1u;
-                node = aFirst ? a : b;
-            } else {
-                if (stackSize == 0) return found;
-                nodeIndex = stack[--stackSize];
-                node = nodes.v[nodeIndex];
-            }
+        while ((current & BVH4_LEAF_BIT) == 0u) {
             if (DEBUG_VIEW == DEBUG_VIEW_BVH_COST) ++traversalNodeVisits;
+            GpuBvh4Node node = nodes.v[current];
+            vec4 t = childEntries(node, boxRay, hit.t);
+            // Nearest child first, so that the hits it yields shorten the rest; shadow rays
+            // find occluders sooner this way too (measured: unordered was slower for them).
+            // A network of five compare-exchanges orders the four slots, misses last.
+            vec4 d = mix(t, vec4(FLOAT_MAX), equal(t, vec4(MISS)));
+            uvec4 c = node.child;
+            orderPair(d.x, c.x, d.y, c.y);
+            orderPair(d.z, c.z, d.w, c.w);
+            orderPair(d.x, c.x, d.z, c.z);
+            orderPair(d.y, c.y, d.w, c.w);
+            orderPair(d.y, c.y, d.z, c.z);
+            // The others wait on the stack, farthest deepest, with their entry distances.
+            if (d.w != FLOAT_MAX) PUSH_CHILD(c.w, d.w);
+            if (d.z != FLOAT_MAX) PUSH_CHILD(c.z, d.z);
+            if (d.y != FLOAT_MAX) PUSH_CHILD(c.y, d.y);
+            if (d.x != FLOAT_MAX)
+                current = c.x;
+            else
+                POP_CHILD();
         }
-        for (uint i = node.leftOrFirst; i < node.leftOrFirst + node.count; ++i) {
+        uint first = current & BVH4_FIRST_MASK;
+        uint end = first + ((current >> BVH4_COUNT_SHIFT) & 15u) + 1u;
+        for (uint i = first; i < end; ++i) {
             float t;
             vec2 bary = vec2(0.0);
             bool hitPrimitive;
@@ -131,8 +168,7 @@ bool traverseTree(bool sphereTree, bool anyHit, Ray ray, WatertightRay wray, Box
                 if (anyHit) return true;
             }
         }
-        if (stackSize == 0) break;
-        nodeIndex = stack[--stackSize];
+        POP_CHILD();
     }
     return found;
 }

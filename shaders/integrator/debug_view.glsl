@@ -21,19 +21,21 @@ vec3 heatRamp(float x) {
                    : mix(vec3(0.0, 1.0, 0.0), vec3(1.0, 0.0, 0.0), 2.0 * x - 1.0);
 }
 
+float minOf(vec4 v) { return min(min(v.x, v.y), min(v.z, v.w)); }
+float maxOf(vec4 v) { return max(max(v.x, v.y), max(v.z, v.w)); }
+
+// Grows [lo, hi] by a wide node's box: the union of its four child boxes (unused slots are empty).
+void growByWideNode(GpuBvh4Node n, inout vec3 lo, inout vec3 hi) {
+    lo = min(lo, vec3(minOf(n.loX), minOf(n.loY), minOf(n.loZ)));
+    hi = max(hi, vec3(maxOf(n.hiX), maxOf(n.hiY), maxOf(n.hiZ)));
+}
+
 // Distance from p to the farthest corner of the scene's bounds (the roots of both BVHs):
 // depth is shown as 1 - t / this, so near surfaces are bright and the far end is black.
 float farthestSceneDistance(vec3 p) {
     vec3 lo = vec3(FLOAT_MAX), hi = vec3(-FLOAT_MAX);
-    if (HAS_TRIANGLES && scene.numNodes > 0u) {
-        lo = min(lo, sceneNodes.v[0].lo);
-        hi = max(hi, sceneNodes.v[0].hi);
-    }
-    if (HAS_SPHERES && scene.numSphereNodes > 0u) {
-        GpuBvhNode root = NodeRef(scene.sphereNodes).v[0];
-        lo = min(lo, root.lo);
-        hi = max(hi, root.hi);
-    }
+    if (HAS_TRIANGLES && scene.numNodes > 0u) growByWideNode(sceneNodes.v[0], lo, hi);
+    if (HAS_SPHERES && scene.numSphereNodes > 0u) growByWideNode(Bvh4Ref(scene.sphereNodes).v[0], lo, hi);
     return all(lessThanEqual(lo, hi)) ? max(length(max(abs(p - lo), abs(p - hi))), 1e-20) : 1.0;
 }
 

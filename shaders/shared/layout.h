@@ -14,6 +14,7 @@ using vec2 = glm::vec2;
 using vec3 = glm::vec3;
 using vec4 = glm::vec4;
 using uvec2 = glm::uvec2;
+using uvec4 = glm::uvec4;
 using uint = std::uint32_t;
 using uint64_t = std::uint64_t;
 #define PT_CHECK_SIZE(type, bytes) static_assert(sizeof(type) == (bytes), #type " must match its GLSL std430 size")
@@ -79,9 +80,19 @@ using uint64_t = std::uint64_t;
 #define NO_MOTION 0xffffffffu
 
 // ---- BVH traversal ----
-// Deepest BVH the kernel's traversal stack can hold (shaders/geometry/traverse.glsl); the
-// builder keeps trees shallower and flattenScene refuses deeper ones (src/flatten/flat_scene.cpp).
-#define MAX_TRAVERSAL_DEPTH 64
+// Entries of the kernel's traversal stack (shaders/geometry/traverse.glsl). Every tree's exact
+// need is computed when it is built (src/accel/wide_bvh.cpp) and flattenScene refuses a tree
+// that needs more (src/flatten/flat_scene.cpp), so the kernel never checks.
+#define TRAVERSAL_STACK_SIZE 96
+
+// Child words of GpuBvh4Node. An inner child is the index of its node (bit 31 clear); a leaf
+// has bit 31 set, its primitive count minus one in bits 27..30 and its first primitive (in the
+// BVH-ordered primitive array) in bits 0..26; an unused slot is BVH4_EMPTY.
+#define BVH4_EMPTY 0xffffffffu
+#define BVH4_LEAF_BIT 0x80000000u
+#define BVH4_COUNT_SHIFT 27u
+#define BVH4_MAX_LEAF_PRIMITIVES 16u
+#define BVH4_FIRST_MASK 0x07ffffffu // also the most primitives one tree can index, plus one
 
 #define NO_LIGHT 0xffffffffu
 // Hit::primitive: triangles are plain indices, spheres carry this bit.
@@ -166,15 +177,20 @@ struct GpuTriangleTangents {
 };
 PT_CHECK_SIZE(GpuTriangleTangents, 48);
 
-// Binary BVH node. Interior: count == 0, children at leftOrFirst and leftOrFirst + 1.
-// Leaf: triangles [leftOrFirst, leftOrFirst + count) of the (BVH-ordered) triangle array.
-struct GpuBvhNode {
-    vec3 lo;
-    uint leftOrFirst;
-    vec3 hi;
-    uint count;
+// Four-wide BVH node: the boxes of up to four children, one component of all four per vector,
+// so one ray tests them together, and their child words (BVH4_* above). Unused slots have
+// empty boxes (lo +FLOAT_MAX, hi -FLOAT_MAX) so that a union over the slots is the node's box.
+// Nodes are in depth-first preorder: node 0 is the root, a child follows its parent.
+struct GpuBvh4Node {
+    vec4 loX;
+    vec4 hiX;
+    vec4 loY;
+    vec4 hiY;
+    vec4 loZ;
+    vec4 hiZ;
+    uvec4 child;
 };
-PT_CHECK_SIZE(GpuBvhNode, 32);
+PT_CHECK_SIZE(GpuBvh4Node, 112);
 
 struct GpuMaterial {
     vec3 baseColor;       // diffuse albedo, mirror/dielectric/conductor tint
@@ -292,13 +308,13 @@ struct GpuSceneParams {
     // Device addresses of the scene arrays (buffer device address: no 128 MiB binding limit).
     uint64_t triangles;      // GpuTriangle[]
     uint64_t shading;        // GpuTriangleShading[]
-    uint64_t nodes;          // GpuBvhNode[]
+    uint64_t nodes;          // GpuBvh4Node[]
     uint64_t materials;      // GpuMaterial[]
     uint64_t lights;         // GpuLight[]
     uint64_t lightCdf;       // float[numLights + 1]
     uint64_t accumulation;   // vec4[ACCUMULATION_VEC4S_PER_PIXEL * pixels], see ACCUM_* below
     uint64_t spheres;        // GpuSphere[]
-    uint64_t sphereNodes;    // GpuBvhNode[]: a second BVH, over the spheres
+    uint64_t sphereNodes;    // GpuBvh4Node[]: a second BVH, over the spheres
     uint64_t envTexels;      // vec4[envWidth * envHeight]: radiance (scale applied), row 0 at the top
     uint64_t envMarginal;    // float[envHeight + 1]: CDF over rows of the sampling weights
     uint64_t envConditional; // float[envHeight * (envWidth + 1)]: CDF over columns, per row

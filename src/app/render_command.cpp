@@ -162,9 +162,9 @@ int runRender(const RenderOptions& o) {
                              "from bookworm-backports (scripts/setup.sh does)\n");
     if (!o.quiet) {
         std::fprintf(stderr,
-            "pt: %s: %zu triangles, %zu spheres, %zu lights, BVH %.3f s (SAH %.1f, depth %d), load %.2f s\n",
+            "pt: %s: %zu triangles, %zu spheres, %zu lights, BVH %.3f s (SAH %.1f, depth %d, 4-wide %d), load %.2f s\n",
             scene.source.c_str(), flat.triangles.size(), flat.spheres.size(), flat.lights.lights.size(),
-            flat.bvhSeconds, flat.sahCost, flat.bvhDepth, loadSeconds);
+            flat.bvhSeconds, flat.sahCost, flat.bvhDepth, flat.wideBvhDepth, loadSeconds);
         std::fprintf(stderr, "pt: device %s (%s)\n", context.info().name.c_str(), context.info().driver.c_str());
     }
     for (const Job& job : jobs)

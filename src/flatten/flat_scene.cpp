@@ -90,15 +90,14 @@ bool cutsOut(const Material& m) {
 
 bool finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
-// The tree as the kernel reads it; `what` names it if it is too deep for the traversal stack.
-std::vector<gpu::GpuBvhNode> gpuNodes(const Bvh& bvh, const std::string& what) {
-    if (bvh.maxDepth >= kMaxTraversalDepth)
-        throw std::runtime_error(what + " depth " + std::to_string(bvh.maxDepth) + " exceeds the traversal stack (" +
-                                 std::to_string(kMaxTraversalDepth) + ")");
-    std::vector<gpu::GpuBvhNode> nodes;
-    nodes.reserve(bvh.nodes.size());
-    for (const BvhNode& n : bvh.nodes) nodes.push_back({n.lo, n.leftOrFirst, n.hi, n.count});
-    return nodes;
+// The tree as the kernel reads it, four-wide; `what` names it if the traversal stack cannot
+// hold it.
+WideBvh gpuNodes(const Bvh& bvh, const std::string& what) {
+    WideBvh wide = collapseToWide(bvh);
+    if (wide.stackNeed > TRAVERSAL_STACK_SIZE)
+        throw std::runtime_error(what + " needs " + std::to_string(wide.stackNeed) +
+                                 " traversal stack entries; the kernel has " + std::to_string(TRAVERSAL_STACK_SIZE));
+    return wide;
 }
 
 // World-space box of the unit sphere under the affine map m: the half-extent along each axis
@@ -161,7 +160,7 @@ void flattenSpheres(const Scene& scene, const BvhBuildOptions& bvhOptions, FlatS
         bounds.push_back(box);
     }
     const Bvh bvh = buildBvh(bounds, bvhOptions);
-    flat.sphereNodes = gpuNodes(bvh, scene.source + ": sphere BVH");
+    flat.sphereNodes = gpuNodes(bvh, scene.source + ": sphere BVH").nodes;
     for (uint32_t original : bvh.primOrder) flat.spheres.push_back(spheres[original]);
 }
 
@@ -228,10 +227,7 @@ FlatEnvironment flattenEnvironment(const Environment& env, const std::string& so
 float sceneRadius(const FlatScene& flat) {
     Aabb box;
     for (const auto& n : {flat.nodes, flat.sphereNodes})
-        if (!n.empty()) {
-            box.grow(n[0].lo);
-            box.grow(n[0].hi);
-        }
+        if (!n.empty()) box.grow(wideNodeBounds(n[0]));
     return box.empty() ? 1.0f : std::max(0.5f * glm::length(box.hi - box.lo), 1e-6f);
 }
 
@@ -311,10 +307,12 @@ FlatScene flattenScene(const Scene& scene, const BvhBuildOptions& bvhOptions) {
     }
 
     const Bvh bvh = buildBvh(bounds, bvhOptions);
-    flat.nodes = gpuNodes(bvh, scene.source + ": BVH");
+    WideBvh wide = gpuNodes(bvh, scene.source + ": BVH");
+    flat.nodes = std::move(wide.nodes);
     flat.bvhSeconds = bvh.buildSeconds;
     flat.sahCost = bvh.sahCost;
     flat.bvhDepth = bvh.maxDepth;
+    flat.wideBvhDepth = wide.depth;
     flat.triangles.reserve(triangles.size());
     flat.shading.reserve(triangles.size());
     for (uint32_t original : bvh.primOrder) {

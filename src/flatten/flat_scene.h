@@ -2,6 +2,7 @@
 // The scene flattened into the arrays the kernel reads: BVH-ordered triangles with their
 // shading data, BVH nodes, materials and the light table. Built once per scene on the CPU.
 #include "accel/bvh.h"
+#include "accel/wide_bvh.h"
 #include "lights/light_table.h"
 #include "scene/scene.h"
 #include "shared/layout.h"
@@ -24,9 +25,9 @@ struct FlatScene {
     std::vector<gpu::GpuTriangle> triangles;
     std::vector<gpu::GpuTriangleShading> shading;
     std::vector<gpu::GpuTriangleTangents> tangents; // per triangle when any mesh has tangents, else empty
-    std::vector<gpu::GpuBvhNode> nodes;
-    std::vector<gpu::GpuSphere> spheres;      // BVH-ordered
-    std::vector<gpu::GpuBvhNode> sphereNodes; // a second BVH, over the spheres
+    std::vector<gpu::GpuBvh4Node> nodes;            // four-wide (accel/wide_bvh.h)
+    std::vector<gpu::GpuSphere> spheres;            // BVH-ordered
+    std::vector<gpu::GpuBvh4Node> sphereNodes;      // a second BVH, over the spheres
     std::vector<gpu::GpuMaterial> materials;
     std::vector<gpu::GpuTexture> textures;
     std::vector<uint32_t> texels; // every image texture's texels, packed (see GpuTexture)
@@ -39,15 +40,13 @@ struct FlatScene {
     size_t degenerateSpheres = 0;   // singular or non-finite sphere transforms dropped
     double bvhSeconds = 0;
     double sahCost = 0;
-    int bvhDepth = 0;
+    int bvhDepth = 0;     // binary tree's depth (edges)
+    int wideBvhDepth = 0; // nodes on the wide tree's longest path
 };
 
 FlatScene flattenScene(const Scene& scene, const BvhBuildOptions& bvhOptions = {});
 
 // The scene's textures and their images as the kernel reads them (src/flatten/flat_textures.cpp).
 void flattenTextures(const Scene& scene, FlatScene& flat);
-
-// Deepest BVH the kernel's traversal stack (shaders/geometry/traverse.glsl) can hold.
-constexpr int kMaxTraversalDepth = MAX_TRAVERSAL_DEPTH;
 
 } // namespace pt

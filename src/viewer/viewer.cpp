@@ -24,10 +24,11 @@ double msSince(Clock::time_point t) { return std::chrono::duration<double, std::
 
 // Bounds of the scene from the roots of its BVHs.
 void sceneBounds(const FlatScene& flat, glm::vec3& centre, float& radius) {
-    glm::vec3 lo(INFINITY), hi(-INFINITY);
-    if (!flat.nodes.empty()) lo = glm::min(lo, flat.nodes[0].lo), hi = glm::max(hi, flat.nodes[0].hi);
-    if (!flat.sphereNodes.empty()) lo = glm::min(lo, flat.sphereNodes[0].lo), hi = glm::max(hi, flat.sphereNodes[0].hi);
-    if (!(lo.x <= hi.x)) lo = hi = glm::vec3(0.0f);
+    Aabb box;
+    if (!flat.nodes.empty()) box.grow(wideNodeBounds(flat.nodes[0]));
+    if (!flat.sphereNodes.empty()) box.grow(wideNodeBounds(flat.sphereNodes[0]));
+    glm::vec3 lo = box.lo, hi = box.hi;
+    if (box.empty()) lo = hi = glm::vec3(0.0f);
     centre = 0.5f * (lo + hi);
     radius = std::max(0.5f * glm::length(hi - lo), 1e-3f);
 }

@@ -130,19 +130,38 @@ std::string describe(const GpuTestRay& r) {
     return s.str();
 }
 
-// A BVH answer naming a different triangle than brute force is still right if it is a genuine
-// tie: brute force keeps the lowest index among equal t, so the BVH's must be higher, and its
-// barycentrics must put the hit point on the ray at that same t.
-bool isGenuineTie(const pt::FlatScene& flat, const GpuTestRay& ray, const TraceResult& bvh, const TraceResult& brute) {
-    if (bvh.triangle <= brute.triangle || bvh.triangle >= flat.triangles.size()) return false;
-    const pt::gpu::GpuTriangle& tri = flat.triangles[bvh.triangle];
+// Whether `result`'s barycentrics put its hit point on the ray at its t, inside its triangle.
+bool liesOnItsTriangle(const pt::FlatScene& flat, const GpuTestRay& ray, const TraceResult& result) {
+    if (result.triangle >= flat.triangles.size()) return false;
+    const pt::gpu::GpuTriangle& tri = flat.triangles[result.triangle];
     const glm::dvec3 p0(tri.p0), p1(tri.p1), p2(tri.p2);
-    const glm::dvec3 onTriangle = p0 + double(bvh.bary.x) * (p1 - p0) + double(bvh.bary.y) * (p2 - p0);
+    const glm::dvec3 onTriangle = p0 + double(result.bary.x) * (p1 - p0) + double(result.bary.y) * (p2 - p0);
+    const glm::dvec3 onRay = glm::dvec3(ray.origin) + double(result.t) * glm::dvec3(ray.direction);
+    const double scale = 1.0 + glm::length(glm::dvec3(ray.origin)) + glm::length(onRay);
+    const float b0 = 1.0f - result.bary.x - result.bary.y;
+    const float eps = 1e-4f;
+    return glm::length(onTriangle - onRay) < 1e-4 * scale && result.bary.x >= -eps && result.bary.y >= -eps &&
+           b0 >= -eps;
+}
+
+// A BVH answer naming a different triangle than brute force at the same t is still right if it
+// is a genuine tie: brute force keeps the lowest index among equal t, so the BVH's must be
+// higher, and its hit must lie on its triangle.
+bool isGenuineTie(const pt::FlatScene& flat, const GpuTestRay& ray, const TraceResult& bvh, const TraceResult& brute) {
+    return bvh.triangle > brute.triangle && liesOnItsTriangle(flat, ray, bvh);
+}
+
+// A BVH answer farther than brute force's by no more than the intersector's rounding is a tie
+// too: two triangles meeting the ray at the same point (coplanar faces along a shared edge)
+// whose computed t differ in their last bits, where the traversal reached the other one first
+// and the box of brute force's triangle was (rightly) not entered beyond the found t. A culled
+// closer surface lies farther off than this by orders of magnitude.
+bool isRoundingTie(const pt::FlatScene& flat, const GpuTestRay& ray, const TraceResult& bvh, const TraceResult& brute) {
+    if (!(bvh.t > brute.t)) return false;
     const glm::dvec3 onRay = glm::dvec3(ray.origin) + double(bvh.t) * glm::dvec3(ray.direction);
     const double scale = 1.0 + glm::length(glm::dvec3(ray.origin)) + glm::length(onRay);
-    const float b0 = 1.0f - bvh.bary.x - bvh.bary.y;
-    const float eps = 1e-4f;
-    return glm::length(onTriangle - onRay) < 1e-4 * scale && bvh.bary.x >= -eps && bvh.bary.y >= -eps && b0 >= -eps;
+    const bool withinRounding = double(bvh.t) - double(brute.t) <= 4.0 * std::numeric_limits<float>::epsilon() * scale;
+    return withinRounding && liesOnItsTriangle(flat, ray, bvh);
 }
 
 struct Comparison {
@@ -180,6 +199,10 @@ Comparison expectBvhMatchesBruteForce(
         if (!f.hit) continue;
         ++c.hits;
         if (std::bit_cast<uint32_t>(b.t) != std::bit_cast<uint32_t>(f.t)) {
+            if (isRoundingTie(scene.flat, rays[i], b, f)) {
+                ++c.ties;
+                continue;
+            }
             fail(i, "t differs: BVH " + str(b.t) + " (triangle " + std::to_string(b.triangle) + "), brute force " +
                         str(f.t) + " (triangle " + std::to_string(f.triangle) + ")");
         } else if (b.triangle != f.triangle) {
@@ -263,7 +286,13 @@ std::vector<GpuTestRay> nodePlaneRays(const pt::FlatScene& flat, size_t count, s
     const std::vector<glm::vec3> axisDirs = axisAlignedDirections();
     std::uniform_int_distribution<size_t> pickDir(0, axisDirs.size() - 1);
     for (size_t i = 0; i < count; ++i) {
-        const pt::gpu::GpuBvhNode& node = flat.nodes[pickNode(rng)];
+        // A child box of a random wide node (every box the traversal tests is one of these).
+        const pt::gpu::GpuBvh4Node& wide = flat.nodes[pickNode(rng)];
+        int slot = int(rng() % 4);
+        while (wide.child[slot] == BVH4_EMPTY) slot = (slot + 1) % 4;
+        struct {
+            glm::vec3 lo, hi;
+        } node{{wide.loX[slot], wide.loY[slot], wide.loZ[slot]}, {wide.hiX[slot], wide.hiY[slot], wide.hiZ[slot]}};
         const glm::vec3 margin = 0.1f * (node.hi - node.lo) + 1e-3f;
         glm::vec3 origin = randomIn(rng, node.lo - margin, node.hi + margin);
         const int axis = pickAxis(rng);
@@ -314,8 +343,8 @@ TEST_F(TraversalTest, RandomRaysAgainstTriangleSoupMatchBruteForce) {
     const Comparison c = expectBvhMatchesBruteForce(scene, rays, "random rays / soup");
     // The test only means something if a good share of rays hit.
     EXPECT_GT(c.hits, rays.size() / 4);
-    std::printf("[          ] %zu rays, %zu hits, %zu ties, %zu BVH nodes, depth %d\n", rays.size(), c.hits, c.ties,
-        scene.flat.nodes.size(), scene.flat.bvhDepth);
+    std::printf("[          ] %zu rays, %zu hits, %zu ties, %zu wide BVH nodes, depth %d (binary %d)\n", rays.size(),
+        c.hits, c.ties, scene.flat.nodes.size(), scene.flat.wideBvhDepth, scene.flat.bvhDepth);
 }
 
 TEST_F(TraversalTest, AxisAlignedRaysAndOriginsOnNodePlanesMatchBruteForce) {
@@ -329,10 +358,12 @@ TEST_F(TraversalTest, AxisAlignedRaysAndOriginsOnNodePlanesMatchBruteForce) {
 
 TEST_F(TraversalTest, FlatGridInPlaneZeroMatchesBruteForce) {
     const TestScene scene = uploadMeshes({flatGrid(24)});
-    for (const pt::gpu::GpuBvhNode& n : scene.flat.nodes) {
-        ASSERT_EQ(n.lo.z, 0.0f);
-        ASSERT_EQ(n.hi.z, 0.0f);
-    }
+    for (const pt::gpu::GpuBvh4Node& n : scene.flat.nodes)
+        for (int slot = 0; slot < 4; ++slot) {
+            if (n.child[slot] == BVH4_EMPTY) continue;
+            ASSERT_EQ(n.loZ[slot], 0.0f);
+            ASSERT_EQ(n.hiZ[slot], 0.0f);
+        }
     std::mt19937 rng(31);
     std::vector<GpuTestRay> rays =
         concat({randomRays(15000, rng, glm::vec3(-14.0f, -14.0f, -5.0f), glm::vec3(14.0f, 14.0f, 5.0f)),
