@@ -70,7 +70,7 @@ void addSceneOptions(CLI::App* cmd, pt::RenderOptions& o, SwitchWords& w) {
         ->check(CLI::IsMember({"bsdf", "cosine", "uniform"}));
     cmd->add_option("--sampler", w.sampler,
            "What fills each sample's random dimensions: independent (hashed random numbers) or sobol "
-           "(Owen-scrambled Sobol' points shuffled per pixel; lower error for the same samples); default independent")
+           "(Owen-scrambled Sobol' points shuffled per pixel; lower error for the same samples); default sobol")
         ->check(CLI::IsMember({"independent", "sobol"}));
     cmd->add_option("--light-tracing", w.lightTracing,
            "Caustics seen directly (camera, diffuse surface, mirrors or glass, area light) by light tracing, "

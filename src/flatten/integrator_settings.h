@@ -16,7 +16,10 @@ struct IntegratorSettings {
     bool mis = true; // multiple importance sampling between light and BSDF samples (needs NEE)
     bool rr = true;  // Russian roulette
     DirectionSampling sampling = DirectionSampling::Cosine;
-    SamplerKind sampler = SamplerKind::Independent;
+    // Sobol' is the default: at equal time it had lower or equal error on every scene measured
+    // (0.56x relMSE on the diffuse box, 0.64x on a 1 M-triangle mesh, 0.86x with rough
+    // materials, 0.96x on the glass box; bench/RESULTS.md, "The defaults").
+    SamplerKind sampler = SamplerKind::Sobol;
     uint32_t maxDepth = 16;    // ray segments including the camera ray (Mitsuba 3's max_depth)
     uint32_t rrStartDepth = 5; // Russian roulette only after this many segments (Mitsuba 3 default)
     // Paths whose throughput is at least this always continue; below it they survive with

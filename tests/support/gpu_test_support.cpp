@@ -106,6 +106,12 @@ Mesh makeQuad(glm::vec3 corner, glm::vec3 edgeU, glm::vec3 edgeV, uint32_t mater
     return m;
 }
 
+IntegratorSettings independentSettings() {
+    IntegratorSettings s;
+    s.sampler = SamplerKind::Independent;
+    return s;
+}
+
 Renderer::Readback renderScene(const Scene& scene, const IntegratorSettings& settings, const Camera& camera, int width,
     int height, uint32_t spp, uint32_t passSpp, uint32_t tileSize) {
     FlatScene flat = flattenScene(scene);

@@ -41,6 +41,13 @@ std::vector<glm::vec4> runTestKernel(uint32_t mode, uint32_t count, const GpuSce
 Mesh makeIcosphere(int subdivisions, glm::vec3 centre, float radius, uint32_t material);
 Mesh makeQuad(glm::vec3 corner, glm::vec3 edgeU, glm::vec3 edgeV, uint32_t material); // normal = edgeU x edgeV
 
+// The integrator defaults with independent samples, for tests whose statistics divide by each
+// pixel's sample variance / n: that is the variance of the mean only for independent samples.
+// Under the default Sobol' points the mean varies less, so such a z-test would lose power (pass
+// too easily), not fail; the default sampler is tested with seeds as replicates instead
+// (tests/shaders/integrator/sobol_reference_test.cpp).
+IntegratorSettings independentSettings();
+
 // Renders `scene` from `camera` with the kernel specialised for it and returns the sums read back.
 Renderer::Readback renderScene(const Scene& scene, const IntegratorSettings& settings, const Camera& camera, int width,
     int height, uint32_t spp, uint32_t passSpp = 0, uint32_t tileSize = 0);

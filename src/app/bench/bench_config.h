@@ -3,7 +3,7 @@
 // joined by '+': nee (next event estimation, with MIS unless nomis), is (BSDF importance
 // sampling; without it uniform directions), rr (Russian roulette), nomis, sobol (the
 // Owen-scrambled Sobol' sampler; without it independent), nolt (no light tracing of caustics,
-// which is otherwise used where the scene has them), or none. "nee+is+rr" is the renderer's
+// which is otherwise used where the scene has them), or none. "nee+is+rr+sobol" is the renderer's
 // default; the words name what is on, everything unnamed is off (light tracing aside).
 #include "flatten/integrator_settings.h"
 

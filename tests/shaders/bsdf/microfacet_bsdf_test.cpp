@@ -497,7 +497,7 @@ protected:
 };
 
 TEST_F(MicrofacetRender, RoughGlassAtTinyAlphaConvergesToSmoothGlass) {
-    IntegratorSettings s;
+    IntegratorSettings s = independentSettings();
     s.maxDepth = 32;
     Scene smooth = glassSphere(0.0f, true), rough = glassSphere(std::sqrt(1.0001e-3f), true);
     smooth.environment = gradientSky();
@@ -531,7 +531,7 @@ TEST_F(MicrofacetRender, RoughGlassUnderUniformSkyLosesLittle) {
     Environment sky;
     sky.colour = glm::vec3(1.0f);
     scene.environment = sky;
-    IntegratorSettings s;
+    IntegratorSettings s = independentSettings();
     s.maxDepth = 64;
     s.rr = false;
     const auto r = renderScene(scene, s, lookingAtOrigin(), 16, 16, 64);

@@ -56,7 +56,7 @@ TEST_F(HardCases, DegenerateInputLoadsAndLightsTheFloorAsLambertsFormulaSays) {
 
     const int size = 32;
     const Camera& camera = scene.cameras.at(0);
-    IntegratorSettings s;
+    IntegratorSettings s = independentSettings();
     s.maxDepth = 2; // direct light only
     const auto r = renderAllModes(scene, s, camera, size, 64, "degenerate input");
     const ImageStats all = imageStats(r, 0);

@@ -54,7 +54,7 @@ TEST_F(HardCases, LowPolySphereWithSmoothNormalsHasNoBlackTerminatorBandAndNoLea
     ASSERT_FLOAT_EQ(scene.punctualLights[0].intensity.x, float(M_PI)); // radiance = n_s . l on the lit side
     const int size = 48;
     const Camera& camera = scene.cameras.at(0);
-    IntegratorSettings s;
+    IntegratorSettings s = independentSettings();
     s.maxDepth = 2;
     const auto r = renderAllModes(scene, s, camera, size, 16, "smooth icosphere");
 
@@ -154,7 +154,7 @@ void expectNormalMappedPlane(const Scene& scene, const char* file) {
 // lit. An emitter below stays invisible to BSDF-sampled rays too.
 TEST_F(HardCases, NormalMappedPlaneLetsNoLightThroughAndKeepsItsLitStripesLit) {
     const int size = 32;
-    IntegratorSettings s;
+    IntegratorSettings s = independentSettings();
     s.maxDepth = 2;
     for (bool fromBelow : {true, false}) {
         const char* file =

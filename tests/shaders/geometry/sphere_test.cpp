@@ -71,7 +71,7 @@ TEST_F(Spheres, CameraInsideAnEmissiveDiffuseSphereSeesTheAnalyticRadiance) {
     camera.yfov = 1.5f;
     const double expected = (1.0 - std::pow(0.5, 6)) / 0.5;
     for (int mode = 0; mode < 3; ++mode) {
-        IntegratorSettings s;
+        IntegratorSettings s = independentSettings();
         s.maxDepth = 6;
         s.rr = false;
         s.nee = mode > 0;
@@ -103,7 +103,7 @@ protected:
         Camera camera;
         camera.position = glm::vec3(0, 0, 4);
         camera.yfov = 0.6f;
-        IntegratorSettings s;
+        IntegratorSettings s = independentSettings();
         s.maxDepth = 64;
         s.rr = false;
         return renderScene(scene, s, camera, 33, 33, 64);

@@ -44,7 +44,7 @@ const Camera& courseCamera(const Scene& scene, int id) {
 
 // The camera's own switches, as `pt render` takes them (src/app/scene_setup.cpp, makeJob).
 IntegratorSettings cameraSettings(const Camera& camera) {
-    IntegratorSettings s;
+    IntegratorSettings s = independentSettings();
     s.nee = camera.settings.nee.value_or(true);
     s.rr = camera.settings.russianRoulette.value_or(true);
     s.sampling =

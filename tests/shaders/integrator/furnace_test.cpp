@@ -68,7 +68,7 @@ TEST_F(Furnace, EverySettingConvergesToTheAnalyticRadiance) {
     camera.position = glm::vec3(0.0f);
     camera.yfov = 1.5f;
     for (const auto& c : cases) {
-        IntegratorSettings s;
+        IntegratorSettings s = independentSettings();
         s.nee = c.nee;
         s.mis = c.mis;
         s.rr = c.rr;
@@ -93,7 +93,7 @@ TEST_F(Furnace, RussianRouletteThresholdsKeepTheFurnaceExact) {
     camera.position = glm::vec3(0.0f);
     camera.yfov = 1.5f;
     for (float threshold : {0.25f, 1.0f, 4.0f}) {
-        IntegratorSettings s;
+        IntegratorSettings s = independentSettings();
         s.nee = false; // BSDF sampling only: every path length is decided by the roulette
         s.maxDepth = 64;
         s.rrStartDepth = 2;
@@ -109,7 +109,7 @@ TEST_F(Furnace, RussianRouletteThresholdsKeepTheFurnaceExact) {
 
 TEST_F(Furnace, WrongAlbedoIsDetected) {
     // Negative control: the same comparison against a slightly different albedo must fail.
-    IntegratorSettings s;
+    IntegratorSettings s = independentSettings();
     s.maxDepth = 64;
     Camera camera;
     camera.position = glm::vec3(0.0f);
@@ -142,7 +142,7 @@ TEST_F(Furnace, GlassSphereInAWhiteSkyIsInvisible) {
         Camera camera;
         camera.position = glm::vec3(0.0f, 0.0f, 3.0f);
         camera.yfov = 0.75f; // the sphere fills most of the image
-        IntegratorSettings s;
+        IntegratorSettings s = independentSettings();
         s.maxDepth = 64;
         const Renderer::Readback r = renderScene(scene, s, camera, 24, 24, 64);
         EXPECT_EQ(r.droppedSamples, 0u);

@@ -24,7 +24,7 @@ TEST_F(HardCases, LightInsideGlassAtTheFieldsRadianceIsInvisible) {
     EXPECT_EQ(scene.materials.at(glass.material).ior, 1.5f);
     EXPECT_EQ(scene.materials.at(lamp.material).emission, glm::vec3(2.25f));
     EXPECT_EQ(scene.materials.at(lamp.material).baseColor, glm::vec3(0.0f));
-    IntegratorSettings s;
+    IntegratorSettings s = independentSettings();
     s.maxDepth = 64;
     const int size = 32;
     const Camera& camera = scene.cameras.at(0);

@@ -47,7 +47,7 @@ bool isClearGlass(const Material& m) {
 
 // ---- Scale: the Cornell box at 1e-3, 1 and 1e3, and moved to (1e4, 1e4, 1e4) ----
 TEST_F(HardCases, CornellBoxMeanRadianceIsTheSameAtEveryScaleAndPlace) {
-    IntegratorSettings s;
+    IntegratorSettings s = independentSettings();
     s.maxDepth = 8;
     struct Case {
         const char* name;
@@ -93,7 +93,7 @@ TEST_F(HardCases, NoLightLeaksIntoASealedRoomThroughContactsAndAThinLid) {
     const std::pair<float, const char*> cases[] = {{1.0f, "sealed-room-scale-1.gltf"},
         {1e-3f, "sealed-room-scale-1e-3.gltf"}, {1e3f, "sealed-room-scale-1e3.gltf"}};
     for (auto [scale, file] : cases) {
-        IntegratorSettings s;
+        IntegratorSettings s = independentSettings();
         s.maxDepth = 8;
         Scene scene = loadHardScene(file, s);
         // Floor, walls without a bottom (10 triangles), lid; double-sided, so that light
@@ -123,7 +123,7 @@ TEST_F(HardCases, NoLightLeaksIntoASealedRoomThroughContactsAndAThinLid) {
 // edges (to within rounding); each must find a front face (radiance 1), never slip through to
 // the inside of the far face (0) or the bright sky (5). ----
 TEST_F(HardCases, RaysThroughSharedVerticesAndEdgesOfAClosedMeshNeverSlipThrough) {
-    IntegratorSettings s;
+    IntegratorSettings s = independentSettings();
     s.maxDepth = 1;
     Scene scene = loadHardScene("watertight-cube.gltf", s);
     ASSERT_EQ(scene.meshes.size(), 6u);
@@ -162,7 +162,7 @@ TEST_F(HardCases, RaysThroughSharedVerticesAndEdgesOfAClosedMeshNeverSlipThrough
 // the sky over its whole hemisphere, so every pixel is the albedo (1 - 1e-5 for the curvature);
 // acne (rays hitting the ground they leave) darkens pixels.
 TEST_F(HardCases, HugeGroundSphereHasNoAcne) {
-    IntegratorSettings s;
+    IntegratorSettings s = independentSettings();
     s.maxDepth = 8;
     const Scene scene = loadHardScene("ground-sphere.xml", s);
     ASSERT_EQ(scene.spheres.size(), 1u);
@@ -184,7 +184,7 @@ TEST_F(HardCases, CameraInsideSpheresOfEverySizeSeesTheAnalyticRadiance) {
     const std::pair<float, const char*> cases[] = {{1e-3f, "inside-sphere-r1e-3.xml"},
         {1e-2f, "inside-sphere-r1e-2.xml"}, {1.0f, "inside-sphere-r1.xml"}, {1e4f, "inside-sphere-r1e4.xml"}};
     for (auto [radius, file] : cases) {
-        IntegratorSettings s;
+        IntegratorSettings s = independentSettings();
         s.maxDepth = 6;
         s.rr = false;
         const Scene scene = loadHardScene(file, s);
@@ -214,7 +214,7 @@ TEST_F(HardCases, CameraInsideSpheresOfEverySizeSeesTheAnalyticRadiance) {
 // per direction step) and the same 1% tolerance holds.
 TEST_F(HardCases, TinySphereFarAwayCoversItsSolidAngle) {
     for (const char* file : {"tiny-far-sphere-ahead.xml", "tiny-far-sphere-diagonal.xml"}) {
-        IntegratorSettings s;
+        IntegratorSettings s = independentSettings();
         s.maxDepth = 2;
         const Scene scene = loadHardScene(file, s);
         ASSERT_EQ(scene.spheres.size(), 1u) << file;
@@ -251,7 +251,7 @@ TEST_F(HardCases, SphereLightIrradianceMatchesPiLSinSquaredThetaMax) {
     const std::pair<const char*, const char*> cases[] = {
         {"sun", "sphere-light-sun.xml"}, {"almost touching", "sphere-light-almost-touching.xml"}};
     for (auto [name, file] : cases) {
-        IntegratorSettings s;
+        IntegratorSettings s = independentSettings();
         s.maxDepth = 2; // direct light only
         Scene scene = loadHardScene(file, s);
         // A white floor at y = 0 (to 20 either way) and one sphere light wholly above it.
@@ -318,7 +318,7 @@ TEST_F(HardCases, SphereLightIrradianceMatchesPiLSinSquaredThetaMax) {
 // sky inside glass; farther out they are totally internally reflected forever, and end at the
 // depth limit with 0.
 TEST_F(HardCases, TotalInternalReflectionInsideAGlassSphere) {
-    IntegratorSettings s;
+    IntegratorSettings s = independentSettings();
     s.maxDepth = 64;
     const Scene scene = loadHardScene("glass-sphere-from-inside.xml", s);
     ASSERT_EQ(scene.spheres.size(), 1u);
@@ -361,7 +361,7 @@ TEST_F(HardCases, ClearGlassInAWhiteSkyIsInvisibleAtGrazingViewsNestedAndAdjacen
     const std::pair<const char*, const char*> cases[] = {{"grazing slab", "clear-glass-grazing-slab.xml"},
         {"nested spheres", "clear-glass-nested-spheres.xml"}, {"adjacent blocks", "clear-glass-adjacent-blocks.xml"}};
     for (auto [name, file] : cases) {
-        IntegratorSettings s;
+        IntegratorSettings s = independentSettings();
         s.maxDepth = 64;
         const Scene scene = loadHardScene(file, s);
         ASSERT_EQ(scene.meshes.size() + scene.spheres.size(), name == std::string("grazing slab") ? 1u : 2u) << file;

@@ -28,7 +28,7 @@ class LightTracing : public GpuTest {};
 
 TEST_F(LightTracing, SphereLightCausticsAgreeWithBsdfSampling) {
     const Scene scene = loadScene(causticsScene());
-    IntegratorSettings s;
+    IntegratorSettings s = independentSettings();
     s.maxDepth = 8;
     ASSERT_TRUE(computeFeatures(flattenScene(scene), s).lightTracing);
     const Camera& camera = scene.cameras.at(0);
@@ -57,7 +57,7 @@ TEST_F(LightTracing, SphereLightCausticsAgreeWithBsdfSampling) {
 }
 
 TEST_F(LightTracing, UsedOnlyWhereTheSceneHasCausticsItModels) {
-    IntegratorSettings s;
+    IntegratorSettings s = independentSettings();
     const auto features = [&](const std::filesystem::path& path) {
         return computeFeatures(flattenScene(loadScene(path)), s);
     };

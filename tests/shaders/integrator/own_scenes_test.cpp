@@ -129,7 +129,7 @@ Camera stageCamera() {
 constexpr int kSize = 48;
 
 Renderer::Readback render(const Scene& scene, bool nee, uint32_t spp) {
-    IntegratorSettings s;
+    IntegratorSettings s = independentSettings();
     s.nee = nee;
     s.maxDepth = 12;
     return renderScene(scene, s, stageCamera(), kSize, kSize, spp);

@@ -23,7 +23,7 @@ protected:
         Scene scene = loadGltfFile(dir / "scene.gltf");
         const Image reference = readExr(dir / "reference.exr");
         const Image referenceVar = readExr(dir / "reference.var.exr");
-        IntegratorSettings settings;
+        IntegratorSettings settings = independentSettings();
         settings.maxDepth = static_cast<uint32_t>(scene.hints.maxDepth.value());
         settings.seed = 7;
         auto r = renderScene(scene, settings, scene.cameras.at(0), reference.width, reference.height, spp);

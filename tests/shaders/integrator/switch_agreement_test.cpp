@@ -51,7 +51,7 @@ protected:
         Scene scene = loadGltfFile(testDataDir() / "references" / sceneName / "scene.gltf");
         const Camera camera = scene.cameras.at(0);
         auto render = [&](const Combination& c, uint32_t seed) {
-            IntegratorSettings s;
+            IntegratorSettings s = independentSettings();
             s.nee = c.nee;
             s.mis = c.mis;
             s.rr = c.rr;
@@ -83,7 +83,7 @@ TEST_F(SwitchAgreement, CornellBoxGlassMirror) { run("cbox-glass-mirror", 64, 25
 TEST_F(SwitchAgreement, DifferentDepthLimitIsDetected) {
     // Negative control: max depth 2 (direct light only) against 8 must be flagged.
     Scene scene = loadGltfFile(testDataDir() / "references" / "cbox-diffuse" / "scene.gltf");
-    IntegratorSettings s;
+    IntegratorSettings s = independentSettings();
     s.maxDepth = 8;
     auto a = renderScene(scene, s, scene.cameras.at(0), 64, 64, 128);
     s.maxDepth = 2;

@@ -48,7 +48,7 @@ TEST_F(EnvironmentLight, DiffuseSphereUnderUniformSkyReflectsItsAlbedo) {
     sky.colour = glm::vec3(1.0f);
     scene.environment = sky;
     for (int mode = 0; mode < 3; ++mode) {
-        IntegratorSettings s;
+        IntegratorSettings s = independentSettings();
         s.nee = mode != 2;
         s.mis = mode == 0;
         s.maxDepth = 8;
@@ -74,7 +74,7 @@ TEST_F(EnvironmentLight, GlassSphereUnderUniformSkyConservesRadiance) {
     Environment sky;
     sky.colour = glm::vec3(1.0f);
     scene.environment = sky;
-    IntegratorSettings s;
+    IntegratorSettings s = independentSettings();
     s.maxDepth = 64;
     s.rr = false;
     auto r = renderScene(scene, s, lookingAtOrigin(), 16, 16, 32);
@@ -96,7 +96,7 @@ TEST_F(EnvironmentLight, LightSamplingBsdfSamplingAndMisAgree) {
     camera.up = glm::normalize(glm::cross(glm::cross(camera.forward, glm::vec3(0, 1, 0)), camera.forward));
     camera.yfov = 0.9f;
     auto render = [&](bool nee, bool mis, uint32_t seed) {
-        IntegratorSettings s;
+        IntegratorSettings s = independentSettings();
         s.nee = nee;
         s.mis = mis;
         s.maxDepth = 3;

@@ -27,7 +27,7 @@ protected:
         camera.forward = glm::vec3(0.0f, -1.0f, 0.0f);
         camera.up = glm::vec3(0.0f, 0.0f, -1.0f);
         camera.yfov = 0.01f;
-        IntegratorSettings s;
+        IntegratorSettings s = independentSettings();
         s.maxDepth = 2;
         return renderScene(scene, s, camera, 9, 9, 16);
     }
@@ -83,7 +83,7 @@ TEST_F(PunctualLights, ShadowsBlockPointLights) {
     camera.forward = glm::vec3(0.0f, -1.0f, 0.0f);
     camera.up = glm::vec3(0.0f, 0.0f, -1.0f);
     camera.yfov = 0.01f;
-    IntegratorSettings s;
+    IntegratorSettings s = independentSettings();
     s.maxDepth = 2;
     auto r = renderScene(scene, s, camera, 5, 5, 4);
     EXPECT_EQ(r.mean.at(2, 2)[0], 0.0f);
@@ -149,7 +149,7 @@ TEST_F(PunctualLights, SquareAreaLightGivesTheAnalyticIrradiance) {
     camera.forward = glm::vec3(0.0f, -1.0f, 0.0f);
     camera.up = glm::vec3(0.0f, 0.0f, -1.0f);
     camera.yfov = 0.001f;
-    IntegratorSettings s;
+    IntegratorSettings s = independentSettings();
     s.maxDepth = 2;
     auto r = renderScene(scene, s, camera, 8, 8, 256);
     double sum = 0, var = 0;
