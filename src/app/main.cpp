@@ -49,7 +49,7 @@ void addSceneOptions(CLI::App* cmd, pt::RenderOptions& o, SwitchWords& w) {
            "Ray segments per path including the camera ray (1: emitters only, 2: direct light); default 16")
         ->check(CLI::Range(1u, 65536u));
     cmd->add_option(
-        "--rr-start", o.integrator.rrStartDepth, "Russian roulette starts after this many segments (default 5)");
+        "--rr-start", o.integrator.rrStartDepth, "Russian roulette starts after this many segments (default 3)");
     cmd->add_option("--rr-threshold", o.integrator.rrThreshold,
            "Russian roulette: paths with throughput at least this always continue, others survive with probability "
            "throughput / threshold (default 0.5; pbrt and Mitsuba use 1)")

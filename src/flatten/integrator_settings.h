@@ -17,11 +17,13 @@ struct IntegratorSettings {
     bool rr = true;  // Russian roulette
     DirectionSampling sampling = DirectionSampling::Cosine;
     // Sobol' is the default: at equal time it had lower or equal error on every scene measured
-    // (0.56x relMSE on the diffuse box, 0.64x on a 1 M-triangle mesh, 0.86x with rough
+    // (0.53x relMSE on the diffuse box, 0.63x on a 1 M-triangle mesh, 0.89x with rough
     // materials, 0.96x on the glass box; bench/RESULTS.md, "The defaults").
     SamplerKind sampler = SamplerKind::Sobol;
     uint32_t maxDepth = 16;    // ray segments including the camera ray (Mitsuba 3's max_depth)
-    uint32_t rrStartDepth = 5; // Russian roulette only after this many segments (Mitsuba 3 default)
+    // Russian roulette only after this many segments. 3 (Mitsuba 3 uses 5) had equal or lower
+    // relMSE at equal time on all four scenes of bench/bench_defaults.sh (0.92-1.00x; RESULTS).
+    uint32_t rrStartDepth = 3;
     // Paths whose throughput is at least this always continue; below it they survive with
     // probability throughput / rrThreshold. pbrt and Mitsuba use 1; 0.5 gave 10% lower relMSE at
     // equal time in the glass Cornell box and the same in the diffuse one (bench/RESULTS.md).
