@@ -20,7 +20,7 @@ struct IntegratorSettings {
     // (0.53x relMSE on the diffuse box, 0.63x on a 1 M-triangle mesh, 0.89x with rough
     // materials, 0.96x on the glass box; bench/RESULTS.md, "The defaults").
     SamplerKind sampler = SamplerKind::Sobol;
-    uint32_t maxDepth = 16;    // ray segments including the camera ray (Mitsuba 3's max_depth)
+    uint32_t maxDepth = 16; // ray segments including the camera ray (Mitsuba 3's max_depth)
     // Russian roulette only after this many segments. 3 (Mitsuba 3 uses 5) had equal or lower
     // relMSE at equal time on all four scenes of bench/bench_defaults.sh (0.92-1.00x; RESULTS).
     uint32_t rrStartDepth = 3;

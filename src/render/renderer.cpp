@@ -5,6 +5,7 @@
 #include "pt_render_spv.h"               // generated: the SPIR-V of shaders/integrator/render.comp
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -73,10 +74,23 @@ Renderer::Renderer(VulkanContext& context, const FlatScene& scene, const Feature
 
     pipeline_ = std::make_unique<ComputePipeline>(context, renderKernel(features_),
         static_cast<uint32_t>(sizeof(gpu::GpuRenderPush)), features_.constants(localSize_, localSize_), "render");
+    primePipeline();
     if (features_.countRays) {
         rayCounts_ = std::make_unique<GpuBuffer>(context, pixels * sizeof(glm::uvec4), "ray counts");
         rayCounts_->fillZero();
     }
+}
+
+void Renderer::primePipeline() {
+    const auto start = std::chrono::steady_clock::now();
+    context_.submitAndWait([&](VkCommandBuffer cmd) {
+        gpu::GpuRenderPush push{};
+        push.sceneParams = paramsAddress_;
+        push.tileSize = glm::uvec2(0); // every invocation returns at once (render.comp)
+        pipeline_->bindAndPush(cmd, &push, sizeof(push));
+        vkCmdDispatch(cmd, 1, 1, 1);
+    });
+    primeSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 VkDeviceSize Renderer::bytesPerPixel() const {
@@ -235,6 +249,7 @@ void Renderer::setIntegrator(const IntegratorSettings& settings, const FeatureSe
             context_, renderKernel(wanted), static_cast<uint32_t>(sizeof(gpu::GpuRenderPush)), constants, "render");
         vkDeviceWaitIdle(context_.device());
         pipeline_ = std::move(fresh);
+        primePipeline();
         features_ = wanted;
         // Turning light tracing on needs room for the splat sums.
         ensureAccumulationBytes(VkDeviceSize(film_.width) * film_.height * bytesPerPixel());
