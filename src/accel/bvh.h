@@ -25,14 +25,15 @@ struct Aabb {
 // is empty (no node with an empty box exists). "Depth-first": children pairs are stored in the
 // preorder of their parents (left subtree first), i.e. exactly where a sequential depth-first
 // build allocates them, so a child always has a larger index than its parent.
-// Layout is 32 bytes, two std430-compatible vec3+uint pairs, so it can be uploaded as is.
+// Layout is 32 bytes, two vec3+uint pairs; the kernel reads the four-wide collapse of this tree
+// (accel/wide_bvh.h), not these nodes.
 struct BvhNode {
     glm::vec3 lo;
     uint32_t leftOrFirst;
     glm::vec3 hi;
     uint32_t count;
 };
-static_assert(sizeof(BvhNode) == 32, "BvhNode is uploaded verbatim to the GPU");
+static_assert(sizeof(BvhNode) == 32, "BvhNode is two vec3+uint pairs");
 
 // Default-initialising (no zero fill) and on huge pages from 2 MiB: huge_page_allocator.h.
 using BvhNodeArray = std::vector<BvhNode, DefaultInitAllocator<BvhNode>>;
