@@ -17,7 +17,6 @@
 const float BOX_FAR_SCALE = 1.0000003576;
 // Direction components below this are treated as parallel to the slab (exact zeros included).
 const float TINY_DIRECTION = 1e-20;
-const float MISS = -1.0;
 
 struct Hit {
     float t;
@@ -51,8 +50,8 @@ void parallelSlab(float origin, vec4 lo, vec4 hi, inout vec4 tNear, inout vec4 t
     tFar = mix(vec4(-FLOAT_MAX), vec4(FLOAT_MAX), inside);
 }
 
-// Entry distances (>= 0) into a wide node's four child boxes, MISS for each the ray misses
-// within (0, tMax) and for unused slots.
+// Entry distances (>= 0) into a wide node's four child boxes, FLOAT_MAX for each the ray
+// misses within (0, tMax) and for unused slots (so that misses sort last).
 vec4 childEntries(GpuBvh4Node node, BoxRay r, float tMax) {
     vec4 x0 = (node.loX - r.origin.x) * r.invDir.x, x1 = (node.hiX - r.origin.x) * r.invDir.x;
     vec4 y0 = (node.loY - r.origin.y) * r.invDir.y, y1 = (node.hiY - r.origin.y) * r.invDir.y;
@@ -68,7 +67,7 @@ vec4 childEntries(GpuBvh4Node node, BoxRay r, float tMax) {
     vec4 entry = max(max(nearX, nearY), max(nearZ, vec4(0.0)));
     vec4 exit = min(min(farX, farY), min(farZ, vec4(tMax))) * BOX_FAR_SCALE;
     bvec4 hit = bvec4(uvec4(lessThanEqual(entry, exit)) & uvec4(notEqual(node.child, uvec4(BVH4_EMPTY))));
-    return mix(vec4(MISS), entry, hit);
+    return mix(vec4(FLOAT_MAX), entry, hit);
 }
 
 // Orders (distance, child) pairs a and b so that a is the nearer; misses count as farthest.
@@ -122,11 +121,10 @@ bool traverseTree(bool sphereTree, bool anyHit, Ray ray, WatertightRay wray, Box
         while ((current & BVH4_LEAF_BIT) == 0u) {
             if (DEBUG_VIEW == DEBUG_VIEW_BVH_COST) ++traversalNodeVisits;
             GpuBvh4Node node = nodes.v[current];
-            vec4 t = childEntries(node, boxRay, hit.t);
             // Nearest child first, so that the hits it yields shorten the rest; shadow rays
             // find occluders sooner this way too (measured: unordered was slower for them).
             // A network of five compare-exchanges orders the four slots, misses last.
-            vec4 d = mix(t, vec4(FLOAT_MAX), equal(t, vec4(MISS)));
+            vec4 d = childEntries(node, boxRay, hit.t);
             uvec4 c = node.child;
             orderPair(d.x, c.x, d.y, c.y);
             orderPair(d.z, c.z, d.w, c.w);
