@@ -6,6 +6,9 @@
 // resumed runs gives bit-identical sums.
 #ifndef PT_INTEGRATOR_ACCUMULATE_GLSL
 #define PT_INTEGRATOR_ACCUMULATE_GLSL
+#include "shared/layout.h"
+#include "common/buffers.glsl"
+#include "common/math.glsl"
 
 // Knuth's TwoSum (TAOCP vol. 2, 4.2.2): s = fl(a + b) and err with a + b = s + err exactly,
 // for any magnitudes. `precise` (SPIR-V NoContraction) stops the compiler from fusing or
@@ -26,6 +29,43 @@ void accumulate(inout vec3 hi, inout vec3 lo, vec3 x) {
     twoSum(hi, x, s, err);
     precise vec3 e = err + lo;
     twoSum(s, e, hi, lo);
+}
+
+// A pixel's running sums while an invocation adds samples to them, and their place in the
+// accumulation buffer (ACCUM_* in shared/layout.h).
+struct PixelSums {
+    vec4 sum; // rgb: radiance sum (hi); w: samples dropped as not finite
+    vec3 sumLo;
+    vec3 sumSquares;
+    vec3 sumSquaresLo;
+};
+
+PixelSums loadPixelSums(Vec4Ref accumulation, uint base) {
+    PixelSums sums;
+    sums.sum = accumulation.v[base + ACCUM_SUM];
+    sums.sumLo = accumulation.v[base + ACCUM_SUM_LO].rgb;
+    sums.sumSquares = accumulation.v[base + ACCUM_SUM_SQUARES].rgb;
+    sums.sumSquaresLo = accumulation.v[base + ACCUM_SUM_SQUARES_LO].rgb;
+    return sums;
+}
+
+void storePixelSums(Vec4Ref accumulation, uint base, PixelSums sums) {
+    accumulation.v[base + ACCUM_SUM] = sums.sum;
+    accumulation.v[base + ACCUM_SUM_LO] = vec4(sums.sumLo, 0.0);
+    accumulation.v[base + ACCUM_SUM_SQUARES] = vec4(sums.sumSquares, 0.0);
+    accumulation.v[base + ACCUM_SUM_SQUARES_LO] = vec4(sums.sumSquaresLo, 0.0);
+}
+
+// Adds one sample; a sample that is not finite is counted as dropped and contributes zero.
+void addToPixelSums(inout PixelSums sums, vec3 L) {
+    if (allFinite(L)) {
+        vec3 sumHi = sums.sum.rgb;
+        accumulate(sumHi, sums.sumLo, L);
+        sums.sum.rgb = sumHi;
+        accumulate(sums.sumSquares, sums.sumSquaresLo, L * L);
+    } else {
+        sums.sum.w += 1.0;
+    }
 }
 
 #endif

@@ -160,101 +160,140 @@ void connectToCamera(SurfaceInteraction si, GpuMaterial mat, vec3 wLight, vec3 b
     splatAdd(pixel, beta * fCos * geometry);
 }
 
-// Traces light path number `sampleIndex` of `pixel` (the pixel only names the path; it lands
-// wherever it lands).
-void traceLightPath(uvec2 pixel, uint sampleIndex) {
-    if (scene.numLights == 0u || scene.maxDepth < 3u) return; // camera, one bounce, light: 3 segments
-    Rng rng = rngCreate(pixel, sampleIndex, scene.seed);
-    uint lightIndex = selectLight(rng1(rng, lightPathDimension(DIM_LT_SELECT)));
-    EmitterPoint e = sampleEmitterPoint(lightIndex, rng2(rng, lightPathDimension(DIM_LT_POINT)));
-    if (!e.valid) return;
+// One light path in flight (see traceLightPaths for why it advances a segment at a time).
+struct LightPathState {
+    Ray ray;         // the segment to trace next
+    Rng rng;         // the path's random numbers
+    vec3 beta;       // the path's weight: emitted radiance over the density of the path so far
+    vec3 throughput; // product of the bounce weights, for Russian roulette
+    uint segments;   // segments of the light path so far, this one included
+};
+
+// Starts light path number `sampleIndex` of `pixel` (the pixel only names the path; it lands
+// wherever it lands) on an emitter. False when there is nothing to trace.
+bool lightPathStart(uvec2 pixel, uint sampleIndex, out LightPathState lp) {
+    lp.rng = rngCreate(pixel, sampleIndex, scene.seed);
+    if (scene.numLights == 0u || scene.maxDepth < 3u) return false; // camera, one bounce, light: 3 segments
+    uint lightIndex = selectLight(rng1(lp.rng, lightPathDimension(DIM_LT_SELECT)));
+    EmitterPoint e = sampleEmitterPoint(lightIndex, rng2(lp.rng, lightPathDimension(DIM_LT_POINT)));
+    if (!e.valid) return false;
     // Cosine-weighted emission from the front side (or either side of a double-sided emitter):
     // beta = Le cos / (pdf_area pdf_direction) = Le pi / pdf_area.
     vec3 n = e.ng;
     float sides = 1.0;
     if ((sceneMaterials.v[e.materialIndex].flags & MATERIAL_FLAG_DOUBLE_SIDED) != 0u) {
         sides = 2.0;
-        if (rng1(rng, lightPathDimension(DIM_LT_SIDE)) < 0.5) n = -n;
+        if (rng1(lp.rng, lightPathDimension(DIM_LT_SIDE)) < 0.5) n = -n;
     }
-    vec3 local = sampleCosineHemisphere(rng2(rng, lightPathDimension(DIM_LT_EMIT)));
-    if (local.z <= 0.0) return;
-    vec3 beta = e.Le * (PI * sides / e.pdf);
-    vec3 throughput = vec3(1.0); // product of the bounce weights, for Russian roulette
-    Ray ray;
-    ray.origin = offsetRayOrigin(e.p, n, e.magnitude);
-    ray.direction = toWorld(makeFrame(n), local);
+    vec3 local = sampleCosineHemisphere(rng2(lp.rng, lightPathDimension(DIM_LT_EMIT)));
+    if (local.z <= 0.0) return false;
+    lp.beta = e.Le * (PI * sides / e.pdf);
+    lp.throughput = vec3(1.0);
+    lp.ray.origin = offsetRayOrigin(e.p, n, e.magnitude);
+    lp.ray.direction = toWorld(makeFrame(n), local);
+    lp.segments = 1u;
+    return true;
+}
 
-    // Segments of the light path so far; the camera segment makes one more.
-    for (uint segments = 1u;; ++segments) {
-        Hit hit;
-        countClosestRay();
-        if (!traceClosest(ray, FLOAT_MAX, hit)) return;
-        SurfaceInteraction si = makeInteraction(ray, hit);
-        GpuMaterial mat = sceneMaterials.v[si.materialIndex];
-        applyTextures(mat, si);
-        vec3 wLight = -ray.direction;
-        uint bounce = segments - 1u; // vertices behind this one
-        bool receiver = isCausticReceiver(mat);
-        // Light reaching a receiver straight from the emitter is the path tracer's (direct
-        // light); so is everything from a material the light path does not follow.
-        if ((receiver && bounce == 0u) || (!receiver && !isSpecularChainMaterial(mat))) return;
-        if (receiver && segments + 1u <= scene.maxDepth) connectToCamera(si, mat, wLight, beta);
-        // Another bounce needs one more segment before the camera's.
-        if (segments + 2u > scene.maxDepth) return;
+// Traces lp.ray, splats the connection to the camera where it lands on a receiver, and sets up
+// the next segment. False when the path has ended.
+bool lightPathStep(inout LightPathState lp) {
+    Hit hit;
+    countClosestRay();
+    if (!traceClosest(lp.ray, FLOAT_MAX, hit)) return false;
+    SurfaceInteraction si = makeInteraction(lp.ray, hit);
+    GpuMaterial mat = sceneMaterials.v[si.materialIndex];
+    applyTextures(mat, si);
+    vec3 wLight = -lp.ray.direction;
+    uint segments = lp.segments;
+    uint bounce = segments - 1u; // vertices behind this one
+    bool receiver = isCausticReceiver(mat);
+    // Light reaching a receiver straight from the emitter is the path tracer's (direct
+    // light); so is everything from a material the light path does not follow.
+    if ((receiver && bounce == 0u) || (!receiver && !isSpecularChainMaterial(mat))) return false;
+    if (receiver && segments + 1u <= scene.maxDepth) connectToCamera(si, mat, wLight, lp.beta);
+    // Another bounce needs one more segment before the camera's.
+    if (segments + 2u > scene.maxDepth) return false;
 
-        vec3 weight;
-        vec3 wCamera;
-        if (receiver) {
-            // Onwards from a receiver by BSDF sampling, with the adjoint BSDF f(wC, wL).
-            Frame frame;
-            if (!opaqueFrame(si, mat, si.frontFace, wLight, frame)) return;
-            vec3 wLightLocal = toLocal(frame, wLight);
-            BsdfSample bs = surfaceSample(mat, frame, wLightLocal, rng1(rng, lightBounceDimension(bounce, DIM_LT_LOBE)),
-                rng2(rng, lightBounceDimension(bounce, DIM_LT_DIRECTION)));
-            if (!bs.valid || bs.isDelta || !(bs.pdf > 0.0)) return;
-            wCamera = bs.wi;
-            if (!isReversibleOpaqueBounce(si.ng, wLight, wCamera)) return;
-            float cosLightGeometric = abs(dot(wLight, si.ng));
-            if (cosLightGeometric < 1e-7) return;
-            weight = surfaceEval(mat, toLocal(frame, wCamera), wLightLocal) *
-                     (abs(dot(wCamera, si.ng)) / (cosLightGeometric * bs.pdf));
+    vec3 weight;
+    vec3 wCamera;
+    if (receiver) {
+        // Onwards from a receiver by BSDF sampling, with the adjoint BSDF f(wC, wL).
+        Frame frame;
+        if (!opaqueFrame(si, mat, si.frontFace, wLight, frame)) return false;
+        vec3 wLightLocal = toLocal(frame, wLight);
+        BsdfSample bs = surfaceSample(mat, frame, wLightLocal, rng1(lp.rng, lightBounceDimension(bounce, DIM_LT_LOBE)),
+            rng2(lp.rng, lightBounceDimension(bounce, DIM_LT_DIRECTION)));
+        if (!bs.valid || bs.isDelta || !(bs.pdf > 0.0)) return false;
+        wCamera = bs.wi;
+        if (!isReversibleOpaqueBounce(si.ng, wLight, wCamera)) return false;
+        float cosLightGeometric = abs(dot(wLight, si.ng));
+        if (cosLightGeometric < 1e-7) return false;
+        weight = surfaceEval(mat, toLocal(frame, wCamera), wLightLocal) *
+                 (abs(dot(wCamera, si.ng)) / (cosLightGeometric * bs.pdf));
+    } else {
+        BsdfSample bs;
+        if (HAS_DIELECTRIC && mat.type == MATERIAL_DIELECTRIC) {
+            Frame frame = makeFrame(dot(si.ns, wLight) < 0.0 ? -si.ns : si.ns);
+            bs = dielectricSample(mat.baseColor, mat.ior, si.frontFace, frame, toLocal(frame, wLight),
+                rng1(lp.rng, lightBounceDimension(bounce, DIM_LT_LOBE)));
+            bs.weight *= bs.etaScale; // importance is not compressed by refraction
         } else {
-            BsdfSample bs;
-            if (HAS_DIELECTRIC && mat.type == MATERIAL_DIELECTRIC) {
-                Frame frame = makeFrame(dot(si.ns, wLight) < 0.0 ? -si.ns : si.ns);
-                bs = dielectricSample(mat.baseColor, mat.ior, si.frontFace, frame, toLocal(frame, wLight),
-                    rng1(rng, lightBounceDimension(bounce, DIM_LT_LOBE)));
-                bs.weight *= bs.etaScale; // importance is not compressed by refraction
-            } else {
-                Frame frame;
-                if (!opaqueFrame(si, mat, si.frontFace, wLight, frame)) return;
-                vec3 woLocal = toLocal(frame, wLight);
-                if (HAS_MIRROR && mat.type == MATERIAL_MIRROR)
-                    bs = mirrorSample(mat.baseColor, frame, woLocal);
-                else
-                    bs = conductorSample(mat.baseColor, mat.conductorEta, mat.conductorK, frame, woLocal);
-            }
-            if (!bs.valid) return;
-            wCamera = bs.wi;
-            if (!isReversibleDeltaBounce(si.ng, si.ns, wLight, wCamera)) return;
-            float denominator = abs(dot(wLight, si.ng)) * abs(dot(wCamera, si.ns));
-            if (denominator < 1e-7) return;
-            weight = bs.weight * (abs(dot(wLight, si.ns)) * abs(dot(wCamera, si.ng)) / denominator);
+            Frame frame;
+            if (!opaqueFrame(si, mat, si.frontFace, wLight, frame)) return false;
+            vec3 woLocal = toLocal(frame, wLight);
+            if (HAS_MIRROR && mat.type == MATERIAL_MIRROR)
+                bs = mirrorSample(mat.baseColor, frame, woLocal);
+            else
+                bs = conductorSample(mat.baseColor, mat.conductorEta, mat.conductorK, frame, woLocal);
         }
-        if (!allFinite(weight) || maxComponent(weight) <= 0.0) return;
-        beta *= weight;
-        throughput *= weight;
+        if (!bs.valid) return false;
+        wCamera = bs.wi;
+        if (!isReversibleDeltaBounce(si.ng, si.ns, wLight, wCamera)) return false;
+        float denominator = abs(dot(wLight, si.ng)) * abs(dot(wCamera, si.ns));
+        if (denominator < 1e-7) return false;
+        weight = bs.weight * (abs(dot(wLight, si.ns)) * abs(dot(wCamera, si.ng)) / denominator);
+    }
+    if (!allFinite(weight) || maxComponent(weight) <= 0.0) return false;
+    lp.beta *= weight;
+    lp.throughput *= weight;
 
-        if (USE_RR && segments + 1u >= scene.rrStartDepth) {
-            float m = maxComponent(throughput) / scene.rrThreshold;
-            if (m < 1.0) {
-                if (rng1(rng, lightBounceDimension(bounce, DIM_LT_ROULETTE)) >= m) return;
-                beta /= m;
-                throughput /= m;
+    if (USE_RR && segments + 1u >= scene.rrStartDepth) {
+        float m = maxComponent(lp.throughput) / scene.rrThreshold;
+        if (m < 1.0) {
+            if (rng1(lp.rng, lightBounceDimension(bounce, DIM_LT_ROULETTE)) >= m) return false;
+            lp.beta /= m;
+            lp.throughput /= m;
+        }
+    }
+    lp.ray.origin = spawnOrigin(si.p, si.ng, wCamera, si.magnitude);
+    lp.ray.direction = wCamera;
+    lp.segments = segments + 1u;
+    return true;
+}
+
+// Light paths `first` to `first + count - 1` of `pixel`, each splatted wherever it lands. Most
+// end at their first hit (on a receiver: direct light, the path tracer's), a few go on through
+// glass and mirrors; an invocation whose path ended starts its next at once (path regeneration,
+// as integrator/pixel_samples.glsl does for camera paths) instead of waiting for the longest of
+// its SIMD group. The splats are integer sums, so the order they land in changes nothing.
+void traceLightPaths(uvec2 pixel, uint first, uint count) {
+    uint s = 0u;
+    bool start = true;
+    LightPathState lp;
+    while (s < count) {
+        if (start) {
+            start = false;
+            if (!lightPathStart(pixel, first + s, lp)) {
+                start = true;
+                ++s;
+                continue;
             }
         }
-        ray.origin = spawnOrigin(si.p, si.ng, wCamera, si.magnitude);
-        ray.direction = wCamera;
+        if (!lightPathStep(lp)) {
+            start = true;
+            ++s;
+        }
     }
 }
 

@@ -51,136 +51,170 @@ vec3 estimateDirect(SurfaceInteraction si, Frame frame, vec3 woLocal, GpuMateria
     return fCos * ls.radiance * (weight / ls.pdf);
 }
 
+// One camera path in flight: what a path vertex needs from the ones before it. The path is
+// advanced one segment at a time (pathStep) so that the kernel can start a new sample in an
+// invocation whose path ended while its neighbours' go on (integrator/pixel_samples.glsl).
+struct PathState {
+    Ray ray;           // the segment to trace next
+    Rng rng;           // the sample's random numbers
+    vec3 L;            // radiance gathered so far
+    vec3 beta;         // throughput
+    float etaScale;    // radiance scaling by refractions, undone for Russian roulette
+    float prevPdfBsdf; // pdf of the BSDF sample that made this segment, for MIS
+    uint depth;        // segments so far, this one included
+    uint deltaRun;     // delta bounces the light-traceable path ends with
+    bool prevDelta;    // the segment came from a delta bounce (or is the camera ray)
+    // With light tracing (integrator/caustic_partition.glsl): the path so far is one the light
+    // tracer can follow back (camera -> receiver -> receivers and delta bounces). Emission found
+    // after one or more delta bounces is the light tracer's.
+    bool lightTraceable;
+};
+
+PathState pathStart(Ray ray, Rng rng) {
+    PathState st;
+    st.ray = ray;
+    st.rng = rng;
+    st.L = vec3(0.0);
+    st.beta = vec3(1.0);
+    st.etaScale = 1.0;
+    st.prevPdfBsdf = 0.0;
+    st.depth = 1u;
+    st.deltaRun = 0u;
+    st.prevDelta = true; // the camera ray counts as specular: emitters it sees are added fully
+    st.lightTraceable = false;
+    return st;
+}
+
+// Traces st.ray, adds what its hit contributes to st.L and sets up the next segment. Returns
+// false when the path has ended (st.L is then its radiance).
+bool pathStep(inout PathState st) {
+    Hit hit;
+    countClosestRay();
+    if (!traceClosest(st.ray, FLOAT_MAX, hit)) {
+        // Escaped: the environment, weighted against its light sampling like any emitter.
+        if (HAS_ENVIRONMENT && scene.envWidth > 0u) {
+            vec3 Le = envRadiance(st.ray.direction);
+            float pdfLight = environmentPdf(st.ray.direction);
+            if (!USE_NEE || st.prevDelta || pdfLight == 0.0)
+                st.L += st.beta * Le;
+            else if (USE_MIS)
+                st.L += st.beta * Le * powerHeuristic(st.prevPdfBsdf, pdfLight);
+        } else {
+            st.L += st.beta * backgroundRadiance(st.ray.direction, st.depth == 1u);
+        }
+        return false;
+    }
+    SurfaceInteraction si = makeInteraction(st.ray, hit);
+    GpuMaterial mat = sceneMaterials.v[si.materialIndex];
+    applyTextures(mat, si);
+    bool doubleSided = (mat.flags & MATERIAL_FLAG_DOUBLE_SIDED) != 0u;
+
+    // Beer-Lambert absorption along the segment just travelled inside a dielectric.
+    if (HAS_ABSORPTION && !si.frontFace && hasInteriorAbsorption(mat)) st.beta *= exp(-mat.sigmaA * hit.t);
+
+    // Emission found by the BSDF-sampled ray, weighted against light sampling. Emitters
+    // outside the light table (pdfLight 0) can only be found this way and count fully.
+    bool lightTraced = st.lightTraceable && st.deltaRun > 0u && isLightTracedEmitter(si.lightIndex);
+    if (HAS_EMITTERS && maxComponent(mat.emission) > 0.0 && !lightTraced) {
+        vec3 Le = emittedRadiance(mat, si.frontFace);
+        float pdfLight = si.lightIndex != NO_LIGHT
+                             ? lightPdf(si.lightIndex, st.ray.origin, si.p, si.ng, hit.t, st.ray.direction)
+                             : 0.0;
+        if (!USE_NEE || st.prevDelta || pdfLight == 0.0) {
+            st.L += st.beta * Le;
+        } else if (USE_MIS) {
+            st.L += st.beta * Le * powerHeuristic(st.prevPdfBsdf, pdfLight);
+        }
+    }
+    // The course's replace_all: the texture shown as is, unshaded (an emitter that no light
+    // sampling knows of, so found by BSDF rays only and counted fully).
+    if (HAS_UNLIT && (mat.flags & MATERIAL_FLAG_UNLIT) != 0u) {
+        if (si.frontFace || doubleSided) st.L += st.beta * mat.baseColor;
+        return false;
+    }
+    if (st.depth >= scene.maxDepth) return false;
+    bool receiver = false;
+    if (LIGHT_TRACING) {
+        receiver = isCausticReceiver(mat);
+        if (st.depth == 1u)
+            st.lightTraceable = lightTracingActive() && receiver;
+        else if (!receiver && !isSpecularChainMaterial(mat))
+            st.lightTraceable = false;
+    }
+
+    uint depth = st.depth;
+    vec3 wo = -st.ray.direction;
+    BsdfSample bs = invalidBsdfSample();
+    if (HAS_DIELECTRIC && mat.type == MATERIAL_DIELECTRIC && !isRoughDielectric(mat)) {
+        Frame frame = makeFrame(dot(si.ns, wo) < 0.0 ? -si.ns : si.ns);
+        float uLobe = rng1(st.rng, bounceDimension(depth, DIM_BSDF_LOBE));
+        bs = dielectricSample(mat.baseColor, mat.ior, si.frontFace, frame, toLocal(frame, wo), uLobe);
+    } else if (isTransmissiveSurface(mat)) {
+        // Rough dielectrics and PBR transmission: both sides shade, light crosses the
+        // surface (NEE too); the frame keeps the front-side normal, wo.z < 0 is inside.
+        Frame frame = makeFrame(si.ns);
+        vec3 woLocal = toLocal(frame, wo);
+        if (USE_NEE && scene.numLights > 0u) st.L += st.beta * estimateDirect(si, frame, woLocal, mat, st.rng, depth);
+        bs = surfaceSample(mat, frame, woLocal, rng1(st.rng, bounceDimension(depth, DIM_BSDF_LOBE)),
+            rng2(st.rng, bounceDimension(depth, DIM_BSDF_DIRECTION)));
+    } else {
+        // Opaque surfaces: one-sided ones are black from behind; double-sided ones flip.
+        if (!si.frontFace && !doubleSided) return false;
+        Frame frame = makeFrame(si.frontFace ? si.ns : -si.ns);
+        if (!si.frontFace) turnToBackSide(si);
+        vec3 woLocal = toLocal(frame, wo);
+        if (HAS_MIRROR && mat.type == MATERIAL_MIRROR) {
+            bs = mirrorSample(mat.baseColor, frame, woLocal);
+        } else if (HAS_CONDUCTOR && mat.type == MATERIAL_CONDUCTOR && !isRoughConductor(mat)) {
+            bs = conductorSample(mat.baseColor, mat.conductorEta, mat.conductorK, frame, woLocal);
+        } else if (isSurfaceBsdf(mat)) {
+            if (USE_NEE && scene.numLights > 0u)
+                st.L += st.beta * estimateDirect(si, frame, woLocal, mat, st.rng, depth);
+            bs = surfaceSample(mat, frame, woLocal, rng1(st.rng, bounceDimension(depth, DIM_BSDF_LOBE)),
+                rng2(st.rng, bounceDimension(depth, DIM_BSDF_DIRECTION)));
+        }
+        // A normal map tilts the sampling hemisphere; a reflection it sends below the
+        // surface's own normal would pass through an opaque surface. End it there, as direct
+        // light from that side is refused (shadow_ray.glsl), so both strategies agree.
+        if (HAS_NORMAL_MAPS && dot(bs.wi, si.nSurface) <= 0.0) return false;
+    }
+    if (!bs.valid || maxComponent(bs.weight) <= 0.0) return false;
+    if (st.lightTraceable) {
+        // (An opaque back face seen from a double-sided receiver has ng flipped already;
+        // both tests compare sides, so the flip does not change them.)
+        bool reversible =
+            receiver ? isReversibleOpaqueBounce(si.ng, wo, bs.wi) : isReversibleDeltaBounce(si.ng, si.ns, wo, bs.wi);
+        if (!reversible) st.lightTraceable = false;
+        st.deltaRun = receiver ? 0u : st.deltaRun + 1u;
+    }
+    st.beta *= bs.weight;
+    st.etaScale *= bs.etaScale;
+    st.prevDelta = bs.isDelta;
+    st.prevPdfBsdf = bs.pdf;
+
+    // Russian roulette on throughput with the radiance scaling of refractions undone, so a
+    // path inside glass is not killed just for having entered it (pbrt-v4's etaScale).
+    // Throughput at or above scene.rrThreshold always continues.
+    if (USE_RR && depth >= scene.rrStartDepth) {
+        float m = maxComponent(st.beta * st.etaScale) / scene.rrThreshold;
+        if (m < 1.0) {
+            float q = max(0.0, 1.0 - m);
+            if (rng1(st.rng, bounceDimension(depth, DIM_ROULETTE)) < q) return false;
+            st.beta /= 1.0 - q;
+        }
+    }
+    st.ray.origin = spawnOrigin(si.p, si.ng, bs.wi, si.magnitude);
+    st.ray.direction = bs.wi;
+    st.depth = depth + 1u;
+    return true;
+}
+
+// The radiance of one camera path, traced to its end.
 vec3 tracePath(Ray ray, Rng rng) {
     if (CLASSIC) return traceClassic(ray, rng);
-    vec3 L = vec3(0.0);
-    vec3 beta = vec3(1.0);
-    float etaScale = 1.0;
-    bool prevDelta = true; // the camera ray counts as specular: emitters it sees are added fully
-    float prevPdfBsdf = 0.0;
-    // With light tracing (integrator/caustic_partition.glsl): the path so far is one the light
-    // tracer can follow back (camera -> receiver -> receivers and delta bounces), and how many
-    // delta bounces it ended with. Emission found after one or more is the light tracer's.
-    bool lightTraceable = false;
-    uint deltaRun = 0u;
-    for (uint depth = 1u;; ++depth) {
-        Hit hit;
-        countClosestRay();
-        if (!traceClosest(ray, FLOAT_MAX, hit)) {
-            // Escaped: the environment, weighted against its light sampling like any emitter.
-            if (HAS_ENVIRONMENT && scene.envWidth > 0u) {
-                vec3 Le = envRadiance(ray.direction);
-                float pdfLight = environmentPdf(ray.direction);
-                if (!USE_NEE || prevDelta || pdfLight == 0.0)
-                    L += beta * Le;
-                else if (USE_MIS)
-                    L += beta * Le * powerHeuristic(prevPdfBsdf, pdfLight);
-            } else {
-                L += beta * backgroundRadiance(ray.direction, depth == 1u);
-            }
-            break;
-        }
-        SurfaceInteraction si = makeInteraction(ray, hit);
-        GpuMaterial mat = sceneMaterials.v[si.materialIndex];
-        applyTextures(mat, si);
-        bool doubleSided = (mat.flags & MATERIAL_FLAG_DOUBLE_SIDED) != 0u;
-
-        // Beer-Lambert absorption along the segment just travelled inside a dielectric.
-        if (HAS_ABSORPTION && !si.frontFace && hasInteriorAbsorption(mat)) beta *= exp(-mat.sigmaA * hit.t);
-
-        // Emission found by the BSDF-sampled ray, weighted against light sampling. Emitters
-        // outside the light table (pdfLight 0) can only be found this way and count fully.
-        bool lightTraced = lightTraceable && deltaRun > 0u && isLightTracedEmitter(si.lightIndex);
-        if (HAS_EMITTERS && maxComponent(mat.emission) > 0.0 && !lightTraced) {
-            vec3 Le = emittedRadiance(mat, si.frontFace);
-            float pdfLight = si.lightIndex != NO_LIGHT
-                                 ? lightPdf(si.lightIndex, ray.origin, si.p, si.ng, hit.t, ray.direction)
-                                 : 0.0;
-            if (!USE_NEE || prevDelta || pdfLight == 0.0) {
-                L += beta * Le;
-            } else if (USE_MIS) {
-                L += beta * Le * powerHeuristic(prevPdfBsdf, pdfLight);
-            }
-        }
-        // The course's replace_all: the texture shown as is, unshaded (an emitter that no light
-        // sampling knows of, so found by BSDF rays only and counted fully).
-        if (HAS_UNLIT && (mat.flags & MATERIAL_FLAG_UNLIT) != 0u) {
-            if (si.frontFace || doubleSided) L += beta * mat.baseColor;
-            break;
-        }
-        if (depth >= scene.maxDepth) break;
-        bool receiver = false;
-        if (LIGHT_TRACING) {
-            receiver = isCausticReceiver(mat);
-            if (depth == 1u)
-                lightTraceable = lightTracingActive() && receiver;
-            else if (!receiver && !isSpecularChainMaterial(mat))
-                lightTraceable = false;
-        }
-
-        vec3 wo = -ray.direction;
-        BsdfSample bs = invalidBsdfSample();
-        if (HAS_DIELECTRIC && mat.type == MATERIAL_DIELECTRIC && !isRoughDielectric(mat)) {
-            Frame frame = makeFrame(dot(si.ns, wo) < 0.0 ? -si.ns : si.ns);
-            float uLobe = rng1(rng, bounceDimension(depth, DIM_BSDF_LOBE));
-            bs = dielectricSample(mat.baseColor, mat.ior, si.frontFace, frame, toLocal(frame, wo), uLobe);
-        } else if (isTransmissiveSurface(mat)) {
-            // Rough dielectrics and PBR transmission: both sides shade, light crosses the
-            // surface (NEE too); the frame keeps the front-side normal, wo.z < 0 is inside.
-            Frame frame = makeFrame(si.ns);
-            vec3 woLocal = toLocal(frame, wo);
-            if (USE_NEE && scene.numLights > 0u) L += beta * estimateDirect(si, frame, woLocal, mat, rng, depth);
-            bs = surfaceSample(mat, frame, woLocal, rng1(rng, bounceDimension(depth, DIM_BSDF_LOBE)),
-                rng2(rng, bounceDimension(depth, DIM_BSDF_DIRECTION)));
-        } else {
-            // Opaque surfaces: one-sided ones are black from behind; double-sided ones flip.
-            if (!si.frontFace && !doubleSided) break;
-            Frame frame = makeFrame(si.frontFace ? si.ns : -si.ns);
-            if (!si.frontFace) turnToBackSide(si);
-            vec3 woLocal = toLocal(frame, wo);
-            if (HAS_MIRROR && mat.type == MATERIAL_MIRROR) {
-                bs = mirrorSample(mat.baseColor, frame, woLocal);
-            } else if (HAS_CONDUCTOR && mat.type == MATERIAL_CONDUCTOR && !isRoughConductor(mat)) {
-                bs = conductorSample(mat.baseColor, mat.conductorEta, mat.conductorK, frame, woLocal);
-            } else if (isSurfaceBsdf(mat)) {
-                if (USE_NEE && scene.numLights > 0u) L += beta * estimateDirect(si, frame, woLocal, mat, rng, depth);
-                bs = surfaceSample(mat, frame, woLocal, rng1(rng, bounceDimension(depth, DIM_BSDF_LOBE)),
-                    rng2(rng, bounceDimension(depth, DIM_BSDF_DIRECTION)));
-            }
-            // A normal map tilts the sampling hemisphere; a reflection it sends below the
-            // surface's own normal would pass through an opaque surface. End it there, as direct
-            // light from that side is refused (shadow_ray.glsl), so both strategies agree.
-            if (HAS_NORMAL_MAPS && dot(bs.wi, si.nSurface) <= 0.0) break;
-        }
-        if (!bs.valid || maxComponent(bs.weight) <= 0.0) break;
-        if (lightTraceable) {
-            // (An opaque back face seen from a double-sided receiver has ng flipped already;
-            // both tests compare sides, so the flip does not change them.)
-            bool reversible = receiver ? isReversibleOpaqueBounce(si.ng, wo, bs.wi)
-                                       : isReversibleDeltaBounce(si.ng, si.ns, wo, bs.wi);
-            if (!reversible) lightTraceable = false;
-            deltaRun = receiver ? 0u : deltaRun + 1u;
-        }
-        beta *= bs.weight;
-        etaScale *= bs.etaScale;
-        prevDelta = bs.isDelta;
-        prevPdfBsdf = bs.pdf;
-
-        // Russian roulette on throughput with the radiance scaling of refractions undone, so a
-        // path inside glass is not killed just for having entered it (pbrt-v4's etaScale).
-        // Throughput at or above scene.rrThreshold always continues.
-        if (USE_RR && depth >= scene.rrStartDepth) {
-            float m = maxComponent(beta * etaScale) / scene.rrThreshold;
-            if (m < 1.0) {
-                float q = max(0.0, 1.0 - m);
-                if (rng1(rng, bounceDimension(depth, DIM_ROULETTE)) < q) break;
-                beta /= 1.0 - q;
-            }
-        }
-        ray.origin = spawnOrigin(si.p, si.ng, bs.wi, si.magnitude);
-        ray.direction = bs.wi;
-    }
-    return L;
+    PathState st = pathStart(ray, rng);
+    while (pathStep(st)) {}
+    return st.L;
 }
 
 #endif

@@ -81,6 +81,7 @@ std::vector<uint32_t> specializeSpirv(
     // lavapipe slower to compile, not faster).
     optimizer.RegisterPass(spvtools::CreateFreezeSpecConstantValuePass())
         .RegisterPass(spvtools::CreateFoldSpecConstantOpAndCompositePass())
+        .RegisterPass(spvtools::CreateCCPPass())
         .RegisterPass(spvtools::CreateDeadBranchElimPass())
         .RegisterPass(spvtools::CreateEliminateDeadFunctionsPass());
     spvtools::OptimizerOptions options;

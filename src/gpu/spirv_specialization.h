@@ -19,7 +19,7 @@ struct SpecializationConstant {
 
 // Bumped whenever specializeSpirv's output may change for the same input, so that cached results
 // of an older version are not reused.
-inline constexpr uint32_t kSpirvSpecializationVersion = 1;
+inline constexpr uint32_t kSpirvSpecializationVersion = 2;
 
 // Sets every listed constant (by SpecId) as the module's value, freezes all specialization
 // constants (unlisted ones keep their defaults, as Vulkan would), folds the expressions built on

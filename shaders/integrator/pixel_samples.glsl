@@ -1,0 +1,74 @@
+// The samples of one pixel: their camera rays, and the loop that traces them and adds them to
+// the pixel's sums in sample order.
+#ifndef PT_INTEGRATOR_PIXEL_SAMPLES_GLSL
+#define PT_INTEGRATOR_PIXEL_SAMPLES_GLSL
+#include "shared/features.glsl"
+#include "common/rng.glsl"
+#include "geometry/motion.glsl"
+#include "integrator/camera.glsl"
+#include "integrator/path.glsl"
+#include "integrator/debug_view.glsl"
+#include "integrator/accumulate.glsl"
+
+// The camera ray of sample `rng` of `pixel`; sets the path's shutter time.
+Ray sampleCameraRay(uvec2 pixel, Rng rng) {
+    vec2 jitter = rng2(rng, DIM_PIXEL); // box filter: uniform over the pixel
+    Ray ray = cameraRay(scene.camera, vec2(pixel) + jitter, scene.imageSize, rng2(rng, DIM_LENS));
+    pathTime = HAS_MOTION ? rng1(rng, DIM_TIME) : 0.0; // the shutter is open over [0, 1)
+    return ray;
+}
+
+// What one sample adds: the NaN-mask view's mask, or the radiance under the firefly clamp
+// (viewer option, biased: scaled down to a largest component of `sampleClamp` where that is
+// positive; NaN fails the comparison and is dropped by addToPixelSums).
+vec3 sampleValue(vec3 L, float sampleClamp) {
+    if (DEBUG_VIEW == DEBUG_VIEW_NAN_MASK) L = nanMask(L);
+    if (sampleClamp > 0.0 && maxComponent(L) > sampleClamp) L *= sampleClamp / maxComponent(L);
+    return L;
+}
+
+// Samples `first` to `first + count - 1` of `pixel`, one at a time, added to `sums` in order.
+void addSamplesOneByOne(uvec2 pixel, uint first, uint count, float sampleClamp, inout PixelSums sums) {
+    bool radiance = DEBUG_VIEW == DEBUG_VIEW_NONE || DEBUG_VIEW == DEBUG_VIEW_NAN_MASK;
+    for (uint s = 0u; s < count; ++s) {
+        Rng rng = rngCreate(pixel, first + s, scene.seed);
+        Ray ray = sampleCameraRay(pixel, rng);
+        addToPixelSums(sums, sampleValue(radiance ? tracePath(ray, rng) : debugView(ray), sampleClamp));
+    }
+}
+
+// The same by path tracing with path regeneration (Novak et al. 2010): an invocation whose path
+// has ended starts its next sample at once instead of idling until the longest path of its SIMD
+// group ends. Lavapipe runs 8 invocations as one vector and a loop costs as much as its slowest
+// lane, so with Russian roulette one path at a time paid the longest of 8 paths for every
+// sample (bench/RESULTS.md, "Path regeneration"). Each pixel still adds its own samples in
+// sample order: the sums are bit-identical to addSamplesOneByOne's.
+void addPathSamplesRegenerated(uvec2 pixel, uint first, uint count, float sampleClamp, inout PixelSums sums) {
+    uint s = 0u;
+    bool start = true;
+    PathState st;
+    while (true) {
+        if (start) {
+            Rng rng = rngCreate(pixel, first + s, scene.seed);
+            st = pathStart(sampleCameraRay(pixel, rng), rng);
+        }
+        start = !pathStep(st);
+        if (!start) continue;
+        addToPixelSums(sums, sampleValue(st.L, sampleClamp));
+        if (++s >= count) break;
+    }
+}
+
+// Samples `first` to `first + count - 1` of `pixel`, added to `sums` in that order. (If-else on
+// one constant at a time: the specializer then deletes the branches not taken, and with them
+// the second copy of the path tracer that the driver would otherwise compile.)
+void addPixelSamples(uvec2 pixel, uint first, uint count, float sampleClamp, inout PixelSums sums) {
+    if (CLASSIC)
+        addSamplesOneByOne(pixel, first, count, sampleClamp, sums);
+    else if (DEBUG_VIEW == DEBUG_VIEW_NONE || DEBUG_VIEW == DEBUG_VIEW_NAN_MASK)
+        addPathSamplesRegenerated(pixel, first, count, sampleClamp, sums);
+    else
+        addSamplesOneByOne(pixel, first, count, sampleClamp, sums);
+}
+
+#endif
