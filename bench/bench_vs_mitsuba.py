@@ -1,27 +1,39 @@
 #!/usr/bin/env python3
 """pt against Mitsuba 3 at equal time, both measured in this run on this machine.
 
-For each reference scene (tests/references/<scene>: glTF for pt, Mitsuba XML of the very same
-triangles, and Mitsuba 3's reference image), Mitsuba renders a ladder of sample counts (warm:
-scene load and kernel compile excluded, as a user's second render sees them) and pt renders for
-each time budget (`pt render --time T`: its passes only, pipeline creation excluded), one right
-after the other. Both are scored by relMSE against the same reference; Mitsuba's relMSE at each
-budget is interpolated log-log between the two ladder rungs around it. Prints the machine's CPU
-model and vector ISA, a Markdown table and, with --json, everything measured.
+For each scene (a folder with scene.gltf for pt, mitsuba/scene.xml of the very same triangles,
+and meta.json with the image size), each budget and each repeat, Mitsuba renders the sample count
+its measured speed predicts for the budget (warm: scene load and kernel compile excluded, as a
+user's second render sees them) and pt renders for the budget (`pt render --time T`: its passes
+only, pipeline creation excluded), one right after the other. Pairing them keeps the ratio
+honest while the machine's speed drifts (a shared host here changed speed by 30% within minutes).
+Both are scored by relMSE against the same reference, Mitsuba's brought to pt's exact time by
+relMSE ~ 1/t (unbiased Monte Carlo). The ratio printed is the median over the repeats.
 
-  python3 bench/bench_vs_mitsuba.py [--budgets 10,60] [--scenes cbox-diffuse,cbox-glass-mirror]
-                                    [--pt build/pt] [--pt-args "--sampler sobol" ...] [--json OUT]
+Scenes: cbox-diffuse and cbox-glass-mirror (tests/references); cbox-bumpy-sphere (the box with a
+1 M-triangle sphere, bench/make_mesh_scene.py, 128x128) and cbox-rough (rough gold, rough glass, a
+textured floor: bench/make_rough_scene.py --mitsuba), both written into $PT_BENCH_CACHE (default
+~/.cache/pt-bench) when missing. The reference is bench/references/<scene>/reference.exr where
+there is one (20 minutes of Mitsuba, bench/make_mitsuba_reference.py: noise relMSE 30-50x below
+the 2048-spp references of tests/references, which would otherwise pull the 60-s ratios towards
+1), else the scene folder's. Each reference's own noise (ref_noise_relmse) is printed: it adds
+to both renderers' relMSE.
+
+  /opt/mitsuba/bin/python bench/bench_vs_mitsuba.py [--budgets 10,60] [--repeats 2]
+      [--scenes cbox-diffuse,cbox-glass-mirror,cbox-bumpy-sphere,cbox-rough] [--pt build/pt]
+      [--pt-args "--sampler independent" ...] [--json OUT]
 (--pt-args may be given several times: each is a pt configuration, all measured in the same run.)
 
-Needs numpy and the OpenEXR module in the Python that runs it (Debian: python3-numpy; OpenEXR
-from PyPI) and the Mitsuba venv made by scripts/setup_mitsuba_venv.sh (/opt/mitsuba, or
-$PT_MITSUBA_PYTHON). relMSE = mean over pixels and channels of (x - ref)^2 / (ref^2 + 0.01).
+Runs in the Mitsuba venv made by scripts/setup_mitsuba_venv.sh (numpy, OpenEXR and Mitsuba 3.9.1;
+$PT_MITSUBA_PYTHON overrides the interpreter for the Mitsuba worker). Prints the machine's CPU
+model and vector ISA and a Markdown table. relMSE = mean over pixels and channels of
+(x - ref)^2 / (ref^2 + 0.01).
 """
 import argparse
 import json
-import math
 import os
 import shlex
+import statistics
 import subprocess
 import sys
 import tempfile
@@ -30,6 +42,8 @@ import time
 HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.dirname(HERE)
 REFERENCES = os.path.join(REPO, "tests", "references")
+LONG_REFERENCES = os.path.join(HERE, "references")
+CACHE = os.environ.get("PT_BENCH_CACHE", os.path.join(os.path.expanduser("~"), ".cache", "pt-bench"))
 LLVM19 = "/usr/lib/x86_64-linux-gnu/libLLVM.so.19.1"
 
 
@@ -61,57 +75,70 @@ def machine():
     return f"{os.cpu_count()} cores, {model}, {isa}"
 
 
-def at_time(rows, t):
-    """relMSE at `t` seconds, log-log between the rungs around it (extrapolated at the ends)."""
-    pts = sorted((r["seconds"], r["relmse"]) for r in rows)
-    i = next((k for k in range(len(pts) - 1) if pts[k][0] <= t <= pts[k + 1][0]), None)
-    (t0, e0), (t1, e1) = pts[i:i + 2] if i is not None else (pts[:2] if t < pts[0][0] else pts[-2:])
-    slope = (math.log(e1) - math.log(e0)) / (math.log(t1) - math.log(t0))
-    return math.exp(math.log(e0) + slope * (math.log(t) - math.log(t0)))
+# Our own scenes, generated where missing: (folder in the cache, the command's arguments).
+GENERATED = {
+    "cbox-bumpy-sphere": ("mesh-mitsuba", ["make_mesh_scene.py", "--triangles", "1000000", "--size", "128"]),
+    "cbox-rough": ("rough-mitsuba", ["make_rough_scene.py", "--mitsuba"]),
+}
 
 
-def mitsuba_worker(scene_dir, spp_list):
-    """Runs inside the Mitsuba venv: the ladder for one scene, as JSON on stdout."""
+def scene_dir(name):
+    """The folder of a scene, made first where it is one of ours that is generated."""
+    if name not in GENERATED:
+        return os.path.join(REFERENCES, name)
+    folder, command = GENERATED[name]
+    d = os.path.join(CACHE, folder)
+    if not os.path.exists(os.path.join(d, "meta.json")):
+        subprocess.run(["/usr/bin/python3", os.path.join(HERE, command[0]), d] + command[1:], check=True,
+                       capture_output=True)
+    return d
+
+
+def reference_of(name, directory):
+    """(reference.exr, its noise relMSE or None): the long reference where there is one."""
+    for d in (os.path.join(LONG_REFERENCES, name), directory):
+        path = os.path.join(d, "reference.exr")
+        if os.path.exists(path):
+            info = os.path.join(d, "reference.json")
+            noise = json.load(open(info)).get("ref_noise_relmse") if os.path.exists(info) else None
+            return path, noise
+    sys.exit(f"bench_vs_mitsuba: no reference for {name}")
+
+
+def mitsuba_worker(xml, reference, spp_list, seed):
+    """Runs as a child process: renders `xml` at each sample count, as JSON on stdout."""
     os.environ.setdefault("DRJIT_LIBLLVM_PATH", LLVM19)  # LLVM 15 cannot lower Dr.Jit's fminimum
     import numpy as np
     import mitsuba as mi
     mi.set_variant("llvm_ad_rgb")
-    ref = read_rgb(os.path.join(scene_dir, "reference.exr"))
-    scene = mi.load_file(os.path.join(scene_dir, "mitsuba", "scene.xml"))
+    ref = read_rgb(reference)
+    scene = mi.load_file(xml)
     np.array(mi.render(scene, spp=1, seed=12345))  # compile the kernel once: warm figures
     rows = []
     for k, spp in enumerate(spp_list):
         t0 = time.perf_counter()
-        x = np.array(mi.render(scene, spp=spp, seed=100 + k), dtype=np.float64)[..., :3]  # waits for the render
+        x = np.array(mi.render(scene, spp=spp, seed=seed + k), dtype=np.float64)[..., :3]  # waits for the render
         seconds = time.perf_counter() - t0
         rows.append(dict(spp=spp, seconds=seconds, relmse=relmse(x, ref),
                          mpaths=spp * x.shape[0] * x.shape[1] / seconds / 1e6))
     json.dump(dict(version=mi.__version__, rows=rows), sys.stdout)
 
 
-def run_mitsuba(python, scene_dir, budgets):
-    # Two short rungs measure the speed; then one render per budget at the sample count that
-    # speed predicts, so that each budget has a rung at about its time (and the interpolation
-    # between rungs only corrects the small miss).
-    def ladder(spps):
-        out = subprocess.run([python, os.path.abspath(__file__), "--mitsuba-worker", scene_dir,
-                              ",".join(map(str, spps))], check=True, capture_output=True, text=True).stdout
-        return json.loads(out)
-    first = ladder([4, 16])
-    per_second = first["rows"][-1]["spp"] / first["rows"][-1]["seconds"]
-    rest = ladder(sorted({max(1, round(b * per_second)) for b in budgets}))
-    return first["version"], first["rows"] + rest["rows"]
+def run_mitsuba(python, directory, reference, spp_list, seed):
+    out = subprocess.run([python, os.path.abspath(__file__), "--mitsuba-worker",
+                          os.path.join(directory, "mitsuba", "scene.xml"), reference,
+                          ",".join(map(str, spp_list)), str(seed)], check=True, capture_output=True, text=True).stdout
+    return json.loads(out)
 
 
-def run_pt(pt, extra, scene_dir, budget, work):
+def run_pt(pt, extra, directory, reference, meta, budget, seed, work):
     log = os.path.join(work, "errors.csv")
-    cmd = [pt, "render", os.path.join(scene_dir, "scene.gltf"), "--time", str(budget), "--reference",
-           os.path.join(scene_dir, "reference.exr"), "--error-log", log, "-o", os.path.join(work, "pt.exr"), "-q"]
+    cmd = [pt, "render", os.path.join(directory, "scene.gltf"), "--time", str(budget), "--reference", reference,
+           "--error-log", log, "-o", os.path.join(work, "pt.exr"), "-q", "--width", str(meta["width"]),
+           "--height", str(meta["height"]), "--seed", str(seed)]
     subprocess.run(cmd + extra, check=True, capture_output=True)
     with open(log) as f:
         spp, seconds, rel = f.read().strip().splitlines()[-1].split(",")
-    with open(os.path.join(scene_dir, "meta.json")) as f:
-        meta = json.load(f)
     pixels = meta["width"] * meta["height"]
     return dict(spp=int(spp), seconds=float(seconds), relmse=float(rel),
                 mpaths=int(spp) * pixels / float(seconds) / 1e6)
@@ -120,16 +147,19 @@ def run_pt(pt, extra, scene_dir, budget, work):
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--budgets", default="10,60")
-    ap.add_argument("--scenes", default="cbox-diffuse,cbox-glass-mirror")
+    ap.add_argument("--repeats", type=int, default=2, help="pairs per scene and budget (the median ratio is printed)")
+    ap.add_argument("--scenes", default="cbox-diffuse,cbox-glass-mirror,cbox-bumpy-sphere,cbox-rough")
     ap.add_argument("--pt", default=os.path.join(REPO, "build", "pt"))
     ap.add_argument("--pt-args", action="append",
-                    help="extra pt render arguments, e.g. '--sampler sobol'; repeat for several configurations "
-                         "(default: one, pt's defaults)")
+                    help="extra pt render arguments, e.g. '--sampler independent'; repeat for several "
+                         "configurations (default: one, pt's defaults)")
     ap.add_argument("--json")
-    ap.add_argument("--mitsuba-worker", nargs=2, metavar=("SCENE_DIR", "SPP_LIST"), help=argparse.SUPPRESS)
+    ap.add_argument("--mitsuba-worker", nargs=4, metavar=("XML", "REFERENCE", "SPP_LIST", "SEED"),
+                    help=argparse.SUPPRESS)
     a = ap.parse_args()
     if a.mitsuba_worker:
-        mitsuba_worker(a.mitsuba_worker[0], [int(n) for n in a.mitsuba_worker[1].split(",")])
+        xml, reference, spps, seed = a.mitsuba_worker
+        mitsuba_worker(xml, reference, [int(n) for n in spps.split(",")], int(seed))
         return
     python = os.environ.get("PT_MITSUBA_PYTHON", "/opt/mitsuba/bin/python")
     if not os.path.exists(python):
@@ -137,34 +167,58 @@ def main():
     budgets = [float(b) for b in a.budgets.split(",")]
     configs = a.pt_args or [""]
     print(f"Machine: {machine()}")
-    results = {}
+    rows = []
     with tempfile.TemporaryDirectory() as work:
         for name in a.scenes.split(","):
-            scene_dir = os.path.join(REFERENCES, name)
-            version, ladder = run_mitsuba(python, scene_dir, budgets)
-            ours = {c: [run_pt(a.pt, shlex.split(c), scene_dir, b, work) for b in budgets] for c in configs}
-            results[name] = dict(mitsuba_version=version, mitsuba=ladder, pt=ours)
-            print(f"{name}: Mitsuba {version} ladder: " +
-                  ", ".join(f"{r['spp']} spp {r['seconds']:.2f} s {r['mpaths']:.2f} M paths/s relMSE {r['relmse']:.4g}"
-                            for r in ladder), flush=True)
+            directory = scene_dir(name)
+            meta = json.load(open(os.path.join(directory, "meta.json")))
+            reference, noise = reference_of(name, directory)
+            probe = run_mitsuba(python, directory, reference, [4, 16], 100)
+            version = probe["version"]
+            per_second = probe["rows"][-1]["spp"] / probe["rows"][-1]["seconds"]
+            noise_text = "?" if noise is None else "%.2g" % noise
+            print(f"{name}: reference {os.path.relpath(reference, REPO)} (its noise relMSE {noise_text}); "
+                  f"Mitsuba {version} at {per_second:.1f} spp/s", flush=True)
+            for repeat in range(a.repeats):
+                for budget in budgets:
+                    spp = max(1, round(budget * per_second))
+                    theirs = run_mitsuba(python, directory, reference, [spp], 1000 * (repeat + 1))["rows"][0]
+                    per_second = theirs["spp"] / theirs["seconds"]  # follows the machine's drift
+                    for config in configs:
+                        ours = run_pt(a.pt, shlex.split(config), directory, reference, meta, budget, repeat, work)
+                        # Mitsuba's relMSE at pt's exact time (relMSE ~ 1/t).
+                        at_time = theirs["relmse"] * theirs["seconds"] / ours["seconds"]
+                        row = dict(scene=name, config=config or "defaults", budget=budget, repeat=repeat,
+                                   pt=ours, mitsuba=theirs, mitsuba_relmse_at_pt_time=at_time,
+                                   ratio=ours["relmse"] / at_time, reference_noise=noise)
+                        rows.append(row)
+                        print(f"  {name} {row['config']} {budget:g} s #{repeat}: pt {ours['spp']} spp "
+                              f"{ours['mpaths']:.2f} M paths/s relMSE {ours['relmse']:.4g} | Mitsuba {theirs['spp']} "
+                              f"spp {theirs['seconds']:.1f} s {theirs['mpaths']:.2f} M paths/s relMSE "
+                              f"{theirs['relmse']:.4g} | ratio {row['ratio']:.2f}", flush=True)
     print()
-    print("pt render against Mitsuba 3 `path` (llvm_ad_rgb), same machine, same run")
+    print(f"pt render against Mitsuba 3 `path` (llvm_ad_rgb), same machine, paired runs ({machine()})")
     print()
-    print("| scene | pt settings | budget (s) | pt spp | pt M paths/s | pt relMSE | Mitsuba M paths/s | "
-          "Mitsuba relMSE | ratio (pt / Mitsuba relMSE) |")
-    print("|---|---|---|---|---|---|---|---|---|")
-    for name, r in results.items():
-        rate = max(r["mitsuba"], key=lambda row: row["seconds"])["mpaths"]
-        for config, rows in r["pt"].items():
-            for ours in rows:
-                theirs = at_time(r["mitsuba"], ours["seconds"])
-                ours["mitsuba_relmse_at_time"] = theirs
-                print(f"| {name} | {config or 'defaults'} | {ours['seconds']:.1f} | {ours['spp']} | "
-                      f"{ours['mpaths']:.2f} | {ours['relmse']:.5f} | {rate:.2f} | {theirs:.5f} | "
-                      f"{ours['relmse'] / theirs:.2f} |")
+    print("| scene | pt settings | budget (s) | pt M paths/s | pt relMSE | Mitsuba M paths/s | Mitsuba relMSE "
+          "| ratio (pt / Mitsuba relMSE), median | each pair | reference noise |")
+    print("|---|---|---|---|---|---|---|---|---|---|")
+    keys = []
+    for r in rows:
+        if (r["scene"], r["config"], r["budget"]) not in keys:
+            keys.append((r["scene"], r["config"], r["budget"]))
+    for scene, config, budget in keys:
+        group = [r for r in rows if (r["scene"], r["config"], r["budget"]) == (scene, config, budget)]
+        med = lambda f: statistics.median(f(r) for r in group)
+        noise = group[0]["reference_noise"]
+        pairs = ", ".join("%.2f" % r["ratio"] for r in group)
+        noise_text = "?" if noise is None else "%.1g" % noise
+        print(f"| {scene} | {config} | {budget:g} | {med(lambda r: r['pt']['mpaths']):.2f} | "
+              f"{med(lambda r: r['pt']['relmse']):.3g} | {med(lambda r: r['mitsuba']['mpaths']):.2f} | "
+              f"{med(lambda r: r['mitsuba_relmse_at_pt_time']):.3g} | **{med(lambda r: r['ratio']):.2f}** | "
+              f"{pairs} | {noise_text} |")
     if a.json:
         with open(a.json, "w") as f:
-            json.dump(dict(machine=machine(), results=results), f, indent=1)
+            json.dump(dict(machine=machine(), rows=rows), f, indent=1)
 
 
 if __name__ == "__main__":

@@ -200,10 +200,11 @@ NOT_FROM_DEBIAN = {
     "python:ray": "Ray 2.60.0 from PyPI, in the venv /opt/pt-ray that scripts/setup_ray_venv.sh makes "
                   "(setup.sh calls it): tools/pt_ray and its tests (tests/app/ray_test.cpp)",
     "python:OpenEXR": "the OpenEXR bindings from PyPI (pip install OpenEXR; Debian 12 has none): only the "
-                      "benchmarks run by hand, bench/course_exr_compare.py and bench/bench_vs_mitsuba.py (whose "
-                      "venv scripts/setup_mitsuba_venv.sh installs them)",
+                      "benchmarks run by hand, bench/course_exr_compare.py, bench/bench_vs_mitsuba.py and "
+                      "bench/make_mitsuba_reference.py (whose venv scripts/setup_mitsuba_venv.sh installs them)",
     "python:mitsuba": "Mitsuba 3 from PyPI, in the venv /opt/mitsuba that scripts/setup_mitsuba_venv.sh makes (not "
-                      "part of setup.sh): only bench/bench_vs_mitsuba.py, a benchmark run by hand",
+                      "part of setup.sh): only bench/bench_vs_mitsuba.py and bench/make_mitsuba_reference.py, run by "
+                      "hand",
 }
 
 SHELL_KEYWORDS = set("""if then else elif fi do done while until for in case esac function select time !
