@@ -7,7 +7,6 @@
 #include "shared/layout.h"
 
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer SceneParamsRef { GpuSceneParams p; };
-layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer TriangleRef { GpuTriangle v[]; };
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer ShadingRef { GpuTriangleShading v[]; };
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer Bvh4Ref { GpuBvh4Node v[]; };
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer MaterialRef { GpuMaterial v[]; };
@@ -20,19 +19,55 @@ layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer Sp
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer TextureRef { GpuTexture v[]; };
 layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer UintRef { uint v[]; };
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer TangentRef { GpuTriangleTangents v[]; };
+layout(buffer_reference, std430, buffer_reference_align = 8) readonly buffer Uint64Ref { uint64_t v[]; };
 
 // The scene of the current dispatch; set once at the top of main().
 GpuSceneParams scene;
-TriangleRef sceneTriangles;
 ShadingRef sceneShading;
 Bvh4Ref sceneNodes;
 MaterialRef sceneMaterials;
 LightRef sceneLights;
 FloatRef sceneLightCdf;
 
+// The two 32-bit words of a 64-bit one (little-endian: the low word first, as in memory).
+uvec2 wordsOf(uint64_t w) { return uvec2(uint(w), uint(w >> 32)); }
+vec2 floatsOf(uint64_t w) { return uintBitsToFloat(wordsOf(w)); }
+
+// The arrays read in the traversal's inner loops are read as 64-bit words: lavapipe gathers each
+// loaded component separately for the 8 lanes of a SIMD vector, and a gather costs about the
+// same per element whatever its width, so 64-bit words bring a record in with half the gathers
+// (they were the kernel's hottest instructions; bench/RESULTS.md, "Loads of 64-bit words").
+
+// Node `index` of a four-wide BVH at `nodes`.
+GpuBvh4Node loadBvh4Node(uint64_t nodes, uint index) {
+    Uint64Ref w = Uint64Ref(nodes + uint64_t(index) * uint64_t(BVH4_NODE_WORDS64 * 8u));
+    GpuBvh4Node n;
+    n.loX = vec4(floatsOf(w.v[0]), floatsOf(w.v[1]));
+    n.hiX = vec4(floatsOf(w.v[2]), floatsOf(w.v[3]));
+    n.loY = vec4(floatsOf(w.v[4]), floatsOf(w.v[5]));
+    n.hiY = vec4(floatsOf(w.v[6]), floatsOf(w.v[7]));
+    n.loZ = vec4(floatsOf(w.v[8]), floatsOf(w.v[9]));
+    n.hiZ = vec4(floatsOf(w.v[10]), floatsOf(w.v[11]));
+    n.child = uvec4(wordsOf(w.v[12]), wordsOf(w.v[13]));
+    return n;
+}
+
+// Triangle `index` of the scene.
+GpuTriangle loadTriangle(uint index) {
+    Uint64Ref w = Uint64Ref(scene.triangles + uint64_t(index) * uint64_t(TRIANGLE_WORDS64 * 8u));
+    uvec2 w1 = wordsOf(w.v[1]), w3 = wordsOf(w.v[3]), w5 = wordsOf(w.v[5]);
+    GpuTriangle t;
+    t.p0 = vec3(floatsOf(w.v[0]), uintBitsToFloat(w1.x));
+    t.materialIndex = w1.y;
+    t.p1 = vec3(floatsOf(w.v[2]), uintBitsToFloat(w3.x));
+    t.lightIndex = w3.y;
+    t.p2 = vec3(floatsOf(w.v[4]), uintBitsToFloat(w5.x));
+    t.flags = w5.y;
+    return t;
+}
+
 void bindScene(uint64_t paramsAddress) {
     scene = SceneParamsRef(paramsAddress).p;
-    sceneTriangles = TriangleRef(scene.triangles);
     sceneShading = ShadingRef(scene.shading);
     sceneNodes = Bvh4Ref(scene.nodes);
     sceneMaterials = MaterialRef(scene.materials);

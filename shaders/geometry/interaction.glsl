@@ -82,7 +82,7 @@ SurfaceInteraction makeInteraction(Ray ray, Hit hit) {
     SurfaceInteraction si;
     si.uv = vec2(0.0);
     si.dpdu = si.dpdv = vec3(0.0);
-    GpuTriangle tri = placedTriangle(sceneTriangles.v[hit.primitive]);
+    GpuTriangle tri = placedTriangle(loadTriangle(hit.primitive));
     float b0 = 1.0 - hit.bary.x - hit.bary.y;
     // The per-vertex record, read once: for shading normals and for texture coordinates.
     bool smoothNormals = HAS_SHADING_NORMALS && (tri.flags & TRIANGLE_FLAG_SHADING_NORMALS) != 0u;

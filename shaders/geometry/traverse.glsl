@@ -106,7 +106,7 @@ uint traversalNodeVisits = 0u;
 // call, so the compiler keeps only one kind of leaf test in each inlined copy. `anyHit` stops
 // at the first hit (shadow rays).
 bool traverseTree(bool sphereTree, bool anyHit, Ray ray, WatertightRay wray, BoxRay boxRay, inout Hit hit) {
-    Bvh4Ref nodes = sphereTree ? Bvh4Ref(scene.sphereNodes) : sceneNodes;
+    uint64_t nodes = sphereTree ? scene.sphereNodes : scene.nodes;
     uint numNodes = sphereTree ? scene.numSphereNodes : scene.numNodes;
     if (numNodes == 0u) return false;
     uint stack[TRAVERSAL_STACK_SIZE];   // child words
@@ -120,7 +120,7 @@ bool traverseTree(bool sphereTree, bool anyHit, Ray ray, WatertightRay wray, Box
         // (Aila and Laine's "while-while" traversal, 2009).
         while ((current & BVH4_LEAF_BIT) == 0u) {
             if (DEBUG_VIEW == DEBUG_VIEW_BVH_COST) ++traversalNodeVisits;
-            GpuBvh4Node node = nodes.v[current];
+            GpuBvh4Node node = loadBvh4Node(nodes, current);
             // Nearest child first, so that the hits it yields shorten the rest; shadow rays
             // find occluders sooner this way too (measured: unordered was slower for them).
             // A network of five compare-exchanges orders the four slots, misses last.
@@ -153,7 +153,7 @@ bool traverseTree(bool sphereTree, bool anyHit, Ray ray, WatertightRay wray, Box
                 if (HAS_MOTION && sphere.motion != NO_MOTION) r.origin -= motionOffset(sphere.motion);
                 hitPrimitive = intersectSphere(sphere, r, hit.t, t);
             } else {
-                GpuTriangle tri = placedTriangle(sceneTriangles.v[i]);
+                GpuTriangle tri = placedTriangle(loadTriangle(i));
                 hitPrimitive = intersectTriangle(wray, tri.p0, tri.p1, tri.p2, hit.t, t, bary);
                 if (HAS_ALPHA && hitPrimitive && (tri.flags & TRIANGLE_FLAG_ALPHA_TESTED) != 0u)
                     hitPrimitive = !alphaCutsOut(tri, i, bary, ray);

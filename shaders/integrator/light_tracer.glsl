@@ -83,7 +83,7 @@ EmitterPoint sampleEmitterPoint(uint lightIndex, vec2 u) {
     GpuLight light = sceneLights.v[lightIndex];
     if (!isLightTracedEmitter(lightIndex) || light.pmf <= 0.0) return e;
     if (light.type == LIGHT_TRIANGLE) {
-        GpuTriangle tri = sceneTriangles.v[light.primitive];
+        GpuTriangle tri = loadTriangle(light.primitive);
         vec2 b = sampleUniformTriangle(u);
         e.p = (1.0 - b.x - b.y) * tri.p0 + b.x * tri.p1 + b.y * tri.p2;
         e.ng = normalize(cross(tri.p1 - tri.p0, tri.p2 - tri.p0));

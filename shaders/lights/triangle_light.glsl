@@ -27,7 +27,7 @@ vec3 triangleEmission(uint triangle, GpuMaterial mat, vec2 b, vec3 p, bool front
 
 LightSample sampleTriangleLight(GpuLight light, vec3 x, vec2 u) {
     LightSample s = noLightSample();
-    GpuTriangle tri = sceneTriangles.v[light.primitive];
+    GpuTriangle tri = loadTriangle(light.primitive);
     vec2 b = sampleUniformTriangle(u);
     s.point = (1.0 - b.x - b.y) * tri.p0 + b.x * tri.p1 + b.y * tri.p2;
     s.normal = normalize(cross(tri.p1 - tri.p0, tri.p2 - tri.p0));

@@ -153,7 +153,8 @@ struct GpuTriangle {
     vec3 p2;
     uint flags; // TRIANGLE_FLAG_*
 };
-PT_CHECK_SIZE(GpuTriangle, 48);
+#define TRIANGLE_WORDS64 6u // its size in 64-bit words (loadTriangle, common/buffers.glsl)
+PT_CHECK_SIZE(GpuTriangle, TRIANGLE_WORDS64 * 8u);
 
 // Per-vertex shading data, read only at the closest hit.
 struct GpuTriangleShading {
@@ -190,7 +191,8 @@ struct GpuBvh4Node {
     vec4 hiZ;
     uvec4 child;
 };
-PT_CHECK_SIZE(GpuBvh4Node, 112);
+#define BVH4_NODE_WORDS64 14u // its size in 64-bit words (loadBvh4Node, common/buffers.glsl)
+PT_CHECK_SIZE(GpuBvh4Node, BVH4_NODE_WORDS64 * 8u);
 
 struct GpuMaterial {
     vec3 baseColor;       // diffuse albedo, mirror/dielectric/conductor tint

@@ -80,7 +80,7 @@ void main() {
             hit.primitive = 0u;
             hit.bary = vec2(0.0);
             for (uint k = 0u; k < scene.numTriangles; ++k) {
-                GpuTriangle tri = sceneTriangles.v[k];
+                GpuTriangle tri = loadTriangle(k);
                 float t;
                 vec2 bary;
                 if (intersectTriangle(wray, tri.p0, tri.p1, tri.p2, hit.t, t, bary)) {
