@@ -44,6 +44,7 @@ void addSamplesOneByOne(uvec2 pixel, uint first, uint count, float sampleClamp, 
 // sample (bench/RESULTS.md, "Path regeneration"). Each pixel still adds its own samples in
 // sample order: the sums are bit-identical to addSamplesOneByOne's.
 void addPathSamplesRegenerated(uvec2 pixel, uint first, uint count, float sampleClamp, inout PixelSums sums) {
+    if (count == 0u) return;
     uint s = 0u;
     bool start = true;
     PathState st;
