@@ -38,17 +38,30 @@ vec2 floatsOf(uint64_t w) { return uintBitsToFloat(wordsOf(w)); }
 // same per element whatever its width, so 64-bit words bring a record in with half the gathers
 // (they were the kernel's hottest instructions; bench/RESULTS.md, "Loads of 64-bit words").
 
-// Node `index` of a four-wide BVH at `nodes`.
+// Child planes of one axis: origin + q * scale for the four bytes of `bytes` (q * scale is
+// exact, so this is the decoding src/accel/quantized_bvh.cpp does, bit for bit).
+vec4 dequantizePlanes(uint bytes, float origin, float scale) {
+    uvec4 q = (uvec4(bytes) >> uvec4(0u, 8u, 16u, 24u)) & 0xffu;
+    return origin + vec4(q) * scale;
+}
+
+// Node `index` of a four-wide BVH at `nodes` (GpuBvh4QNode), decoded.
 GpuBvh4Node loadBvh4Node(uint64_t nodes, uint index) {
-    Uint64Ref w = Uint64Ref(nodes + uint64_t(index) * uint64_t(BVH4_NODE_WORDS64 * 8u));
+    Uint64Ref w = Uint64Ref(nodes + uint64_t(index) * uint64_t(BVH4_QNODE_WORDS64 * 8u));
+    vec2 originXY = floatsOf(w.v[0]);
+    uvec2 originZExponents = wordsOf(w.v[1]);
+    uvec2 loXY = wordsOf(w.v[4]), loZhiX = wordsOf(w.v[5]), hiYZ = wordsOf(w.v[6]);
+    vec3 origin = vec3(originXY, uintBitsToFloat(originZExponents.x));
+    uint e = originZExponents.y;
+    vec3 scale = uintBitsToFloat(((uvec3(e) >> uvec3(0u, 8u, 16u)) & 0xffu) << 23u);
     GpuBvh4Node n;
-    n.loX = vec4(floatsOf(w.v[0]), floatsOf(w.v[1]));
-    n.hiX = vec4(floatsOf(w.v[2]), floatsOf(w.v[3]));
-    n.loY = vec4(floatsOf(w.v[4]), floatsOf(w.v[5]));
-    n.hiY = vec4(floatsOf(w.v[6]), floatsOf(w.v[7]));
-    n.loZ = vec4(floatsOf(w.v[8]), floatsOf(w.v[9]));
-    n.hiZ = vec4(floatsOf(w.v[10]), floatsOf(w.v[11]));
-    n.child = uvec4(wordsOf(w.v[12]), wordsOf(w.v[13]));
+    n.loX = dequantizePlanes(loXY.x, origin.x, scale.x);
+    n.loY = dequantizePlanes(loXY.y, origin.y, scale.y);
+    n.loZ = dequantizePlanes(loZhiX.x, origin.z, scale.z);
+    n.hiX = dequantizePlanes(loZhiX.y, origin.x, scale.x);
+    n.hiY = dequantizePlanes(hiYZ.x, origin.y, scale.y);
+    n.hiZ = dequantizePlanes(hiYZ.y, origin.z, scale.z);
+    n.child = uvec4(wordsOf(w.v[2]), wordsOf(w.v[3]));
     return n;
 }
 

@@ -191,8 +191,24 @@ struct GpuBvh4Node {
     vec4 hiZ;
     uvec4 child;
 };
-#define BVH4_NODE_WORDS64 14u // its size in 64-bit words (loadBvh4Node, common/buffers.glsl)
-PT_CHECK_SIZE(GpuBvh4Node, BVH4_NODE_WORDS64 * 8u);
+PT_CHECK_SIZE(GpuBvh4Node, 112);
+
+// The same node as stored for the kernel, its child boxes quantised to 8 bits per plane
+// (src/accel/quantized_bvh.cpp; after Ylitie et al. 2017): plane = origin + q * 2^e per axis,
+// with q in 0..255 rounded outwards so that the decoded box contains the exact one, and e the
+// smallest exponent that reaches the node's far side. Half the bytes of GpuBvh4Node, so half the
+// gathers on lavapipe, where loading nodes was the kernel's hottest work. Read word by word
+// (loadBvh4Node, common/buffers.glsl), never as a GLSL struct array, so its C++ size is its stride.
+struct GpuBvh4QNode {
+    vec3 origin;    // the node's box's low corner
+    uint exponents; // per axis (bits 0-7 x, 8-15 y, 16-23 z): e + 127, the scale 2^e's float exponent bits
+    uvec4 child;    // child words (BVH4_* above)
+    uint lo[3];     // per axis: child i's low plane q in bits 8i..8i+7
+    uint hi[3];     // per axis: the high planes likewise
+    uvec2 pad;      // to one 64-byte cache line per node
+};
+#define BVH4_QNODE_WORDS64 8u // its size in 64-bit words; the last (pad) is never read
+PT_CHECK_SIZE(GpuBvh4QNode, BVH4_QNODE_WORDS64 * 8u);
 
 struct GpuMaterial {
     vec3 baseColor;       // diffuse albedo, mirror/dielectric/conductor tint

@@ -1,5 +1,7 @@
 #include "flatten/flat_scene.h"
 
+#include "accel/quantized_bvh.h"
+
 #include <glm/gtc/type_ptr.hpp>
 
 #include <algorithm>
@@ -160,7 +162,7 @@ void flattenSpheres(const Scene& scene, const BvhBuildOptions& bvhOptions, FlatS
         bounds.push_back(box);
     }
     const Bvh bvh = buildBvh(bounds, bvhOptions);
-    flat.sphereNodes = gpuNodes(bvh, scene.source + ": sphere BVH").nodes;
+    flat.sphereNodes = quantizeWideNodes(gpuNodes(bvh, scene.source + ": sphere BVH").nodes);
     for (uint32_t original : bvh.primOrder) flat.spheres.push_back(spheres[original]);
 }
 
@@ -227,7 +229,7 @@ FlatEnvironment flattenEnvironment(const Environment& env, const std::string& so
 float sceneRadius(const FlatScene& flat) {
     Aabb box;
     for (const auto& n : {flat.nodes, flat.sphereNodes})
-        if (!n.empty()) box.grow(wideNodeBounds(n[0]));
+        if (!n.empty()) box.grow(wideNodeBounds(decodeWideNode(n[0])));
     return box.empty() ? 1.0f : std::max(0.5f * glm::length(box.hi - box.lo), 1e-6f);
 }
 
@@ -308,7 +310,7 @@ FlatScene flattenScene(const Scene& scene, const BvhBuildOptions& bvhOptions) {
 
     const Bvh bvh = buildBvh(bounds, bvhOptions);
     WideBvh wide = gpuNodes(bvh, scene.source + ": BVH");
-    flat.nodes = std::move(wide.nodes);
+    flat.nodes = quantizeWideNodes(wide.nodes);
     flat.bvhSeconds = bvh.buildSeconds;
     flat.sahCost = bvh.sahCost;
     flat.bvhDepth = bvh.maxDepth;

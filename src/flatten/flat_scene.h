@@ -25,9 +25,9 @@ struct FlatScene {
     std::vector<gpu::GpuTriangle> triangles;
     std::vector<gpu::GpuTriangleShading> shading;
     std::vector<gpu::GpuTriangleTangents> tangents; // per triangle when any mesh has tangents, else empty
-    std::vector<gpu::GpuBvh4Node> nodes;            // four-wide (accel/wide_bvh.h)
+    std::vector<gpu::GpuBvh4QNode> nodes;           // four-wide (accel/wide_bvh.h), quantised (accel/quantized_bvh.h)
     std::vector<gpu::GpuSphere> spheres;            // BVH-ordered
-    std::vector<gpu::GpuBvh4Node> sphereNodes;      // a second BVH, over the spheres
+    std::vector<gpu::GpuBvh4QNode> sphereNodes;     // a second BVH, over the spheres
     std::vector<gpu::GpuMaterial> materials;
     std::vector<gpu::GpuTexture> textures;
     std::vector<uint32_t> texels; // every image texture's texels, packed (see GpuTexture)

@@ -1,6 +1,7 @@
 #include "viewer/viewer.h"
 
 #include "gpu/vulkan_error.h"
+#include "accel/quantized_bvh.h"
 #include "flatten/feature_set.h"
 #include "viewer/viewer_session.h"
 
@@ -25,8 +26,8 @@ double msSince(Clock::time_point t) { return std::chrono::duration<double, std::
 // Bounds of the scene from the roots of its BVHs.
 void sceneBounds(const FlatScene& flat, glm::vec3& centre, float& radius) {
     Aabb box;
-    if (!flat.nodes.empty()) box.grow(wideNodeBounds(flat.nodes[0]));
-    if (!flat.sphereNodes.empty()) box.grow(wideNodeBounds(flat.sphereNodes[0]));
+    if (!flat.nodes.empty()) box.grow(wideNodeBounds(decodeWideNode(flat.nodes[0])));
+    if (!flat.sphereNodes.empty()) box.grow(wideNodeBounds(decodeWideNode(flat.sphereNodes[0])));
     glm::vec3 lo = box.lo, hi = box.hi;
     if (box.empty()) lo = hi = glm::vec3(0.0f);
     centre = 0.5f * (lo + hi);

@@ -3,6 +3,7 @@
 // triangles with the same watertight intersector, and the answers must be identical. Because
 // both sides share the intersector, any difference is the traversal's fault (a box culled too
 // eagerly, a wrong child order, a stack overflow, tMax mishandled), not floating-point noise.
+#include "accel/quantized_bvh.h"
 #include "support/gpu_test_support.h"
 
 #include <algorithm>
@@ -286,8 +287,9 @@ std::vector<GpuTestRay> nodePlaneRays(const pt::FlatScene& flat, size_t count, s
     const std::vector<glm::vec3> axisDirs = axisAlignedDirections();
     std::uniform_int_distribution<size_t> pickDir(0, axisDirs.size() - 1);
     for (size_t i = 0; i < count; ++i) {
-        // A child box of a random wide node (every box the traversal tests is one of these).
-        const pt::gpu::GpuBvh4Node& wide = flat.nodes[pickNode(rng)];
+        // A child box of a random wide node as the kernel decodes it (every box the traversal
+        // tests is one of these).
+        const pt::gpu::GpuBvh4Node wide = pt::decodeWideNode(flat.nodes[pickNode(rng)]);
         int slot = int(rng() % 4);
         while (wide.child[slot] == BVH4_EMPTY) slot = (slot + 1) % 4;
         struct {
@@ -358,12 +360,14 @@ TEST_F(TraversalTest, AxisAlignedRaysAndOriginsOnNodePlanesMatchBruteForce) {
 
 TEST_F(TraversalTest, FlatGridInPlaneZeroMatchesBruteForce) {
     const TestScene scene = uploadMeshes({flatGrid(24)});
-    for (const pt::gpu::GpuBvh4Node& n : scene.flat.nodes)
+    for (const pt::gpu::GpuBvh4QNode& q : scene.flat.nodes) {
+        const pt::gpu::GpuBvh4Node n = pt::decodeWideNode(q);
         for (int slot = 0; slot < 4; ++slot) {
             if (n.child[slot] == BVH4_EMPTY) continue;
             ASSERT_EQ(n.loZ[slot], 0.0f);
             ASSERT_EQ(n.hiZ[slot], 0.0f);
         }
+    }
     std::mt19937 rng(31);
     std::vector<GpuTestRay> rays =
         concat({randomRays(15000, rng, glm::vec3(-14.0f, -14.0f, -5.0f), glm::vec3(14.0f, 14.0f, 5.0f)),
