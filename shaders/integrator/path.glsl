@@ -149,19 +149,15 @@ bool pathStep(inout PathState st) {
         Frame frame = makeFrame(dot(si.ns, wo) < 0.0 ? -si.ns : si.ns);
         float uLobe = rng1(st.rng, bounceDimension(depth, DIM_BSDF_LOBE));
         bs = dielectricSample(mat.baseColor, mat.ior, si.frontFace, frame, toLocal(frame, wo), uLobe);
-    } else if (isTransmissiveSurface(mat)) {
-        // Rough dielectrics and PBR transmission: both sides shade, light crosses the
-        // surface (NEE too); the frame keeps the front-side normal, wo.z < 0 is inside.
-        Frame frame = makeFrame(si.ns);
-        vec3 woLocal = toLocal(frame, wo);
-        if (USE_NEE && scene.numLights > 0u) st.L += st.beta * estimateDirect(si, frame, woLocal, mat, st.rng, depth);
-        bs = surfaceSample(mat, frame, woLocal, rng1(st.rng, bounceDimension(depth, DIM_BSDF_LOBE)),
-            rng2(st.rng, bounceDimension(depth, DIM_BSDF_DIRECTION)));
     } else {
-        // Opaque surfaces: one-sided ones are black from behind; double-sided ones flip.
-        if (!si.frontFace && !doubleSided) return false;
-        Frame frame = makeFrame(si.frontFace ? si.ns : -si.ns);
-        if (!si.frontFace) turnToBackSide(si);
+        // Rough dielectrics and PBR transmission (transmissive): both sides shade, light crosses
+        // the surface (NEE too), and the frame keeps the front-side normal, wo.z < 0 inside.
+        // Opaque surfaces: one-sided ones are black from behind, double-sided ones flip. Both
+        // kinds share the calls below, so the driver inlines each BSDF's code once, not twice.
+        bool transmissive = isTransmissiveSurface(mat);
+        if (!transmissive && !si.frontFace && !doubleSided) return false;
+        Frame frame = makeFrame(transmissive || si.frontFace ? si.ns : -si.ns);
+        if (!transmissive && !si.frontFace) turnToBackSide(si);
         vec3 woLocal = toLocal(frame, wo);
         if (HAS_MIRROR && mat.type == MATERIAL_MIRROR) {
             bs = mirrorSample(mat.baseColor, frame, woLocal);
@@ -173,10 +169,10 @@ bool pathStep(inout PathState st) {
             bs = surfaceSample(mat, frame, woLocal, rng1(st.rng, bounceDimension(depth, DIM_BSDF_LOBE)),
                 rng2(st.rng, bounceDimension(depth, DIM_BSDF_DIRECTION)));
         }
-        // A normal map tilts the sampling hemisphere; a reflection it sends below the
-        // surface's own normal would pass through an opaque surface. End it there, as direct
-        // light from that side is refused (shadow_ray.glsl), so both strategies agree.
-        if (HAS_NORMAL_MAPS && dot(bs.wi, si.nSurface) <= 0.0) return false;
+        // A normal map tilts the sampling hemisphere; a reflection it sends below an opaque
+        // surface's own normal would pass through it. End it there, as direct light from that
+        // side is refused (shadow_ray.glsl), so both strategies agree.
+        if (HAS_NORMAL_MAPS && !transmissive && dot(bs.wi, si.nSurface) <= 0.0) return false;
     }
     if (!bs.valid || maxComponent(bs.weight) <= 0.0) return false;
     if (st.lightTraceable) {
