@@ -45,8 +45,22 @@ vec4 dequantizePlanes(uint bytes, float origin, float scale) {
     return origin + vec4(q) * scale;
 }
 
-// Node `index` of a four-wide BVH at `nodes` (GpuBvh4QNode), decoded.
+// Node `index` of a four-wide BVH of float nodes (GpuBvh4Node) at `nodes`.
 GpuBvh4Node loadBvh4Node(uint64_t nodes, uint index) {
+    Uint64Ref w = Uint64Ref(nodes + uint64_t(index) * uint64_t(BVH4_NODE_WORDS64 * 8u));
+    GpuBvh4Node n;
+    n.loX = vec4(floatsOf(w.v[0]), floatsOf(w.v[1]));
+    n.hiX = vec4(floatsOf(w.v[2]), floatsOf(w.v[3]));
+    n.loY = vec4(floatsOf(w.v[4]), floatsOf(w.v[5]));
+    n.hiY = vec4(floatsOf(w.v[6]), floatsOf(w.v[7]));
+    n.loZ = vec4(floatsOf(w.v[8]), floatsOf(w.v[9]));
+    n.hiZ = vec4(floatsOf(w.v[10]), floatsOf(w.v[11]));
+    n.child = uvec4(wordsOf(w.v[12]), wordsOf(w.v[13]));
+    return n;
+}
+
+// Node `index` of a four-wide BVH of quantised nodes (GpuBvh4QNode) at `nodes`, decoded.
+GpuBvh4Node loadBvh4QNode(uint64_t nodes, uint index) {
     Uint64Ref w = Uint64Ref(nodes + uint64_t(index) * uint64_t(BVH4_QNODE_WORDS64 * 8u));
     vec2 originXY = floatsOf(w.v[0]);
     uvec2 originZExponents = wordsOf(w.v[1]);

@@ -70,6 +70,16 @@ vec4 childEntries(GpuBvh4Node node, BoxRay r, float tMax) {
     return mix(vec4(FLOAT_MAX), entry, hit);
 }
 
+// Node `index` of the triangle tree, in the format the pipeline was specialised for, or (not
+// specialised) the scene's. If-else on one constant at a time: only one loader survives
+// specialization, and neither load is made speculatively beside the other.
+GpuBvh4Node loadTriangleTreeNode(uint64_t nodes, uint index) {
+    if (NODE_FORMAT == BVH_NODES_QUANTIZED) return loadBvh4QNode(nodes, index);
+    if (NODE_FORMAT == BVH_NODES_FLOAT) return loadBvh4Node(nodes, index);
+    if (scene.nodeFormat == BVH_NODES_QUANTIZED) return loadBvh4QNode(nodes, index);
+    return loadBvh4Node(nodes, index);
+}
+
 // Orders (distance, child) pairs a and b so that a is the nearer; misses count as farthest.
 void orderPair(inout float da, inout uint ca, inout float db, inout uint cb) {
     bool swap = db < da;
@@ -120,7 +130,7 @@ bool traverseTree(bool sphereTree, bool anyHit, Ray ray, WatertightRay wray, Box
         // (Aila and Laine's "while-while" traversal, 2009).
         while ((current & BVH4_LEAF_BIT) == 0u) {
             if (DEBUG_VIEW == DEBUG_VIEW_BVH_COST) ++traversalNodeVisits;
-            GpuBvh4Node node = loadBvh4Node(nodes, current);
+            GpuBvh4Node node = sphereTree ? loadBvh4Node(nodes, current) : loadTriangleTreeNode(nodes, current);
             // Nearest child first, so that the hits it yields shorten the rest; shadow rays
             // find occluders sooner this way too (measured: unordered was slower for them).
             // A network of five compare-exchanges orders the four slots, misses last.

@@ -83,6 +83,11 @@
         "cosine-weighted rather than uniform hemisphere sampling of diffuse lobes")                                    \
     PT_FEATURE(sampler, choice, SAMPLER, 29, SAMPLER_INDEPENDENT, samplerOf(s), samplerOf(s),                          \
         v == SAMPLER_SOBOL ? "sobol" : nullptr, "SAMPLER_*: how the sample dimensions are filled")                     \
+    /* Where a scene's pipeline is not specialised (FeatureSet::all, the test kernels), the      \
+       kernel reads the format from the scene. */                     \
+    PT_FEATURE(nodeFormat, choice, NODE_FORMAT, 32, BVH_NODES_FROM_SCENE, BVH_NODES_FROM_SCENE, nodeFormatOf(scene),   \
+        v == BVH_NODES_QUANTIZED ? "quantized-bvh" : nullptr,                                                          \
+        "BVH_NODES_*: how the triangle tree's nodes are stored (float, or quantised for big trees)")                   \
     PT_FEATURE(countRays, flag, COUNT_RAYS, 28, false, false, false, v ? "ray-counts" : nullptr,                       \
         "count traced rays per pixel (pt bench; GpuRenderPush::rayCounts)")                                            \
     PT_FEATURE(forcedRandom, choice, FORCED_RANDOM, 30, FORCED_RANDOM_OFF, FORCED_RANDOM_OFF, FORCED_RANDOM_OFF,       \

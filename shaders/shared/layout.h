@@ -197,7 +197,8 @@ PT_CHECK_SIZE(GpuBvh4Node, 112);
 // (src/accel/quantized_bvh.cpp; after Ylitie et al. 2017): plane = origin + q * 2^e per axis,
 // with q in 0..255 rounded outwards so that the decoded box contains the exact one, and e the
 // smallest exponent that reaches the node's far side. Half the bytes of GpuBvh4Node, so half the
-// gathers on lavapipe, where loading nodes was the kernel's hottest work. Read word by word
+// gathers on lavapipe, where loading nodes was the kernel's hottest work (big trees only:
+// GpuSceneParams::nodeFormat). Read word by word
 // (loadBvh4Node, common/buffers.glsl), never as a GLSL struct array, so its C++ size is its stride.
 struct GpuBvh4QNode {
     vec3 origin;    // the node's box's low corner
@@ -209,6 +210,16 @@ struct GpuBvh4QNode {
 };
 #define BVH4_QNODE_WORDS64 8u // its size in 64-bit words; the last (pad) is never read
 PT_CHECK_SIZE(GpuBvh4QNode, BVH4_QNODE_WORDS64 * 8u);
+#define BVH4_NODE_WORDS64 14u // GpuBvh4Node's size in 64-bit words
+// GpuSceneParams::nodeFormat. Quantised nodes pay where the tree outgrows the caches (the
+// 1 M-triangle mesh: +11% paths/s) and cost where it does not (the 32-triangle box: -6%,
+// the decoding), so only a tree of more float node bytes than BvhBuildOptions::quantizeOverBytes
+// (src/accel/bvh.h) is stored quantised.
+#define BVH_NODES_FLOAT 0u
+#define BVH_NODES_QUANTIZED 1u
+// NODE_FORMAT (shared/features.h) as compiled: read GpuSceneParams::nodeFormat at run time. A
+// pipeline specialised to a scene has the scene's format instead, and only its loader.
+#define BVH_NODES_FROM_SCENE 2u
 
 struct GpuMaterial {
     vec3 baseColor;       // diffuse albedo, mirror/dielectric/conductor tint
@@ -360,8 +371,12 @@ struct GpuSceneParams {
     float rrThreshold;      // Russian roulette: throughput at or above this always continues
     uint64_t motions;       // vec4[]: xyz = an object's translation over the shutter interval
     uint64_t tangents;      // GpuTriangleTangents[] (one per triangle), or none
+    uint nodeFormat;        // BVH_NODES_*: how `nodes` stores the triangle tree (the sphere tree is always float)
+    uint pad2;
+    uint pad3;
+    uint pad4;
 };
-PT_CHECK_SIZE(GpuSceneParams, 112 + 80 + 80 + 16 + 16);
+PT_CHECK_SIZE(GpuSceneParams, 112 + 80 + 80 + 16 + 16 + 16);
 
 // Push constants of the render kernel: which pixels and which sample indices this dispatch adds.
 struct GpuRenderPush {

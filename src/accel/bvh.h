@@ -44,6 +44,10 @@ struct BvhBuildOptions {
     float traversalCost = 1.0f;
     float intersectCost = 1.0f;
     int threads = 0; // 0 = hardware concurrency; the result does not depend on it
+    // The triangle tree is stored with quantised nodes (accel/quantized_bvh.h) when its float
+    // nodes would take more than this: about the size of a core's L2 cache, below which the
+    // decoding costs more than the halved loads save (bench/RESULTS.md, "Quantised nodes").
+    size_t quantizeOverBytes = size_t(1) << 20;
 };
 
 struct Bvh {

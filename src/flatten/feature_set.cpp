@@ -100,6 +100,10 @@ bool lightTracingPays(const FlatScene& scene, const IntegratorSettings& s, const
            !f.alpha && !f.motion;
 }
 
+uint32_t nodeFormatOf(const FlatScene& scene) {
+    return scene.quantizedNodes.empty() ? BVH_NODES_FLOAT : BVH_NODES_QUANTIZED;
+}
+
 uint32_t samplerOf(const IntegratorSettings& s) {
     return s.sampler == SamplerKind::Sobol ? SAMPLER_SOBOL : SAMPLER_INDEPENDENT;
 }

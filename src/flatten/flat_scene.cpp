@@ -162,7 +162,7 @@ void flattenSpheres(const Scene& scene, const BvhBuildOptions& bvhOptions, FlatS
         bounds.push_back(box);
     }
     const Bvh bvh = buildBvh(bounds, bvhOptions);
-    flat.sphereNodes = quantizeWideNodes(gpuNodes(bvh, scene.source + ": sphere BVH").nodes);
+    flat.sphereNodes = gpuNodes(bvh, scene.source + ": sphere BVH").nodes;
     for (uint32_t original : bvh.primOrder) flat.spheres.push_back(spheres[original]);
 }
 
@@ -227,13 +227,19 @@ FlatEnvironment flattenEnvironment(const Environment& env, const std::string& so
 
 // Radius of a sphere around all geometry (sizes directional lights' power estimate).
 float sceneRadius(const FlatScene& flat) {
-    Aabb box;
-    for (const auto& n : {flat.nodes, flat.sphereNodes})
-        if (!n.empty()) box.grow(wideNodeBounds(decodeWideNode(n[0])));
+    const Aabb box = sceneBounds(flat);
     return box.empty() ? 1.0f : std::max(0.5f * glm::length(box.hi - box.lo), 1e-6f);
 }
 
 } // namespace
+
+Aabb sceneBounds(const FlatScene& flat) {
+    Aabb box;
+    if (!flat.nodes.empty()) box.grow(wideNodeBounds(flat.nodes[0]));
+    if (!flat.quantizedNodes.empty()) box.grow(wideNodeBounds(decodeWideNode(flat.quantizedNodes[0])));
+    if (!flat.sphereNodes.empty()) box.grow(wideNodeBounds(flat.sphereNodes[0]));
+    return box;
+}
 
 FlatScene flattenScene(const Scene& scene, const BvhBuildOptions& bvhOptions) {
     FlatScene flat;
@@ -310,7 +316,10 @@ FlatScene flattenScene(const Scene& scene, const BvhBuildOptions& bvhOptions) {
 
     const Bvh bvh = buildBvh(bounds, bvhOptions);
     WideBvh wide = gpuNodes(bvh, scene.source + ": BVH");
-    flat.nodes = quantizeWideNodes(wide.nodes);
+    if (wide.nodes.size() * sizeof(gpu::GpuBvh4Node) > bvhOptions.quantizeOverBytes)
+        flat.quantizedNodes = quantizeWideNodes(wide.nodes);
+    else
+        flat.nodes = std::move(wide.nodes);
     flat.bvhSeconds = bvh.buildSeconds;
     flat.sahCost = bvh.sahCost;
     flat.bvhDepth = bvh.maxDepth;

@@ -25,9 +25,12 @@ struct FlatScene {
     std::vector<gpu::GpuTriangle> triangles;
     std::vector<gpu::GpuTriangleShading> shading;
     std::vector<gpu::GpuTriangleTangents> tangents; // per triangle when any mesh has tangents, else empty
-    std::vector<gpu::GpuBvh4QNode> nodes;           // four-wide (accel/wide_bvh.h), quantised (accel/quantized_bvh.h)
-    std::vector<gpu::GpuSphere> spheres;            // BVH-ordered
-    std::vector<gpu::GpuBvh4QNode> sphereNodes;     // a second BVH, over the spheres
+    // The triangles' four-wide tree (accel/wide_bvh.h): float nodes, or quantised ones
+    // (accel/quantized_bvh.h) when it is big (BvhBuildOptions::quantizeOverBytes); one is empty.
+    std::vector<gpu::GpuBvh4Node> nodes;
+    std::vector<gpu::GpuBvh4QNode> quantizedNodes;
+    std::vector<gpu::GpuSphere> spheres;       // BVH-ordered
+    std::vector<gpu::GpuBvh4Node> sphereNodes; // a second BVH, over the spheres
     std::vector<gpu::GpuMaterial> materials;
     std::vector<gpu::GpuTexture> textures;
     std::vector<uint32_t> texels; // every image texture's texels, packed (see GpuTexture)
@@ -45,6 +48,9 @@ struct FlatScene {
 };
 
 FlatScene flattenScene(const Scene& scene, const BvhBuildOptions& bvhOptions = {});
+
+// The box around all triangles and spheres (their trees' roots); empty for an empty scene.
+Aabb sceneBounds(const FlatScene& flat);
 
 // The scene's textures and their images as the kernel reads them (src/flatten/flat_textures.cpp).
 void flattenTextures(const Scene& scene, FlatScene& flat);

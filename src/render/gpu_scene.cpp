@@ -16,7 +16,9 @@ GpuScene::GpuScene(
     VulkanContext& context, const FlatScene& scene, gpu::GpuSceneParams params, VkDeviceSize accumulationBytes) {
     triangles_ = makeBuffer(context, scene.triangles, "triangles");
     shading_ = makeBuffer(context, scene.shading, "shading");
-    nodes_ = makeBuffer(context, scene.nodes, "bvh nodes");
+    const bool quantized = !scene.quantizedNodes.empty();
+    nodes_ = quantized ? makeBuffer(context, scene.quantizedNodes, "bvh nodes")
+                       : makeBuffer(context, scene.nodes, "bvh nodes");
     spheres_ = makeBuffer(context, scene.spheres, "spheres");
     sphereNodes_ = makeBuffer(context, scene.sphereNodes, "sphere bvh nodes");
     materials_ = makeBuffer(context, scene.materials, "materials");
@@ -57,7 +59,8 @@ GpuScene::GpuScene(
     params.envRotationSin = scene.environment.rotationSin;
     params.numLights = static_cast<uint32_t>(scene.lights.lights.size());
     params.numTriangles = static_cast<uint32_t>(scene.triangles.size());
-    params.numNodes = static_cast<uint32_t>(scene.nodes.size());
+    params.numNodes = static_cast<uint32_t>(quantized ? scene.quantizedNodes.size() : scene.nodes.size());
+    params.nodeFormat = quantized ? BVH_NODES_QUANTIZED : BVH_NODES_FLOAT;
     params.numSpheres = static_cast<uint32_t>(scene.spheres.size());
     params.numSphereNodes = static_cast<uint32_t>(scene.sphereNodes.size());
     params_ = GpuBuffer(context, sizeof(params), "scene params");

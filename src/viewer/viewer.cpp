@@ -1,7 +1,6 @@
 #include "viewer/viewer.h"
 
 #include "gpu/vulkan_error.h"
-#include "accel/quantized_bvh.h"
 #include "flatten/feature_set.h"
 #include "viewer/viewer_session.h"
 
@@ -23,11 +22,9 @@ constexpr double kRefineDisplayIntervalMs = 40.0;
 
 double msSince(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
 
-// Bounds of the scene from the roots of its BVHs.
-void sceneBounds(const FlatScene& flat, glm::vec3& centre, float& radius) {
-    Aabb box;
-    if (!flat.nodes.empty()) box.grow(wideNodeBounds(decodeWideNode(flat.nodes[0])));
-    if (!flat.sphereNodes.empty()) box.grow(wideNodeBounds(decodeWideNode(flat.sphereNodes[0])));
+// Centre and radius of the scene, from the roots of its BVHs.
+void sceneSphere(const FlatScene& flat, glm::vec3& centre, float& radius) {
+    const Aabb box = sceneBounds(flat);
     glm::vec3 lo = box.lo, hi = box.hi;
     if (box.empty()) lo = hi = glm::vec3(0.0f);
     centre = 0.5f * (lo + hi);
@@ -37,7 +34,7 @@ void sceneBounds(const FlatScene& flat, glm::vec3& centre, float& radius) {
 CameraController makeController(const FlatScene& flat, const Camera& camera) {
     glm::vec3 centre;
     float radius;
-    sceneBounds(flat, centre, radius);
+    sceneSphere(flat, centre, radius);
     return CameraController(camera, centre, radius);
 }
 

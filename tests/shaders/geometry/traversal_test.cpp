@@ -33,13 +33,20 @@ struct TestScene {
     std::unique_ptr<pt::GpuScene> gpu;
 };
 
+// Whether the trees of the current test are stored quantised (the suite runs once with each
+// node format: TraversalTest's parameter).
+bool quantizedTrees = false;
+
 TestScene uploadMeshes(std::vector<pt::Mesh> meshes) {
     pt::Scene scene;
     scene.source = "traversal test";
     scene.materials.push_back(pt::Material{});
     scene.meshes = std::move(meshes);
     TestScene s;
-    s.flat = pt::flattenScene(scene);
+    pt::BvhBuildOptions options;
+    options.quantizeOverBytes = quantizedTrees ? 0 : std::numeric_limits<size_t>::max();
+    s.flat = pt::flattenScene(scene, options);
+    EXPECT_EQ(s.flat.quantizedNodes.empty(), !quantizedTrees);
     s.gpu = std::make_unique<pt::GpuScene>(pt::test::sharedContext(), s.flat, pt::gpu::GpuSceneParams{}, 0);
     return s;
 }
@@ -282,14 +289,15 @@ std::vector<GpuTestRay> axisAlignedRays(size_t perDirection, std::mt19937& rng, 
 // zero with the origin on that slab makes the slab test compute 0 * (1/0).
 std::vector<GpuTestRay> nodePlaneRays(const pt::FlatScene& flat, size_t count, std::mt19937& rng) {
     std::vector<GpuTestRay> rays;
-    std::uniform_int_distribution<size_t> pickNode(0, flat.nodes.size() - 1);
+    std::uniform_int_distribution<size_t> pickNode(0, std::max(flat.nodes.size(), flat.quantizedNodes.size()) - 1);
     std::uniform_int_distribution<int> pickAxis(0, 2), pickSide(0, 1);
     const std::vector<glm::vec3> axisDirs = axisAlignedDirections();
     std::uniform_int_distribution<size_t> pickDir(0, axisDirs.size() - 1);
     for (size_t i = 0; i < count; ++i) {
         // A child box of a random wide node as the kernel decodes it (every box the traversal
         // tests is one of these).
-        const pt::gpu::GpuBvh4Node wide = pt::decodeWideNode(flat.nodes[pickNode(rng)]);
+        const pt::gpu::GpuBvh4Node wide =
+            flat.nodes.empty() ? pt::decodeWideNode(flat.quantizedNodes[pickNode(rng)]) : flat.nodes[pickNode(rng)];
         int slot = int(rng() % 4);
         while (wide.child[slot] == BVH4_EMPTY) slot = (slot + 1) % 4;
         struct {
@@ -332,9 +340,19 @@ std::vector<GpuTestRay> concat(std::vector<std::vector<GpuTestRay>> parts) {
     return all;
 }
 
-class TraversalTest : public pt::test::GpuTest {};
+// Every traversal test runs with float nodes and with quantised ones (GpuBvh4QNode).
+class TraversalTest : public pt::test::GpuTest, public ::testing::WithParamInterface<bool> {
+protected:
+    void SetUp() override {
+        pt::test::GpuTest::SetUp();
+        quantizedTrees = GetParam();
+    }
+};
 
-TEST_F(TraversalTest, RandomRaysAgainstTriangleSoupMatchBruteForce) {
+INSTANTIATE_TEST_SUITE_P(NodeFormats, TraversalTest, ::testing::Values(false, true),
+    [](const ::testing::TestParamInfo<bool>& info) { return info.param ? "Quantized" : "Float"; });
+
+TEST_P(TraversalTest, RandomRaysAgainstTriangleSoupMatchBruteForce) {
     const TestScene scene = uploadMeshes({randomSoup(3000, 7)});
     ASSERT_EQ(scene.flat.triangles.size(), 3000u);
     std::mt19937 rng(12345);
@@ -349,7 +367,7 @@ TEST_F(TraversalTest, RandomRaysAgainstTriangleSoupMatchBruteForce) {
         c.hits, c.ties, scene.flat.nodes.size(), scene.flat.wideBvhDepth, scene.flat.bvhDepth);
 }
 
-TEST_F(TraversalTest, AxisAlignedRaysAndOriginsOnNodePlanesMatchBruteForce) {
+TEST_P(TraversalTest, AxisAlignedRaysAndOriginsOnNodePlanesMatchBruteForce) {
     const TestScene scene = uploadMeshes({randomSoup(2000, 99)});
     std::mt19937 rng(2024);
     const std::vector<GpuTestRay> rays = concat(
@@ -358,10 +376,11 @@ TEST_F(TraversalTest, AxisAlignedRaysAndOriginsOnNodePlanesMatchBruteForce) {
     EXPECT_GT(c.hits, rays.size() / 10);
 }
 
-TEST_F(TraversalTest, FlatGridInPlaneZeroMatchesBruteForce) {
+TEST_P(TraversalTest, FlatGridInPlaneZeroMatchesBruteForce) {
     const TestScene scene = uploadMeshes({flatGrid(24)});
-    for (const pt::gpu::GpuBvh4QNode& q : scene.flat.nodes) {
-        const pt::gpu::GpuBvh4Node n = pt::decodeWideNode(q);
+    std::vector<pt::gpu::GpuBvh4Node> nodes = scene.flat.nodes;
+    for (const pt::gpu::GpuBvh4QNode& q : scene.flat.quantizedNodes) nodes.push_back(pt::decodeWideNode(q));
+    for (const pt::gpu::GpuBvh4Node& n : nodes) {
         for (int slot = 0; slot < 4; ++slot) {
             if (n.child[slot] == BVH4_EMPTY) continue;
             ASSERT_EQ(n.loZ[slot], 0.0f);
@@ -388,7 +407,7 @@ TEST_F(TraversalTest, FlatGridInPlaneZeroMatchesBruteForce) {
 // in z, and rays with direction x exactly 0 running down through its edges x = 0 and x = 1.
 // Both edges belong to the quad (the intersector is edge-inclusive), so each ray must hit,
 // whichever face of the box (lo or hi) its origin lies on.
-TEST_F(TraversalTest, RaysInTheFacePlanesOfABoxAreNotCulled) {
+TEST_P(TraversalTest, RaysInTheFacePlanesOfABoxAreNotCulled) {
     const TestScene scene =
         uploadMeshes({pt::test::makeQuad(glm::vec3(0.0f), glm::vec3(1, 0, 0), glm::vec3(0, 1, 0), 0)});
     std::vector<GpuTestRay> rays;
@@ -401,7 +420,7 @@ TEST_F(TraversalTest, RaysInTheFacePlanesOfABoxAreNotCulled) {
         scene, rays, "rays in the planes x = lo.x, x = hi.x of the quad's box", /*mustHit=*/true);
 }
 
-TEST_F(TraversalTest, AxisAlignedBoxesMatchBruteForce) {
+TEST_P(TraversalTest, AxisAlignedBoxesMatchBruteForce) {
     // A 3 x 3 x 3 lattice of closed boxes; neighbours along x touch (shared face planes), the
     // rest are separated by gaps, so node boxes and triangles share planes everywhere.
     std::vector<pt::Mesh> boxes;
@@ -425,7 +444,7 @@ TEST_F(TraversalTest, AxisAlignedBoxesMatchBruteForce) {
 // Rays aimed exactly at the vertices and edge midpoints of a closed icosphere must all hit it
 // (watertightness: no ray slips between triangles sharing an edge or a vertex), and the BVH must
 // agree with brute force.
-TEST_F(TraversalTest, IcosphereVerticesAndEdgesAreWatertight) {
+TEST_P(TraversalTest, IcosphereVerticesAndEdgesAreWatertight) {
     const glm::vec3 centre(0.3f, -0.2f, 0.1f);
     const float radius = 1.5f;
     const pt::Mesh sphere = pt::test::makeIcosphere(3, centre, radius, 0);
@@ -477,7 +496,7 @@ TEST_F(TraversalTest, IcosphereVerticesAndEdgesAreWatertight) {
 
 // A ray whose tMax ends before its first hit must miss in both traversals (hits count only in
 // (0, tMax), open at tMax), and one whose tMax is a little past the hit must find the same hit.
-TEST_F(TraversalTest, TMaxIsRespected) {
+TEST_P(TraversalTest, TMaxIsRespected) {
     const TestScene scene = uploadMeshes({randomSoup(2000, 3)});
     std::mt19937 rng(8);
     const std::vector<GpuTestRay> probe = randomRays(20000, rng, glm::vec3(-12.0f), glm::vec3(12.0f));
