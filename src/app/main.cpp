@@ -136,8 +136,7 @@ int main(int argc, char** argv) {
     render->add_option("--reference", o.reference, "Reference EXR: log relMSE after every pass");
     render->add_option("--error-log", o.errorLog, "CSV of spp, seconds, relMSE after every pass (needs --reference)");
     render->add_option("--tile", o.tileSize, "Split each pass into tiles of this many pixels square (same image)");
-    render->add_option(
-        "--pass-spp", o.passSpp, "Samples per pass (default: passes of about half a second; same image)");
+    render->add_option("--pass-spp", o.passSpp, "Samples per pass (default: passes of about two seconds; same image)");
     render->add_flag("-q,--quiet", o.quiet, "Only print the summary line and errors");
     render->add_flag(
         "--variance", o.varianceAov, "Add the variance of each pixel's mean to the EXR (channels variance.R/G/B)");

@@ -27,7 +27,7 @@ struct RenderOptions {
     std::string reference;
     std::string errorLog;
     uint32_t tileSize = 0; // 0: whole image per dispatch
-    uint32_t passSpp = 0;  // 0: choose passes of about half a second
+    uint32_t passSpp = 0;  // 0: choose passes of about two seconds
     bool validation = false;
     bool noPipelineCache = false; // --no-pipeline-cache: nothing read from or written to the disk cache
     bool allFeatures = false;     // compile every feature into the kernel (benchmarking specialisation)

@@ -33,7 +33,7 @@ ProgressiveResult renderProgressively(Renderer& renderer, const ProgressiveTarge
         else if (doneHere == 0)
             pass = 1;
         else
-            pass = static_cast<uint32_t>(std::clamp(0.5 / std::max(secondsPerSpp, 1e-9), 1.0, 4096.0));
+            pass = static_cast<uint32_t>(std::clamp(kPassSeconds / std::max(secondsPerSpp, 1e-9), 1.0, 4096.0));
         if (target.targetError > 0 && result.lastEstimate <= 0) {
             // No estimate yet: reach the fewest samples it needs first. A pass sized by speed
             // alone is hundreds of spp on a GPU, and would overshoot the target many times over.

@@ -10,10 +10,17 @@
 
 namespace pt {
 
+// How long a pass runs when its size is not given. Each invocation adds a pass's samples to its
+// pixel one path after another (paths regenerated), and the SIMD group of 8 ends when its slowest
+// lane does; the longer the pass, the smaller that tail's share: on the diffuse box 48-spp passes
+// ran 3% faster than 16-spp ones and 128-spp 5% faster than 48 (bench/RESULTS.md, "Pass length").
+// Two seconds keeps SIGINT, checkpoints and the progress line prompt.
+constexpr double kPassSeconds = 2.0;
+
 struct ProgressiveTarget {
     uint32_t spp = 0;      // stop at this many samples per pixel (0: use seconds)
     double seconds = 0;    // or after this much render time
-    uint32_t passSpp = 0;  // samples per pass; 0 chooses passes of about half a second
+    uint32_t passSpp = 0;  // samples per pass; 0 chooses passes of about kPassSeconds
     uint32_t tileSize = 0; // split passes into tiles (same image)
     // > 0: stop once the reference-free relMSE estimate (estimatedRelMse) is at most this;
     // spp and seconds, when set, are then caps.
