@@ -73,6 +73,14 @@ float ggxReflectionPdf(vec3 wo, vec3 wi, float alpha) {
     return cosOM > 0.0 ? ggxVisibleNormalPdf(wo, wm, alpha) / (4.0 * cosOM) : 0.0;
 }
 
+// G2(wo, wi) / G1(wo), the weight f cos / pdf of a direction made from a visible normal (the D,
+// Fresnel and Jacobian factors cancel): |zi| (zo + L(wo)) / (L(wo) |zi| + L(wi) zo), wo.z > 0.
+float ggxG2OverG1(vec3 wo, vec3 wi, float alpha) {
+    float zi = abs(wi.z), lo = ggxSmithL(wo, alpha);
+    float denom = lo * zi + ggxSmithL(wi, alpha) * wo.z;
+    return denom > 0.0 ? zi * (wo.z + lo) / denom : 0.0;
+}
+
 // Mirror reflection of wo about wm (both pointing away from the surface).
 vec3 reflectAbout(vec3 wo, vec3 wm) { return 2.0 * dot(wo, wm) * wm - wo; }
 

@@ -88,10 +88,21 @@ BsdfSample roughDielectricSample(GpuMaterial m, Frame frame, vec3 wo, float uLob
         if (!refractAbout(woUp, wm, eta, wi) || wi.z >= 0.0) return s;
         s.etaScale = eta * eta;
     }
-    wi.z *= side; // back to the frame's sides
-    s.pdf = roughDielectricPdf(m, wo, wi);
+    // pdf and weight from the sampled facet (roughDielectricPdf and Eval at wi up to rounding):
+    // the lobe's probability F or 1 - F cancels the Fresnel factor of f, D and the Jacobian cancel.
+    float cosOM = dot(woUp, wm);
+    if (!(cosOM > 0.0)) return s;
+    float visible = ggxVisibleNormalPdf(woUp, wm, m.alpha);
+    float g2OverG1 = ggxG2OverG1(woUp, wi, m.alpha);
+    if (wi.z > 0.0) {
+        s.pdf = F * visible / (4.0 * cosOM);
+        s.weight = vec3(g2OverG1);
+    } else {
+        s.pdf = (1.0 - F) * visible * refractionJacobian(woUp, wi, wm, eta);
+        s.weight = m.baseColor * (g2OverG1 / (eta * eta));
+    }
     if (!(s.pdf > 0.0)) return invalidBsdfSample();
-    s.weight = roughDielectricEval(m, wo, wi) / s.pdf;
+    wi.z *= side; // back to the frame's sides
     s.wi = toWorld(frame, wi);
     s.valid = true;
     return s;

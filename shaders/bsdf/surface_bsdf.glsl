@@ -13,9 +13,12 @@
 #include "bsdf/gltf_pbr.glsl"
 #include "shared/features.glsl"
 
-// GGX-rough conductor or dielectric (alpha 0 keeps the smooth delta models).
+// GGX-rough conductor or dielectric (alpha 0 keeps the smooth delta models). A rough mirror is
+// the glTF metal (Schlick's Fresnel from the base colour), a conductor of its own Fresnel.
 bool isRough(GpuMaterial m) { return HAS_MICROFACET && m.alpha > 0.0; }
-bool isRoughConductor(GpuMaterial m) { return HAS_CONDUCTOR && isRough(m) && m.type == MATERIAL_CONDUCTOR; }
+bool isRoughConductor(GpuMaterial m) {
+    return isRough(m) && ((HAS_CONDUCTOR && m.type == MATERIAL_CONDUCTOR) || (HAS_MIRROR && m.type == MATERIAL_MIRROR));
+}
 bool isRoughDielectric(GpuMaterial m) { return HAS_DIELECTRIC && isRough(m) && m.type == MATERIAL_DIELECTRIC; }
 bool isPbr(GpuMaterial m) { return HAS_PBR && m.type == MATERIAL_PBR; }
 

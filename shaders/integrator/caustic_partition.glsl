@@ -21,12 +21,13 @@ bool lightTracingActive() { return LIGHT_TRACING && DEBUG_VIEW == DEBUG_VIEW_NON
 
 // Vertices of the specular chain: materials whose every lobe is a delta.
 bool isSpecularChainMaterial(GpuMaterial m) {
-    return (HAS_MIRROR && m.type == MATERIAL_MIRROR) ||
+    return (HAS_MIRROR && m.type == MATERIAL_MIRROR && !isRoughConductor(m)) ||
            (HAS_DIELECTRIC && m.type == MATERIAL_DIELECTRIC && !isRoughDielectric(m)) ||
            (HAS_CONDUCTOR && m.type == MATERIAL_CONDUCTOR && !isRoughConductor(m));
 }
 
-// Receivers, where a light path meets the camera: opaque surfaces with no delta lobe.
+// Receivers, where a light path meets the camera: opaque surfaces with no delta lobe (rough
+// conductors include rough mirrors, the glTF metals).
 bool isCausticReceiver(GpuMaterial m) {
     bool shaded = !HAS_UNLIT || (m.flags & MATERIAL_FLAG_UNLIT) == 0u;
     return shaded && ((HAS_DIFFUSE && m.type == MATERIAL_DIFFUSE) || (HAS_GLOSSY && m.type == MATERIAL_GLOSSY) ||

@@ -71,7 +71,7 @@ vec3 classicDirect(SurfaceInteraction si, Frame frame, vec3 woLocal, GpuMaterial
 
 // The reflected or refracted ray of a specular surface; invalid for the others.
 BsdfSample classicSpecularSample(GpuMaterial m, bool frontFace, Frame frame, vec3 woLocal, float uLobe, vec2 u) {
-    if (HAS_MIRROR && m.type == MATERIAL_MIRROR) {
+    if (HAS_MIRROR && m.type == MATERIAL_MIRROR && m.alpha == 0.0) {
         // The course's mirror: reflectance km at every angle, no Fresnel.
         BsdfSample s = invalidBsdfSample();
         if (woLocal.z <= 0.0) return s;
@@ -87,8 +87,8 @@ BsdfSample classicSpecularSample(GpuMaterial m, bool frontFace, Frame frame, vec
             return dielectricSample(m.baseColor, m.ior, frontFace, frame, woLocal, uLobe);
         if (HAS_CONDUCTOR && m.type == MATERIAL_CONDUCTOR)
             return conductorSample(m.baseColor, m.conductorEta, m.conductorK, frame, woLocal);
-    } else if (m.type == MATERIAL_DIELECTRIC || m.type == MATERIAL_CONDUCTOR) {
-        // The course's Roughness, rendered as GGX (see ceng795_materials.cpp).
+    } else if (m.type == MATERIAL_DIELECTRIC || m.type == MATERIAL_CONDUCTOR || m.type == MATERIAL_MIRROR) {
+        // The course's Roughness, rendered as GGX (see ceng795_materials.cpp); a glTF metal.
         if (isSurfaceBsdf(m)) return surfaceSample(m, frame, woLocal, uLobe, u);
     }
     return invalidBsdfSample();

@@ -159,7 +159,7 @@ bool pathStep(inout PathState st) {
         Frame frame = makeFrame(transmissive || si.frontFace ? si.ns : -si.ns);
         if (!transmissive && !si.frontFace) turnToBackSide(si);
         vec3 woLocal = toLocal(frame, wo);
-        if (HAS_MIRROR && mat.type == MATERIAL_MIRROR) {
+        if (HAS_MIRROR && mat.type == MATERIAL_MIRROR && !isRoughConductor(mat)) {
             bs = mirrorSample(mat.baseColor, frame, woLocal);
         } else if (HAS_CONDUCTOR && mat.type == MATERIAL_CONDUCTOR && !isRoughConductor(mat)) {
             bs = conductorSample(mat.baseColor, mat.conductorEta, mat.conductorK, frame, woLocal);

@@ -29,8 +29,8 @@ using uint64_t = std::uint64_t;
 #define MATERIAL_CONDUCTOR 3u
 #define MATERIAL_GLOSSY 4u // Lambert + one course BRDF lobe (GLOSSY_*)
 #define MATERIAL_PBR 5u    // glTF metallic-roughness: Lambert under GGX dielectric, GGX metal, transmission
-// MATERIAL_CONDUCTOR and MATERIAL_DIELECTRIC with alpha > 0 are GGX-rough (alpha below
-// MIN_ROUGH_ALPHA stays a smooth delta surface).
+// MATERIAL_MIRROR, MATERIAL_CONDUCTOR and MATERIAL_DIELECTRIC with alpha > 0 are GGX-rough
+// (alpha below MIN_ROUGH_ALPHA stays a smooth delta surface); a rough mirror is the glTF metal.
 #define MIN_ROUGH_ALPHA 1e-3
 
 // ---- Glossy lobes (GpuMaterial::glossyModel), the CENG795 course's BRDFs ----

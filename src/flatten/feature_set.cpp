@@ -34,10 +34,32 @@ bool usesMaterialFlag(const FlatScene& scene, uint32_t flag) {
     return false;
 }
 
-// Conductors and dielectrics with alpha > 0 are GGX-rough (shared/layout.h: MIN_ROUGH_ALPHA).
+// Mirrors, conductors and dielectrics: smooth (delta) with alpha 0, GGX-rough above
+// (shared/layout.h: MIN_ROUGH_ALPHA).
+bool isMicrofacetCapable(const gpu::GpuMaterial& m) {
+    return m.type == MATERIAL_MIRROR || m.type == MATERIAL_CONDUCTOR || m.type == MATERIAL_DIELECTRIC;
+}
+
 bool usesRoughConductorOrDielectric(const FlatScene& scene) {
     for (const auto& m : scene.materials)
-        if ((m.type == MATERIAL_CONDUCTOR || m.type == MATERIAL_DIELECTRIC) && m.alpha > 0.0f) return true;
+        if (isMicrofacetCapable(m) && m.alpha > 0.0f) return true;
+    return false;
+}
+
+// The specular chain's vertices (shaders/integrator/caustic_partition.glsl): every lobe a delta.
+bool usesDeltaMaterial(const FlatScene& scene) {
+    for (const auto& m : scene.materials)
+        if (isMicrofacetCapable(m) && m.alpha <= 0.0f) return true;
+    return false;
+}
+
+// Where a light path meets the camera (caustic_partition.glsl's isCausticReceiver).
+bool usesCausticReceiver(const FlatScene& scene) {
+    for (const auto& m : scene.materials) {
+        if ((m.flags & MATERIAL_FLAG_UNLIT) != 0u) continue;
+        if (m.type == MATERIAL_DIFFUSE || m.type == MATERIAL_GLOSSY) return true;
+        if ((m.type == MATERIAL_MIRROR || m.type == MATERIAL_CONDUCTOR) && m.alpha > 0.0f) return true;
+    }
     return false;
 }
 
@@ -91,13 +113,13 @@ bool neeUseful(const FlatScene& scene, const IntegratorSettings& s, const Featur
     return s.nee && lights && (f.diffuse || f.glossy || f.pbr || f.microfacet);
 }
 
-// Light tracing pays only where caustics can be seen directly: a specular surface, a receiver
+// Light tracing pays only where caustics can be seen directly: a smooth (delta) mirror, conductor or
+// dielectric (a rough one ends the specular chain, and the path tracer has those paths), a receiver
 // and an area emitter. Left to the path tracer: absorbing interiors, cut-outs and moving
 // objects (the light path does not model them).
 bool lightTracingPays(const FlatScene& scene, const IntegratorSettings& s, const FeatureSet& f) {
     return s.lightTracing && !f.classic && hasLightOfType(scene, {LIGHT_TRIANGLE, LIGHT_SPHERE}) &&
-           (f.mirror || f.dielectric || f.conductor) && (f.diffuse || f.glossy || f.microfacet) && !f.absorption &&
-           !f.alpha && !f.motion;
+           usesDeltaMaterial(scene) && usesCausticReceiver(scene) && !f.absorption && !f.alpha && !f.motion;
 }
 
 uint32_t nodeFormatOf(const FlatScene& scene) {

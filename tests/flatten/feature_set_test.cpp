@@ -42,6 +42,30 @@ TEST(FeatureTable, TheCornellBoxNeedsTrianglesDiffuseAndEmitters) {
     EXPECT_EQ(computeFeatures(box, plain).describe(), "triangles diffuse emitters rr uniform-sampling");
 }
 
+// Light tracing renders only caustics through delta surfaces: a box whose one specular surface is
+// rough has none, and the light paths would be traced for nothing.
+TEST(FeatureTable, LightTracingNeedsASmoothSpecularSurfaceAndAReceiver) {
+    FlatScene box = flattenScene(loadDefaultScene());
+    ASSERT_GE(box.materials.size(), 2u);
+    EXPECT_FALSE(computeFeatures(box, IntegratorSettings{}).lightTracing); // diffuse only: no caustics
+    for (uint32_t type : {MATERIAL_MIRROR, MATERIAL_CONDUCTOR, MATERIAL_DIELECTRIC}) {
+        box.materials[0].type = type;
+        box.materials[0].alpha = 0.0f;
+        EXPECT_TRUE(computeFeatures(box, IntegratorSettings{}).lightTracing) << "smooth type " << type;
+        box.materials[0].alpha = 0.1f;
+        EXPECT_FALSE(computeFeatures(box, IntegratorSettings{}).lightTracing) << "rough type " << type;
+    }
+    // Smooth glass with nothing but glass and rough glass around it: no receiver.
+    for (auto& m : box.materials) {
+        m.type = MATERIAL_DIELECTRIC;
+        m.alpha = 0.1f;
+    }
+    box.materials[0].alpha = 0.0f;
+    EXPECT_FALSE(computeFeatures(box, IntegratorSettings{}).lightTracing);
+    box.materials[1].type = MATERIAL_MIRROR; // a rough Schlick metal receives
+    EXPECT_TRUE(computeFeatures(box, IntegratorSettings{}).lightTracing);
+}
+
 TEST(FeatureTable, AllCompilesEverySceneFeatureAndKeepsTheSwitches) {
     IntegratorSettings s;
     s.mis = false;

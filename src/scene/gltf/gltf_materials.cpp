@@ -70,10 +70,13 @@ void GltfImporter::convertMaterials() {
 
 // The glTF metallic-roughness factors and the KHR_materials_* extensions. Everything is a
 // MaterialType::Pbr (shaders/bsdf/gltf_pbr.glsl) except three cases where the glTF model
-// reduces exactly to a simpler one, kept because scenes made for other renderers (the
-// Mitsuba references in tests/references) use them to say "Lambertian", "mirror" and "glass":
+// reduces exactly to a simpler one, which the kernel evaluates and samples for less (a scene
+// with none of the full model left compiles none of its code): scenes made for other renderers
+// (the Mitsuba references in tests/references) use them to say "Lambertian", "metal" and "glass":
 //   metallic 0, transmission 0, KHR_materials_specular specularFactor 0  -> Lambertian
-//   metallic 1, roughness 0                                               -> Schlick mirror
+//   metallic 1                                                            -> Schlick metal: a
+//     mirror, GGX-rough when rough (the model's dielectric half, its base and transmission
+//     included, has weight 0 there)
 //   metallic 0, transmission 1, default specular, KHR_materials_volume    -> dielectric (GGX
 //     when rough), which also carries the volume's Beer-Lambert absorption.
 void GltfImporter::convertFactors(const tinygltf::Material& src, const std::string& label, Material& m) {
@@ -110,7 +113,7 @@ void GltfImporter::convertFactors(const tinygltf::Material& src, const std::stri
     const bool defaultSpecular = m.specularWeight == 1.0f && m.specular == glm::vec3(1.0f);
     if (m.metallic == 0.0f && m.transmission == 0.0f && m.specularWeight == 0.0f) {
         m.type = MaterialType::Diffuse;
-    } else if (m.metallic == 1.0f && m.roughness == 0.0f) {
+    } else if (m.metallic == 1.0f) {
         m.type = MaterialType::Mirror;
     } else if (m.metallic == 0.0f && m.transmission == 1.0f && defaultSpecular && !m.thinWalled) {
         m.type = MaterialType::Dielectric;
@@ -143,8 +146,8 @@ void GltfImporter::convertTextures(const tinygltf::Material& src, const std::str
         extensionTexture(specular, "specularColorTexture", Texture::Encoding::Srgb, label + ": KHR_materials_specular");
     m.transmissionTexture = extensionTexture(extension(src, "KHR_materials_transmission"), "transmissionTexture",
         Texture::Encoding::Linear, label + ": KHR_materials_transmission");
-    // A texture can make a "mirror" rough or part-metal, and a "glass" part-transmissive or of
-    // varying specular: only the full model covers those.
+    // A texture can make a "metal" vary in roughness or part-dielectric, and a "glass"
+    // part-transmissive or of varying specular: only the full model covers those.
     if (m.metallicRoughnessTexture && m.type == MaterialType::Mirror) m.type = MaterialType::Pbr;
     if ((m.specularWeightTexture || m.specularTexture || m.transmissionTexture) && m.type == MaterialType::Dielectric)
         m.type = MaterialType::Pbr;

@@ -48,7 +48,7 @@ TEST(GltfLoaderMaterials, MetallicRoughnessFactorsAndExtensions) {
     EXPECT_FLOAT_EQ(plastic.transmission, 0.0f);
 
     const pt::Material gold = get("gold");
-    EXPECT_EQ(gold.type, pt::MaterialType::Pbr) << "rough metal is the PBR metal lobe, not a mirror";
+    EXPECT_EQ(gold.type, pt::MaterialType::Mirror) << "metallic 1 is the Schlick metal, GGX-rough when rough";
     EXPECT_FLOAT_EQ(gold.metallic, 1.0f);
     EXPECT_FLOAT_EQ(gold.roughness, 0.3f);
 
@@ -211,7 +211,7 @@ TEST(GltfLoaderTextures, SlotsEncodingsSamplersAndTransforms) {
 TEST(GltfLoaderTextures, ExtensionTexturesOfSpecularAndTransmission) {
     const std::string images = std::string(R"([{"uri": ")") + kOnePixelPng + R"("}])";
     const pt::Scene s = loadText(texturedDocument(R"([
-      {"name": "glass", "extensions": {
+      {"name": "glass", "pbrMetallicRoughness": {"metallicFactor": 0}, "extensions": {
          "KHR_materials_transmission": {"transmissionFactor": 1, "transmissionTexture": {"index": 1}},
          "KHR_materials_specular": {"specularTexture": {"index": 0},
            "specularColorTexture": {"index": 1, "extensions": {"KHR_texture_transform": {"offset": [0.5, 0]}}}},

@@ -85,6 +85,15 @@ Material roughDielectric(float roughness, float ior) {
     return m;
 }
 
+// The glTF metal (metallic 1) as the loader makes it: a mirror, GGX-rough, Schlick's Fresnel.
+Material schlickMetal(glm::vec3 f0, float roughness) {
+    Material m;
+    m.type = MaterialType::Mirror;
+    m.baseColor = f0;
+    m.roughness = roughness;
+    return m;
+}
+
 Material pbr(float base, float metallic, float roughness, float transmission = 0.0f, bool thinWalled = false) {
     Material m;
     m.type = MaterialType::Pbr;
@@ -120,6 +129,7 @@ std::vector<Case> cases() {
             1.5},
         {"pbr thin-walled transmission, roughness 0.3", pbr(0.9f, 0.0f, 0.3f, 1.0f, true), {0.6f, -0.4f}},
         {"pbr ior 1.3, specular 0.5 x 0.8", lowSpecular, {0.75f, 0.15f}},
+        {"rough Schlick metal, alpha 0.16", schlickMetal(glm::vec3(0.95f, 0.7f, 0.3f), 0.4f), {0.85f, 0.25f, 0.05f}},
     };
 }
 
@@ -256,6 +266,43 @@ TEST_F(MicrofacetBsdf, SamplingMatchesPdfAndWeightsAreFCosOverPdf) {
             EXPECT_EQ(r.nonFinite, 0u);
             EXPECT_LE(r.albedo, 1.0 + 5e-3) << "reflects or transmits more than arrives";
         }
+    }
+}
+
+// The loader turns glTF's metallic 1 into a rough mirror (gltf_materials.cpp): the same f cos, pdf
+// and samples as the full metallic-roughness model at metallic 1, for less code and work.
+TEST_F(MicrofacetBsdf, SchlickMetalIsThePbrModelAtMetallicOne) {
+    const glm::vec3 f0(0.95f, 0.7f, 0.3f);
+    Material full = pbr(0.0f, 1.0f, 0.4f);
+    full.baseColor = f0;
+    const uint32_t metal = add(schlickMetal(f0, 0.4f)), model = add(full);
+    upload();
+    for (float cosO : {0.9f, 0.4f, 0.03f}) {
+        SCOPED_TRACE("cos theta_o " + std::to_string(cosO));
+        const glm::vec3 wo = woAt(cosO);
+        std::vector<glm::vec4> dirs;
+        for (int i = 0; i < 64; ++i) {
+            const float z = -0.95f + 1.9f * (i + 0.5f) / 64.0f, phi = 2.4f * i;
+            const float r = std::sqrt(1 - z * z);
+            dirs.emplace_back(r * std::cos(phi), r * std::sin(phi), z, 0.0f);
+        }
+        const auto a = evaluate(metal, wo, dirs), b = evaluate(model, wo, dirs);
+        double nonZero = 0;
+        for (size_t i = 0; i < dirs.size(); ++i) {
+            EXPECT_NEAR(a[i].x, b[i].x, 1e-5f * std::max(1.0f, b[i].x)) << "f cos at " << i;
+            EXPECT_NEAR(a[i].w, b[i].w, 1e-5f * std::max(1.0f, b[i].w)) << "pdf at " << i;
+            nonZero += b[i].x > 0;
+        }
+        EXPECT_GT(nonZero, 10) << "the directions compared must include the lobe";
+        const auto sa = sample(metal, wo, 7), sb = sample(model, wo, 7);
+        size_t compared = 0;
+        for (uint32_t i = 0; i < kSamples; ++i) {
+            if (sb[kSamples + i].w == 0.0f) continue;
+            ++compared;
+            ASSERT_NEAR(glm::distance(glm::vec3(sa[i]), glm::vec3(sb[i])), 0.0f, 1e-4f) << "sample " << i;
+            ASSERT_NEAR(sa[kSamples + i].x, sb[kSamples + i].x, 1e-4f * std::max(1.0f, sb[kSamples + i].x));
+        }
+        EXPECT_GT(compared, kSamples / 2);
     }
 }
 
