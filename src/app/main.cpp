@@ -4,6 +4,7 @@
 #include "app/merge_command.h"
 #include "app/render_command.h"
 #include "app/view_command.h"
+#include "base/memory_usage.h"
 #include "gpu/vulkan_context.h"
 
 #include <CLI/CLI.hpp>
@@ -11,6 +12,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
+#include <new>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -226,6 +228,14 @@ int main(int argc, char** argv) {
             return pt::runBench(bench);
         }
         return pt::runRender(o);
+    } catch (const std::bad_alloc&) {
+        // What a scene's estimate (scene/memory_estimate.h) did not foresee: still one line.
+        const pt::MemoryHeadroom headroom = pt::hostMemoryHeadroom();
+        std::string limit;
+        if (!headroom.limit.empty()) limit = "; " + headroom.limit + " leaves " + pt::formatBytes(headroom.bytes);
+        std::fprintf(stderr, "pt: error: out of host memory (peak resident %s%s)\n",
+            pt::formatBytes(pt::peakResidentBytes()).c_str(), limit.c_str());
+        return 1;
     } catch (const std::exception& e) {
         std::fprintf(stderr, "pt: error: %s\n", e.what());
         return 1;

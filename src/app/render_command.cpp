@@ -3,6 +3,7 @@
 #include "app/context_options.h"
 #include "app/render_session.h"
 #include "app/scene_setup.h"
+#include "base/memory_usage.h"
 
 #include "gpu/vulkan_context.h"
 #include "flatten/feature_set.h"
@@ -47,8 +48,9 @@ std::vector<ExrChannel> varianceChannels(const Image& varianceOfMean) {
     return channels;
 }
 
-int renderJob(VulkanContext& context, const Scene& scene, const FlatScene& flat, const Job& job, const RenderOptions& o,
-    const std::optional<Image>& reference, std::ostream* errorLog) {
+// `lastUse`: no job after this one needs `flat`, so its big arrays are freed as they are uploaded.
+int renderJob(VulkanContext& context, const Scene& scene, FlatScene& flat, bool lastUse, const Job& job,
+    const RenderOptions& o, const std::optional<Image>& reference, std::ostream* errorLog) {
     // --all-features: the unspecialised kernel, for measuring what specialisation saves. Light
     // tracing is an estimator, not a feature: the scene decides it either way (it is only
     // correct where computeFeatures allows it), so both kernels render the same image.
@@ -58,8 +60,13 @@ int renderJob(VulkanContext& context, const Scene& scene, const FlatScene& flat,
         features = FeatureSet::all(job.settings);
         features.lightTracing = lightTracing;
     }
-    Renderer renderer(
-        context, flat, features, job.settings, job.camera, FilmSettings{job.width, job.height, scene.background});
+    const FilmSettings film{job.width, job.height, scene.background};
+    std::optional<Renderer> made;
+    if (lastUse)
+        made.emplace(context, std::move(flat), features, job.settings, job.camera, film);
+    else
+        made.emplace(context, flat, features, job.settings, job.camera, film);
+    Renderer& renderer = *made;
     if (!o.quiet) {
         std::fprintf(stderr, "pt: %s: %dx%d, kernel features: %s; pipeline %.3f s (%s kernel)\n",
             job.camera.name.c_str(), job.width, job.height, features.describe().c_str(), renderer.pipelineSeconds(),
@@ -113,6 +120,7 @@ int renderJob(VulkanContext& context, const Scene& scene, const FlatScene& flat,
                        ? " (target " + formatDouble(job.target.targetError) + " reached)"
                        : " (target " + formatDouble(job.target.targetError) + " not reached: stopped at the cap)";
     if (reference) summary += ", relMSE " + formatDouble(relMse(result.mean, *reference));
+    summary += ", peak memory " + formatBytes(peakResidentBytes());
     std::fprintf(stderr, "%s\n", summary.c_str());
     if (session.interrupted())
         std::fprintf(stderr, "pt: interrupted by signal %d after %u spp; continue with --resume %s\n",
@@ -153,7 +161,13 @@ int runRender(const RenderOptions& o) {
         errorLog << "spp,seconds,relmse\n";
     }
 
+    const uint64_t loadedBytes = residentBytes();
     FlatScene flat = flattenWithNotes(scene);
+    const uint64_t flattenedBytes = residentBytes();
+    // The kernel reads the flattened copies only: the scene model's geometry and texture images
+    // need not live on beside them.
+    releaseFlattenedParts(scene);
+    const uint64_t releasedBytes = residentBytes();
     const double loadSeconds = secondsSince(loadStart);
 
     VulkanContext context(contextOptionsFor(o));
@@ -165,11 +179,14 @@ int runRender(const RenderOptions& o) {
             "pt: %s: %zu triangles, %zu spheres, %zu lights, BVH %.3f s (SAH %.1f, depth %d, 4-wide %d), load %.2f s\n",
             scene.source.c_str(), flat.triangles.size(), flat.spheres.size(), flat.lights.lights.size(),
             flat.bvhSeconds, flat.sahCost, flat.bvhDepth, flat.wideBvhDepth, loadSeconds);
+        std::fprintf(stderr, "pt: memory: resident %s once loaded, %s once flattened (peak %s), %s without the model\n",
+            formatBytes(loadedBytes).c_str(), formatBytes(flattenedBytes).c_str(),
+            formatBytes(peakResidentBytes()).c_str(), formatBytes(releasedBytes).c_str());
         std::fprintf(stderr, "pt: device %s (%s)\n", context.info().name.c_str(), context.info().driver.c_str());
     }
-    for (const Job& job : jobs)
-        if (const int status =
-                renderJob(context, scene, flat, job, o, reference, errorLog.is_open() ? &errorLog : nullptr))
+    for (size_t i = 0; i < jobs.size(); ++i)
+        if (const int status = renderJob(context, scene, flat, i + 1 == jobs.size(), jobs[i], o, reference,
+                errorLog.is_open() ? &errorLog : nullptr))
             return status; // interrupted: the checkpoint and partial image are saved
 
     if (o.validation && context.validationMessageCount() > 0) {

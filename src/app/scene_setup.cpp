@@ -81,6 +81,11 @@ FlatScene flattenWithNotes(const Scene& scene) {
     return flat;
 }
 
+void releaseFlattenedParts(Scene& scene) {
+    std::vector<Mesh>().swap(scene.meshes);
+    std::vector<TextureImage>().swap(scene.textureImages);
+}
+
 std::string sceneStem(const std::string& scene) {
     std::string stem = scene.empty() ? "cornell-box" : fs::path(scene).stem().string();
     if (stem == "scene") stem = fs::path(scene).parent_path().filename().string(); // refs/<name>/scene.gltf

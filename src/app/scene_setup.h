@@ -26,6 +26,9 @@ bool isCourseScene(const std::string& scene);
 Scene loadSceneWithOptions(const RenderOptions& o);
 // flattenScene plus the notes about dropped primitives and the warning for a scene without light.
 FlatScene flattenWithNotes(const Scene& scene);
+// Frees what flattening copied (meshes, texture images), keeping what the render still reads
+// (source, cameras, background, environment, hints).
+void releaseFlattenedParts(Scene& scene);
 
 // The camera for a scene without one (most glTF sample models): it looks down -z at the scene
 // (glTF's front; a scene flat in y from 45 degrees above, one flat in x from +x) and stands where

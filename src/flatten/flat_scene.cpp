@@ -241,8 +241,46 @@ Aabb sceneBounds(const FlatScene& flat) {
     return box;
 }
 
+namespace {
+
+template <class T>
+void releaseVector(std::vector<T>& v) {
+    std::vector<T>().swap(v);
+}
+
+// a[i] = a_before[order[i]] for each array (tangents may be empty), in place: each cycle of the
+// permutation is followed once, with one bit per element to mark what is placed, so no second
+// copy of the arrays is made.
+void applyOrderInPlace(const std::vector<uint32_t>& order, std::vector<gpu::GpuTriangle>& triangles,
+    std::vector<gpu::GpuTriangleShading>& shading, std::vector<gpu::GpuTriangleTangents>& tangents) {
+    const bool withTangents = !tangents.empty();
+    std::vector<bool> placed(order.size(), false);
+    for (size_t start = 0; start < order.size(); ++start) {
+        if (placed[start]) continue;
+        const gpu::GpuTriangle firstTriangle = triangles[start];
+        const gpu::GpuTriangleShading firstShading = shading[start];
+        const gpu::GpuTriangleTangents firstTangents = withTangents ? tangents[start] : gpu::GpuTriangleTangents{};
+        size_t to = start;
+        for (;;) {
+            placed[to] = true;
+            const size_t from = order[to];
+            if (from == start) break;
+            triangles[to] = triangles[from];
+            shading[to] = shading[from];
+            if (withTangents) tangents[to] = tangents[from];
+            to = from;
+        }
+        triangles[to] = firstTriangle;
+        shading[to] = firstShading;
+        if (withTangents) tangents[to] = firstTangents;
+    }
+}
+
+} // namespace
+
 FlatScene flattenScene(const Scene& scene, const BvhBuildOptions& bvhOptions) {
     FlatScene flat;
+    flat.source = scene.source;
     for (const Material& m : scene.materials) flat.materials.push_back(toGpu(m));
     flattenTextures(scene, flat);
     flat.ambientLight = scene.ambientLight;
@@ -314,23 +352,27 @@ FlatScene flattenScene(const Scene& scene, const BvhBuildOptions& bvhOptions) {
         }
     }
 
-    const Bvh bvh = buildBvh(bounds, bvhOptions);
-    WideBvh wide = gpuNodes(bvh, scene.source + ": BVH");
-    if (wide.nodes.size() * sizeof(gpu::GpuBvh4Node) > bvhOptions.quantizeOverBytes)
-        flat.quantizedNodes = quantizeWideNodes(wide.nodes);
-    else
-        flat.nodes = std::move(wide.nodes);
+    // The peak of a big scene's memory is here (bench/RESULTS.md, "Memory per triangle"): each
+    // temporary goes as soon as it has served, and the arrays are put in BVH order in place.
+    Bvh bvh = buildBvh(bounds, bvhOptions);
+    releaseVector(bounds);
     flat.bvhSeconds = bvh.buildSeconds;
     flat.sahCost = bvh.sahCost;
     flat.bvhDepth = bvh.maxDepth;
-    flat.wideBvhDepth = wide.depth;
-    flat.triangles.reserve(triangles.size());
-    flat.shading.reserve(triangles.size());
-    for (uint32_t original : bvh.primOrder) {
-        flat.triangles.push_back(triangles[original]);
-        flat.shading.push_back(shading[original]);
-        if (anyTangents) flat.tangents.push_back(tangents[original]);
+    {
+        WideBvh wide = gpuNodes(bvh, scene.source + ": BVH");
+        flat.wideBvhDepth = wide.depth;
+        if (wide.nodes.size() * sizeof(gpu::GpuBvh4Node) > bvhOptions.quantizeOverBytes)
+            flat.quantizedNodes = quantizeWideNodes(wide.nodes);
+        else
+            flat.nodes = std::move(wide.nodes);
     }
+    std::vector<uint32_t> order = std::move(bvh.primOrder);
+    bvh = Bvh{};
+    applyOrderInPlace(order, triangles, shading, tangents);
+    flat.triangles = std::move(triangles);
+    flat.shading = std::move(shading);
+    flat.tangents = std::move(tangents);
     flattenSpheres(scene, bvhOptions, flat);
     if (scene.environment) flat.environment = flattenEnvironment(*scene.environment, scene.source);
     flat.lights = buildLightTable(flat.triangles, flat.spheres, scene.punctualLights, scene.materials,

@@ -22,6 +22,7 @@ struct FlatEnvironment {
 };
 
 struct FlatScene {
+    std::string source; // the scene's file (Scene::source), for messages
     std::vector<gpu::GpuTriangle> triangles;
     std::vector<gpu::GpuTriangleShading> shading;
     std::vector<gpu::GpuTriangleTangents> tangents; // per triangle when any mesh has tangents, else empty

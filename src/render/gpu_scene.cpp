@@ -1,5 +1,11 @@
 #include "render/gpu_scene.h"
 
+#include "base/memory_usage.h"
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+
 namespace pt {
 namespace {
 
@@ -10,15 +16,76 @@ GpuBuffer makeBuffer(VulkanContext& ctx, const std::vector<T>& data, const char*
     return buffer;
 }
 
+template <class T>
+uint64_t bytesOf(const std::vector<T>& data) {
+    return sizeof(T) * data.size();
+}
+
+// Refuses a scene whose buffers cannot fit in the device's largest device-local heap (on a CPU
+// device, lavapipe, in the host memory left too), naming the scene, the need and the limit,
+// before any buffer is made: a failed allocation halfway through says less.
+void requireDeviceMemory(VulkanContext& context, const FlatScene& scene, VkDeviceSize accumulationBytes) {
+    const uint64_t geometry = bytesOf(scene.triangles) + bytesOf(scene.shading) + bytesOf(scene.tangents) +
+                              bytesOf(scene.spheres) + bytesOf(scene.motions);
+    const uint64_t bvh = bytesOf(scene.nodes) + bytesOf(scene.quantizedNodes) + bytesOf(scene.sphereNodes);
+    const uint64_t textures = bytesOf(scene.texels) + bytesOf(scene.textures) + bytesOf(scene.environment.texels) +
+                              bytesOf(scene.environment.marginal) + bytesOf(scene.environment.conditional);
+    const uint64_t other = bytesOf(scene.materials) + bytesOf(scene.lights.lights) + bytesOf(scene.lights.cdf);
+    const uint64_t need = geometry + bvh + textures + other + accumulationBytes;
+    uint64_t heap = 0;
+    const VkPhysicalDeviceMemoryProperties& memory = context.memoryProperties();
+    for (uint32_t i = 0; i < memory.memoryHeapCount; ++i)
+        if (memory.memoryHeaps[i].flags & VK_MEMORY_HEAP_DEVICE_LOCAL_BIT)
+            heap = std::max(heap, memory.memoryHeaps[i].size);
+    std::string limit = "the largest device-local heap of " + context.info().name + " (" + formatBytes(heap) + ")";
+    uint64_t available = heap;
+    if (context.info().type == "CPU") {
+        const MemoryHeadroom host = hostMemoryHeadroom();
+        if (host.bytes < available) {
+            available = host.bytes;
+            limit = host.limit;
+        }
+        limit += " allows (the device, " + context.info().name + ", is the CPU: its memory is host memory)";
+    } else {
+        limit += " allows";
+    }
+    if (heap == 0 || need <= available) return;
+    throw std::runtime_error((scene.source.empty() ? std::string("the scene") : scene.source) + ": needs " +
+                             formatBytes(need) + " of device memory (geometry " + formatBytes(geometry) + ", BVH " +
+                             formatBytes(bvh) + ", textures " + formatBytes(textures) + ", image " +
+                             formatBytes(accumulationBytes) + "), more than " + limit);
+}
+
 } // namespace
 
 GpuScene::GpuScene(
     VulkanContext& context, const FlatScene& scene, gpu::GpuSceneParams params, VkDeviceSize accumulationBytes) {
-    triangles_ = makeBuffer(context, scene.triangles, "triangles");
-    shading_ = makeBuffer(context, scene.shading, "shading");
+    build(context, scene, nullptr, params, accumulationBytes);
+}
+
+GpuScene::GpuScene(
+    VulkanContext& context, FlatScene&& scene, gpu::GpuSceneParams params, VkDeviceSize accumulationBytes) {
+    build(context, scene, &scene, params, accumulationBytes);
+}
+
+void GpuScene::build(VulkanContext& context, const FlatScene& scene, FlatScene* release, gpu::GpuSceneParams params,
+    VkDeviceSize accumulationBytes) {
+    requireDeviceMemory(context, scene, accumulationBytes);
     const bool quantized = !scene.quantizedNodes.empty();
-    nodes_ = quantized ? makeBuffer(context, scene.quantizedNodes, "bvh nodes")
-                       : makeBuffer(context, scene.nodes, "bvh nodes");
+    params.numTriangles = static_cast<uint32_t>(scene.triangles.size());
+    params.numNodes = static_cast<uint32_t>(quantized ? scene.quantizedNodes.size() : scene.nodes.size());
+    params.nodeFormat = quantized ? BVH_NODES_QUANTIZED : BVH_NODES_FLOAT;
+    // The big arrays, each freed (when `release` is the scene) once it is on the device.
+    auto upload = [&](auto FlatScene::*array, const char* name) {
+        GpuBuffer buffer = makeBuffer(context, scene.*array, name);
+        if (release) std::remove_reference_t<decltype(release->*array)>().swap(release->*array);
+        return buffer;
+    };
+    triangles_ = upload(&FlatScene::triangles, "triangles");
+    shading_ = upload(&FlatScene::shading, "shading");
+    nodes_ = quantized ? upload(&FlatScene::quantizedNodes, "bvh nodes") : upload(&FlatScene::nodes, "bvh nodes");
+    tangents_ = upload(&FlatScene::tangents, "tangents");
+    texels_ = upload(&FlatScene::texels, "texels");
     spheres_ = makeBuffer(context, scene.spheres, "spheres");
     sphereNodes_ = makeBuffer(context, scene.sphereNodes, "sphere bvh nodes");
     materials_ = makeBuffer(context, scene.materials, "materials");
@@ -28,9 +95,7 @@ GpuScene::GpuScene(
     envMarginal_ = makeBuffer(context, scene.environment.marginal, "environment marginal cdf");
     envConditional_ = makeBuffer(context, scene.environment.conditional, "environment conditional cdf");
     textures_ = makeBuffer(context, scene.textures, "textures");
-    texels_ = makeBuffer(context, scene.texels, "texels");
     motions_ = makeBuffer(context, scene.motions, "motions");
-    tangents_ = makeBuffer(context, scene.tangents, "tangents");
     accumulation_ = GpuBuffer(context, accumulationBytes, "accumulation");
     if (accumulationBytes > 0) accumulation_.fillZero();
 
@@ -58,9 +123,6 @@ GpuScene::GpuScene(
     params.envRotationCos = scene.environment.rotationCos;
     params.envRotationSin = scene.environment.rotationSin;
     params.numLights = static_cast<uint32_t>(scene.lights.lights.size());
-    params.numTriangles = static_cast<uint32_t>(scene.triangles.size());
-    params.numNodes = static_cast<uint32_t>(quantized ? scene.quantizedNodes.size() : scene.nodes.size());
-    params.nodeFormat = quantized ? BVH_NODES_QUANTIZED : BVH_NODES_FLOAT;
     params.numSpheres = static_cast<uint32_t>(scene.spheres.size());
     params.numSphereNodes = static_cast<uint32_t>(scene.sphereNodes.size());
     params_ = GpuBuffer(context, sizeof(params), "scene params");

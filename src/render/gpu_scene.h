@@ -13,12 +13,20 @@ public:
     // sizes the accumulation buffer (0 for none), zero-filled.
     GpuScene(
         VulkanContext& context, const FlatScene& scene, gpu::GpuSceneParams params, VkDeviceSize accumulationBytes);
+    // The same, freeing each of the scene's big host arrays as soon as it is on the device, so
+    // a big scene is never held twice (on lavapipe device memory is host memory); `scene` keeps
+    // its materials, lights and counts' sources only until this returns.
+    GpuScene(VulkanContext& context, FlatScene&& scene, gpu::GpuSceneParams params, VkDeviceSize accumulationBytes);
 
     VkDeviceAddress paramsAddress() const { return params_.address(); }
     const GpuBuffer& accumulation() const { return accumulation_; }
     GpuBuffer& accumulation() { return accumulation_; }
 
 private:
+    // `release`: the scene itself when its big arrays may be freed as they are uploaded, or null.
+    void build(VulkanContext& context, const FlatScene& scene, FlatScene* release, gpu::GpuSceneParams params,
+        VkDeviceSize accumulationBytes);
+
     GpuBuffer triangles_, shading_, nodes_, spheres_, sphereNodes_, materials_, lights_, lightCdf_, envTexels_,
         envMarginal_, envConditional_, textures_, texels_, motions_, tangents_, accumulation_, params_;
 };

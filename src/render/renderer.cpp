@@ -60,23 +60,41 @@ Renderer::Renderer(VulkanContext& context, const FlatScene& scene, const Feature
     const IntegratorSettings& settings, const Camera& camera, const FilmSettings& film)
     : context_(context), film_(film), camera_(camera), features_(supportedFeatures(context, features)) {
     validateImageSize(film.width, film.height);
+    gpuScene_ = std::make_unique<GpuScene>(context, scene, sceneParams(settings), filmBytes());
+    createPipeline();
+}
+
+Renderer::Renderer(VulkanContext& context, FlatScene&& scene, const FeatureSet& features,
+    const IntegratorSettings& settings, const Camera& camera, const FilmSettings& film)
+    : context_(context), film_(film), camera_(camera), features_(supportedFeatures(context, features)) {
+    validateImageSize(film.width, film.height);
+    gpuScene_ = std::make_unique<GpuScene>(context, std::move(scene), sceneParams(settings), filmBytes());
+    createPipeline();
+}
+
+gpu::GpuSceneParams Renderer::sceneParams(const IntegratorSettings& settings) const {
     gpu::GpuSceneParams params{};
-    params.camera = toGpuCamera(camera, film.width, film.height);
-    params.background = film.background;
-    params.imageSize = glm::uvec2(film.width, film.height);
+    params.camera = toGpuCamera(camera_, film_.width, film_.height);
+    params.background = film_.background;
+    params.imageSize = glm::uvec2(film_.width, film_.height);
     params.maxDepth = settings.maxDepth;
     params.rrStartDepth = settings.rrStartDepth;
     params.rrThreshold = settings.rrThreshold;
     params.seed = settings.seed;
-    const size_t pixels = size_t(film.width) * film.height;
-    gpuScene_ = std::make_unique<GpuScene>(context, scene, params, pixels * bytesPerPixel());
+    return params;
+}
+
+VkDeviceSize Renderer::filmBytes() const { return VkDeviceSize(film_.width) * film_.height * bytesPerPixel(); }
+
+void Renderer::createPipeline() {
+    const size_t pixels = size_t(film_.width) * film_.height;
     paramsAddress_ = gpuScene_->paramsAddress();
 
-    pipeline_ = std::make_unique<ComputePipeline>(context, renderKernel(features_),
+    pipeline_ = std::make_unique<ComputePipeline>(context_, renderKernel(features_),
         static_cast<uint32_t>(sizeof(gpu::GpuRenderPush)), features_.constants(localSize_, localSize_), "render");
     primePipeline();
     if (features_.countRays) {
-        rayCounts_ = std::make_unique<GpuBuffer>(context, pixels * sizeof(glm::uvec4), "ray counts");
+        rayCounts_ = std::make_unique<GpuBuffer>(context_, pixels * sizeof(glm::uvec4), "ray counts");
         rayCounts_->fillZero();
     }
 }

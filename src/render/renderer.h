@@ -31,6 +31,10 @@ class Renderer {
 public:
     Renderer(VulkanContext& context, const FlatScene& scene, const FeatureSet& features,
         const IntegratorSettings& settings, const Camera& camera, const FilmSettings& film);
+    // The same, freeing the scene's big host arrays as they are uploaded (GpuScene's FlatScene&&
+    // constructor): for a render that needs the flattened scene only once.
+    Renderer(VulkanContext& context, FlatScene&& scene, const FeatureSet& features, const IntegratorSettings& settings,
+        const Camera& camera, const FilmSettings& film);
 
     // Adds `count` samples to every pixel. `tileSize` > 0 splits each pass into square tiles of
     // that many pixels (one dispatch each); the image is identical either way.
@@ -100,6 +104,11 @@ public:
 private:
     const GpuBuffer& accumulation() const { return ownAccumulation_ ? *ownAccumulation_ : gpuScene_->accumulation(); }
     GpuBuffer& accumulation() { return ownAccumulation_ ? *ownAccumulation_ : gpuScene_->accumulation(); }
+    // The constructors' shared steps: the scene block's values, the accumulation buffer's size,
+    // and the pipeline (with its first empty dispatch) and ray counters once the scene is up.
+    gpu::GpuSceneParams sceneParams(const IntegratorSettings& settings) const;
+    VkDeviceSize filmBytes() const;
+    void createPipeline();
     void makeParamsEditable();
     void uploadParams();
     VkDeviceSize bytesPerPixel() const;

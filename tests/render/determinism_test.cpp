@@ -32,6 +32,25 @@ TEST_F(Determinism, ChunkingDoesNotChangeTheImage) {
     EXPECT_EQ(whole.varianceOfMean.rgba, tiles.varianceOfMean.rgba);
 }
 
+// A renderer given the flattened scene to keep (FlatScene&&) frees its big host arrays as they
+// are uploaded, and renders the same image as one that only reads it.
+TEST_F(Determinism, ARendererThatConsumesTheSceneRendersTheSameImage) {
+    const Scene scene = loadGltfFile(testDataDir() / "references" / "cbox-glass-mirror" / "scene.gltf");
+    IntegratorSettings s;
+    s.maxDepth = 32;
+    FlatScene flat = flattenScene(scene);
+    const FeatureSet features = computeFeatures(flat, s);
+    const FilmSettings film{40, 36, scene.background};
+    Renderer reading(sharedContext(), flat, features, s, scene.cameras.at(0), film);
+    reading.addSamples(6);
+    ASSERT_FALSE(flat.triangles.empty());
+    Renderer consuming(sharedContext(), std::move(flat), features, s, scene.cameras.at(0), film);
+    consuming.addSamples(6);
+    EXPECT_TRUE(flat.triangles.empty() && flat.shading.empty() && flat.nodes.empty()); // NOLINT: freed, not moved
+    EXPECT_EQ(flat.triangles.capacity(), 0u);
+    EXPECT_EQ(reading.read().mean.rgba, consuming.read().mean.rgba);
+}
+
 TEST_F(Determinism, DifferentSeedDifferentImage) {
     auto a = render(3, 12, 0);
     auto b = render(4, 12, 0);

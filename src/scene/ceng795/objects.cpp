@@ -1,5 +1,7 @@
 #include "scene/ceng795/objects.h"
 
+#include "scene/memory_estimate.h"
+
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <algorithm>
@@ -21,6 +23,9 @@ public:
 
     void read(pugi::xml_node scene) {
         for (pugi::xml_node objects : scene.children("Objects")) collectDefinitions(objects);
+        // Every MeshInstance is copied into world space: refuse a scene whose copies cannot fit
+        // before making them.
+        requireMemoryForTriangles(ctx_.file(), expandedTriangleCount(scene), "every MeshInstance expanded");
         for (pugi::xml_node objects : scene.children("Objects"))
             for (pugi::xml_node e : objects.children())
                 if (e.type() == pugi::node_element) readObject(e);
@@ -212,6 +217,50 @@ private:
             resolved_[idOf(ctx_, *it)] = base;
         }
         return base;
+    }
+
+    // The triangles the objects will add, instances expanded, before any is placed (LightMeshes,
+    // small and not parsed yet, left out). An instance
+    // chain that does not end at a Mesh (a cycle, a missing id) counts nothing here; resolve()
+    // reports it.
+    uint64_t expandedTriangleCount(pugi::xml_node scene) {
+        std::map<long long, uint64_t> instanceTriangles;
+        auto instanceCount = [&](long long id) -> uint64_t {
+            std::vector<long long> chain;
+            uint64_t triangles = 0;
+            for (long long cur = id; chain.size() <= instances_.size();) {
+                if (auto known = instanceTriangles.find(cur); known != instanceTriangles.end()) {
+                    triangles = known->second;
+                    break;
+                }
+                auto inst = instances_.find(cur);
+                if (inst == instances_.end()) break;
+                chain.push_back(cur);
+                pugi::xml_attribute b = inst->second.attribute("baseMeshId");
+                const std::vector<std::string_view> t = tokens(b ? b.value() : "");
+                if (t.size() != 1) break;
+                const long long baseId = toInteger(ctx_, inst->second, t[0]);
+                if (auto m = meshes_.find(baseId); m != meshes_.end()) {
+                    triangles = m->second.geometry->triangles.size();
+                    break;
+                }
+                cur = baseId;
+            }
+            for (long long c : chain) instanceTriangles[c] = triangles;
+            return triangles;
+        };
+        uint64_t total = 0;
+        for (pugi::xml_node objects : scene.children("Objects"))
+            for (pugi::xml_node e : objects.children()) {
+                const std::string type = e.name();
+                if (type == "Mesh")
+                    total += meshes_.at(idOf(ctx_, e)).geometry->triangles.size();
+                else if (type == "MeshInstance")
+                    total += instanceCount(idOf(ctx_, e));
+                else if (type == "Triangle")
+                    total += 1;
+            }
+        return total;
     }
 
     long long baseMeshId(pugi::xml_node inst) const {

@@ -3,6 +3,8 @@
 // light), and the note of extensions the scene uses that are not supported.
 #include "scene/gltf/gltf_importer.h"
 
+#include "scene/memory_estimate.h"
+
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
 #include <glm/gtc/type_ptr.hpp>
@@ -16,6 +18,9 @@ Scene GltfImporter::run() {
     readHints();
     convertMaterials();
     std::vector<int> roots = rootNodes();
+    // Every node's mesh is copied into world space: refuse a scene whose copies cannot fit
+    // before making them.
+    requireMemoryForTriangles(file_, expandedTriangleCount(roots), "every node instance of a mesh expanded");
     std::vector<bool> onPath(model_.nodes.size(), false);
     for (int root : roots) visitNode(root, glm::mat4(1.0f), onPath, 0);
     if (scene_.triangleCount() == 0) fail("no renderable geometry (the scene has no triangle primitives)");

@@ -80,6 +80,8 @@ private:
     std::vector<glm::vec<N, float>> readVectors(int accessorIndex, const std::string& what, bool allowNormalizedInts);
     std::vector<uint32_t> readIndices(int accessorIndex, const std::string& what);
     void addMesh(const tinygltf::Mesh& mesh, int meshIndex, const glm::mat4& world);
+    uint64_t meshTriangleCount(int meshIndex) const;
+    uint64_t expandedTriangleCount(const std::vector<int>& roots) const;
 
     // ---- gltf_lights_cameras.cpp ----
     void addCamera(int cameraIndex, const glm::mat4& world);

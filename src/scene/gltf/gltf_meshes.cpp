@@ -198,4 +198,60 @@ void GltfImporter::addMesh(const tinygltf::Mesh& mesh, int meshIndex, const glm:
     }
 }
 
+// The triangles a mesh's primitives claim (index or POSITION counts, each bounded by what its
+// buffer view can hold, so a false count does not inflate the estimate), before reading any.
+uint64_t GltfImporter::meshTriangleCount(int meshIndex) const {
+    if (meshIndex < 0 || meshIndex >= static_cast<int>(model_.meshes.size())) return 0;
+    uint64_t triangles = 0;
+    for (const tinygltf::Primitive& prim : model_.meshes[meshIndex].primitives) {
+        int accessor = prim.indices;
+        if (accessor < 0) {
+            auto pos = prim.attributes.find("POSITION");
+            accessor = pos == prim.attributes.end() ? -1 : pos->second;
+        }
+        if (accessor < 0 || accessor >= static_cast<int>(model_.accessors.size())) continue;
+        const tinygltf::Accessor& acc = model_.accessors[accessor];
+        uint64_t count = acc.count;
+        if (acc.bufferView >= 0 && acc.bufferView < static_cast<int>(model_.bufferViews.size())) {
+            const tinygltf::BufferView& view = model_.bufferViews[acc.bufferView];
+            const int bytes = tinygltf::GetComponentSizeInBytes(static_cast<uint32_t>(acc.componentType)) *
+                              tinygltf::GetNumComponentsInType(static_cast<uint32_t>(acc.type));
+            const uint64_t stride = view.byteStride ? view.byteStride : static_cast<uint64_t>(std::max(bytes, 1));
+            count = std::min<uint64_t>(count, view.byteLength / stride + 1);
+        }
+        const int mode = prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
+        if (mode == TINYGLTF_MODE_TRIANGLES)
+            triangles += count / 3;
+        else if (mode == TINYGLTF_MODE_TRIANGLE_STRIP || mode == TINYGLTF_MODE_TRIANGLE_FAN)
+            triangles += count >= 2 ? count - 2 : 0;
+    }
+    return triangles;
+}
+
+// The triangles of every node instance of every mesh, walking the hierarchy as visitNode will;
+// a cycle or too many repeated visits stops the count (visitNode then reports them).
+uint64_t GltfImporter::expandedTriangleCount(const std::vector<int>& roots) const {
+    const size_t nodes = model_.nodes.size();
+    std::vector<uint64_t> perMesh(model_.meshes.size(), UINT64_MAX);
+    std::vector<bool> seen(nodes, false);
+    size_t repeats = 0;
+    uint64_t total = 0;
+    std::vector<std::pair<int, int>> stack; // (node, depth)
+    for (int root : roots) stack.emplace_back(root, 0);
+    while (!stack.empty()) {
+        const auto [index, depth] = stack.back();
+        stack.pop_back();
+        if (index < 0 || index >= static_cast<int>(nodes) || depth > kMaxNodeDepth) continue;
+        if (seen[index] && ++repeats > kMaxRepeatedNodeVisits) break;
+        seen[index] = true;
+        const tinygltf::Node& node = model_.nodes[index];
+        if (node.mesh >= 0 && node.mesh < static_cast<int>(perMesh.size())) {
+            if (perMesh[node.mesh] == UINT64_MAX) perMesh[node.mesh] = meshTriangleCount(node.mesh);
+            total += perMesh[node.mesh];
+        }
+        for (int child : node.children) stack.emplace_back(child, depth + 1);
+    }
+    return total;
+}
+
 } // namespace pt::gltf
