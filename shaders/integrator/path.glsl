@@ -145,6 +145,7 @@ bool pathStep(inout PathState st) {
     uint depth = st.depth;
     vec3 wo = -st.ray.direction;
     BsdfSample bs = invalidBsdfSample();
+    bool neeSkipped = false;
     if (HAS_DIELECTRIC && mat.type == MATERIAL_DIELECTRIC && !isRoughDielectric(mat)) {
         Frame frame = makeFrame(dot(si.ns, wo) < 0.0 ? -si.ns : si.ns);
         float uLobe = rng1(st.rng, bounceDimension(depth, DIM_BSDF_LOBE));
@@ -164,7 +165,12 @@ bool pathStep(inout PathState st) {
         } else if (HAS_CONDUCTOR && mat.type == MATERIAL_CONDUCTOR && !isRoughConductor(mat)) {
             bs = conductorSample(mat.baseColor, mat.conductorEta, mat.conductorK, frame, woLocal);
         } else if (isSurfaceBsdf(mat)) {
-            if (USE_NEE && scene.numLights > 0u)
+            // Inside a rough dielectric a shadow ray to a light outside always meets the
+            // object's own boundary (shadow rays do not refract): light sampling is skipped
+            // there, and emission the BSDF sample finds counts fully (prevDelta), which keeps
+            // lights inside glass correct.
+            neeSkipped = isRoughDielectric(mat) && woLocal.z < 0.0;
+            if (USE_NEE && scene.numLights > 0u && !neeSkipped)
                 st.L += st.beta * estimateDirect(si, frame, woLocal, mat, st.rng, depth);
             bs = surfaceSample(mat, frame, woLocal, rng1(st.rng, bounceDimension(depth, DIM_BSDF_LOBE)),
                 rng2(st.rng, bounceDimension(depth, DIM_BSDF_DIRECTION)));
@@ -185,7 +191,7 @@ bool pathStep(inout PathState st) {
     }
     st.beta *= bs.weight;
     st.etaScale *= bs.etaScale;
-    st.prevDelta = bs.isDelta;
+    st.prevDelta = bs.isDelta || neeSkipped;
     st.prevPdfBsdf = bs.pdf;
 
     // Russian roulette on throughput with the radiance scaling of refractions undone, so a

@@ -115,8 +115,8 @@ TEST_F(CliTest, InstancedGltfThatFitsRendersUnderTheSameLimit) {
 // The image's accumulation buffer counts too: the built-in scene at 8192 x 8192 needs more than
 // 4 GiB of device memory, which on lavapipe is host memory, so the device check refuses it.
 TEST_F(CliTest, ImageTooBigForTheDeviceMemoryIsRefusedWithItsNeed) {
-    const PtRun r = runLimited(
-        dir_, captureDir_, {"render", "--spp", "1", "--width", "8192", "--height", "8192", "-o", "x.exr"});
+    const PtRun r =
+        runLimited(dir_, captureDir_, {"render", "--spp", "1", "--width", "8192", "--height", "8192", "-o", "x.exr"});
     EXPECT_EXIT_STATUS(r, 1);
     const std::string line = r.errorLine();
     EXPECT_NE(line.find("of device memory"), std::string::npos) << line;
