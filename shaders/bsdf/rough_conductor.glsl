@@ -27,6 +27,23 @@ vec3 roughConductorEval(GpuMaterial m, vec3 wo, vec3 wi) {
 
 float roughConductorPdf(GpuMaterial m, vec3 wo, vec3 wi) { return ggxReflectionPdf(wo, wi, m.alpha); }
 
+// Eval and pdf at once, sharing the half vector and D (light sampling needs both).
+vec3 roughConductorEvalPdf(GpuMaterial m, vec3 wo, vec3 wi, out float pdf) {
+    pdf = 0.0;
+    if (wo.z <= 0.0 || wi.z <= 0.0) return vec3(0.0);
+    vec3 h = wo + wi;
+    float len2 = dot(h, h);
+    if (!(len2 > 0.0)) return vec3(0.0);
+    vec3 wm = h * inversesqrt(len2);
+    float cosOM = dot(wo, wm);
+    float D = ggxD(wm, m.alpha);
+    float lo = ggxSmithL(wo, m.alpha);
+    // ggxReflectionPdf: G1(wo) cosOM D / wo.z / (4 cosOM) = D / (2 (wo.z + L(wo))).
+    pdf = cosOM > 0.0 && wm.z > 0.0 ? D / (2.0 * (wo.z + lo)) : 0.0;
+    vec3 F = roughConductorFresnel(m, clamp(cosOM, 0.0, 1.0));
+    return F * (D * ggxG2OverCosO(wo, wi, m.alpha) * 0.25);
+}
+
 BsdfSample roughConductorSample(GpuMaterial m, Frame frame, vec3 wo, vec2 u) {
     BsdfSample s = invalidBsdfSample();
     if (wo.z <= 0.0) return s;

@@ -62,6 +62,32 @@ float roughDielectricPdf(GpuMaterial m, vec3 wo, vec3 wi) {
     return (1.0 - F) * ggxVisibleNormalPdf(wo, wm, m.alpha) * refractionJacobian(wo, wi, wm, eta);
 }
 
+// Eval and pdf at once, sharing the half vector, Fresnel and D (light sampling needs both).
+vec3 roughDielectricEvalPdf(GpuMaterial m, vec3 wo, vec3 wi, out float pdf) {
+    pdf = 0.0;
+    if (wo.z == 0.0 || wi.z == 0.0) return vec3(0.0);
+    float eta = dielectricSide(m.ior, wo, wi);
+    float cosT;
+    float lo = ggxSmithL(wo, m.alpha);
+    if (wi.z > 0.0) {
+        // Both above: wm = normalize(wo + wi) faces both, so ggxReflectionPdf is D / (2 (zo + L(wo))).
+        vec3 wm = normalize(wo + wi);
+        float F = fresnelDielectric(clamp(dot(wo, wm), 0.0, 1.0), eta, cosT);
+        float D = ggxD(wm, m.alpha);
+        pdf = F * D / (2.0 * (wo.z + lo));
+        return vec3(F * D * ggxG2OverCosO(wo, wi, m.alpha) * 0.25);
+    }
+    vec3 wm;
+    if (!refractionHalfVector(wo, wi, eta, wm)) return vec3(0.0);
+    float F = fresnelDielectric(dot(wo, wm), eta, cosT);
+    float D = ggxD(wm, m.alpha);
+    float jacobian = refractionJacobian(wo, wi, wm, eta);
+    float cosOM = dot(wo, wm);
+    // ggxVisibleNormalPdf with D shared.
+    pdf = (1.0 - F) * (2.0 * cosOM * D / (wo.z + lo)) * jacobian;
+    return m.baseColor * ((1.0 - F) * D * ggxG2OverCosO(wo, wi, m.alpha) * cosOM * jacobian / (eta * eta));
+}
+
 BsdfSample roughDielectricSample(GpuMaterial m, Frame frame, vec3 wo, float uLobe, vec2 u) {
     BsdfSample s = invalidBsdfSample();
     if (wo.z == 0.0) return s;

@@ -47,6 +47,15 @@ float surfacePdf(GpuMaterial m, vec3 wo, vec3 wi) {
     return lambertPdf(wo, wi);
 }
 
+// surfaceEval and surfacePdf at once, for light sampling: the microfacet BSDFs share their
+// half vector, Fresnel and D between the two.
+vec3 surfaceEvalPdf(GpuMaterial m, vec3 wo, vec3 wi, out float pdf) {
+    if (isRoughConductor(m)) return roughConductorEvalPdf(m, wo, wi, pdf);
+    if (isRoughDielectric(m)) return roughDielectricEvalPdf(m, wo, wi, pdf);
+    pdf = surfacePdf(m, wo, wi);
+    return surfaceEval(m, wo, wi);
+}
+
 BsdfSample surfaceSample(GpuMaterial m, Frame frame, vec3 wo, float uLobe, vec2 u) {
     if (HAS_GLOSSY && m.type == MATERIAL_GLOSSY) return glossySample(m, frame, wo, uLobe, u);
     if (isPbr(m)) return pbrSample(m, frame, wo, uLobe, u);

@@ -39,7 +39,8 @@ vec3 estimateDirect(SurfaceInteraction si, Frame frame, vec3 woLocal, GpuMateria
     // the surface, whose terminator Hanika's offset then handles).
     if (!isTransmissiveSurface(mat) && dot(ls.wi, si.nSurface) <= 0.0) return vec3(0.0);
     vec3 wiLocal = toLocal(frame, ls.wi);
-    vec3 fCos = surfaceEval(mat, woLocal, wiLocal);
+    float pdfBsdf;
+    vec3 fCos = surfaceEvalPdf(mat, woLocal, wiLocal, pdfBsdf);
     if (maxComponent(fCos) <= 0.0) return vec3(0.0);
     if (lightOccluded(si, ls)) return vec3(0.0);
     // A shadow ray into an absorbing interior (a light inside the glass) is attenuated like
@@ -47,7 +48,7 @@ vec3 estimateDirect(SurfaceInteraction si, Frame frame, vec3 woLocal, GpuMateria
     if (HAS_ABSORPTION && ls.distance != FLOAT_MAX && dot(ls.wi, si.ng) < 0.0 && isTransmissiveSurface(mat) &&
         hasInteriorAbsorption(mat))
         fCos *= exp(-mat.sigmaA * ls.distance);
-    float weight = (USE_MIS && !ls.isDelta) ? powerHeuristic(ls.pdf, surfacePdf(mat, woLocal, wiLocal)) : 1.0;
+    float weight = (USE_MIS && !ls.isDelta) ? powerHeuristic(ls.pdf, pdfBsdf) : 1.0;
     return fCos * ls.radiance * (weight / ls.pdf);
 }
 

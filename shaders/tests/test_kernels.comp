@@ -61,7 +61,10 @@ void main() {
         GpuMaterial m = sceneMaterials.v[push.materialIndex];
         vec3 wo = normalize(push.normal);
         vec3 wi = normalize(Vec4Ref(push.inputs).v[i].xyz);
-        outputs.v[i] = vec4(surfaceEval(m, wo, wi).x, 0.0, 0.0, surfacePdf(m, wo, wi));
+        // What light sampling uses (the fused routine) in x and w; the separate routines in y, z.
+        float pdf;
+        vec3 f = surfaceEvalPdf(m, wo, wi, pdf);
+        outputs.v[i] = vec4(f.x, surfaceEval(m, wo, wi).x, surfacePdf(m, wo, wi), pdf);
     } else if (push.mode == TEST_MODE_TRACE_BVH || push.mode == TEST_MODE_TRACE_BRUTE_FORCE) {
         GpuTestRay tr = TestRayRef(push.inputs).v[i];
         Ray ray;

@@ -306,6 +306,32 @@ TEST_F(MicrofacetBsdf, SchlickMetalIsThePbrModelAtMetallicOne) {
     }
 }
 
+// Light sampling evaluates f and the pdf in one routine (surfaceEvalPdf, sharing the half vector,
+// Fresnel and D); the chi-square tests above check that one. It must equal the separate routines
+// (surfaceEval, surfacePdf) the light tracer and the classic integrator use.
+TEST_F(MicrofacetBsdf, FusedEvalAndPdfEqualTheSeparateRoutines) {
+    upload();
+    const auto all = cases();
+    for (uint32_t index = 0; index < all.size(); ++index)
+        for (float cosO : all[index].cosThetaO) {
+            SCOPED_TRACE(std::string(all[index].name) + ", cos theta_o " + std::to_string(cosO));
+            std::vector<glm::vec4> dirs;
+            for (int i = 0; i < 256; ++i) {
+                const float z = -0.995f + 1.99f * (i + 0.5f) / 256.0f, phi = 2.39996f * i;
+                const float r = std::sqrt(1 - z * z);
+                dirs.emplace_back(r * std::cos(phi), r * std::sin(phi), z, 0.0f);
+            }
+            const auto v = evaluate(index, woAt(cosO), dirs);
+            int nonZero = 0;
+            for (size_t i = 0; i < v.size(); ++i) {
+                EXPECT_NEAR(v[i].x, v[i].y, 1e-5f * std::max(1.0f, std::abs(v[i].y))) << "f cos at " << i;
+                EXPECT_NEAR(v[i].w, v[i].z, 1e-5f * std::max(1.0f, std::abs(v[i].z))) << "pdf at " << i;
+                nonZero += v[i].z > 0.0f;
+            }
+            EXPECT_GT(nonZero, 8);
+        }
+}
+
 TEST_F(MicrofacetBsdf, ChiSquareRejectsAWrongRoughness) {
     // Negative control: samples of alpha 0.09 judged by the pdf of alpha 0.16.
     const uint32_t wrong = add(roughConductor(0.4f, 0.2f, 3.0f, 0.9f));
