@@ -78,6 +78,9 @@ void addSceneOptions(CLI::App* cmd, pt::RenderOptions& o, SwitchWords& w) {
            "Caustics seen directly (camera, diffuse surface, mirrors or glass, area light) by light tracing, "
            "splatted, where the scene has them: on|off (default on; off leaves them to BSDF sampling)")
         ->check(CLI::IsMember({"on", "off"}));
+    cmd->add_option("--variant", o.variant,
+        "glTF KHR_materials_variants: render this variant's materials (default: the default materials; see "
+        "--list-variants)");
     cmd->add_option("--camera", o.camera,
         "Camera to render: glTF: its index (default 0); course XML: its id (default: every camera)");
     cmd->add_option("--device", o.device, "Use the first Vulkan device whose name contains this (see 'pt devices')");
@@ -140,6 +143,8 @@ int main(int argc, char** argv) {
     render->add_option("--tile", o.tileSize, "Split each pass into tiles of this many pixels square (same image)");
     render->add_option("--pass-spp", o.passSpp, "Samples per pass (default: passes of about two seconds; same image)");
     render->add_flag("-q,--quiet", o.quiet, "Only print the summary line and errors");
+    render->add_flag("--list-variants", o.listVariants,
+        "Print the scene's glTF material variants (KHR_materials_variants), one per line, and stop");
     render->add_flag(
         "--variance", o.varianceAov, "Add the variance of each pixel's mean to the EXR (channels variance.R/G/B)");
     auto* samplesOpt = render->add_option("--samples", o.samples,

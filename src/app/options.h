@@ -11,8 +11,10 @@
 namespace pt {
 
 struct RenderOptions {
-    std::string scene;  // empty: the built-in Cornell box
-    std::string output; // .exr; a tonemapped .png is written beside it
+    std::string scene;         // empty: the built-in Cornell box
+    std::string variant;       // --variant NAME: a glTF KHR_materials_variants variant (empty: the defaults)
+    bool listVariants = false; // --list-variants: print the scene's variants and stop
+    std::string output;        // .exr; a tonemapped .png is written beside it
     std::optional<uint32_t> spp;
     std::optional<double> seconds;
     std::optional<double> targetError; // --target-error: stop at this estimated relMSE (spp, seconds: caps)

@@ -80,6 +80,7 @@ int renderJob(VulkanContext& context, const Scene& scene, FlatScene& flat, bool 
     meta["integrator"] = job.settings.describe();
     meta["features"] = features.describe();
     meta["scene"] = scene.source;
+    if (!scene.variant.empty()) meta["variant"] = scene.variant;
     meta["camera"] = job.camera.name;
     // --samples, --resume, --checkpoint, signals, device faults: app/render_session.h.
     RenderSession session(o, scene, job, renderer, meta);
@@ -133,6 +134,13 @@ int renderJob(VulkanContext& context, const Scene& scene, FlatScene& flat, bool 
 
 int runRender(const RenderOptions& o) {
     const auto loadStart = Clock::now();
+    if (o.listVariants) {
+        const Scene scene = loadScene(o.scene, o.variant);
+        for (const std::string& name : scene.materialVariants) std::printf("%s\n", name.c_str());
+        if (scene.materialVariants.empty())
+            std::fprintf(stderr, "pt: %s: no material variants\n", scene.source.c_str());
+        return 0;
+    }
     Scene scene = loadSceneWithOptions(o);
     const bool course = isCourseScene(o.scene);
     const std::vector<Camera> cameras = chooseCameras(scene, o, course);

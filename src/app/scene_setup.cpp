@@ -28,7 +28,7 @@ void warnAssumed(const Scene& scene, const Camera& camera, const std::string& wh
 } // namespace
 
 Scene loadSceneWithOptions(const RenderOptions& o) {
-    Scene scene = loadScene(o.scene);
+    Scene scene = loadScene(o.scene, o.variant);
     if (!o.environment.empty()) {
         Environment env;
         env.image = loadRadianceImage(o.environment);

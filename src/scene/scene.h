@@ -212,6 +212,10 @@ struct Scene {
     RenderHints hints;
     // Things the file uses that the renderer does not model yet (shown as one warning).
     std::vector<std::string> unsupported;
+    // glTF KHR_materials_variants: the scene's variant names, and the one rendered (empty: the
+    // default materials).
+    std::vector<std::string> materialVariants;
+    std::string variant;
 
     size_t triangleCount() const {
         size_t n = 0;

@@ -9,6 +9,7 @@
 #include <glm/gtc/quaternion.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
+#include <algorithm>
 #include <set>
 
 namespace pt::gltf {
@@ -17,6 +18,7 @@ Scene GltfImporter::run() {
     scene_.source = file_;
     readHints();
     convertMaterials();
+    readMaterialVariants();
     std::vector<int> roots = rootNodes();
     // Every node's mesh is copied into world space: refuse a scene whose copies cannot fit
     // before making them.
@@ -130,10 +132,66 @@ void GltfImporter::visitNode(int index, const glm::mat4& parent, std::vector<boo
     onPath[index] = false;
 }
 
+// ---- KHR_materials_variants ----
+// The scene's variant names (root extension), and the index of the one asked for.
+void GltfImporter::readMaterialVariants() {
+    if (auto it = model_.extensions.find("KHR_materials_variants"); it != model_.extensions.end()) {
+        const tinygltf::Value& ext = it->second;
+        if (!ext.IsObject() || !ext.Has("variants") || !ext.Get("variants").IsArray())
+            fail("KHR_materials_variants: no variants array");
+        const tinygltf::Value& variants = ext.Get("variants");
+        for (size_t i = 0; i < variants.ArrayLen(); ++i) {
+            const tinygltf::Value& v = variants.Get(static_cast<int>(i));
+            if (!v.IsObject() || !v.Has("name") || !v.Get("name").IsString())
+                fail("KHR_materials_variants: variant " + std::to_string(i) + " has no name");
+            scene_.materialVariants.push_back(v.Get("name").Get<std::string>());
+        }
+    }
+    if (variant_.empty()) return;
+    const auto& names = scene_.materialVariants;
+    const auto found = std::find(names.begin(), names.end(), variant_);
+    if (found == names.end()) {
+        std::string list;
+        for (const std::string& n : names) list += (list.empty() ? "" : ", ") + n;
+        fail("no material variant '" + variant_ + "' (" +
+             (names.empty() ? std::string("the scene has none") : "the scene's: " + list) + ")");
+    }
+    variantIndex_ = static_cast<int>(found - names.begin());
+    scene_.variant = variant_;
+}
+
+// A primitive's material: the chosen variant's mapping where the primitive has one, else its own.
+int GltfImporter::primitiveMaterial(const tinygltf::Primitive& prim, const std::string& label) const {
+    if (variantIndex_ < 0) return prim.material;
+    auto it = prim.extensions.find("KHR_materials_variants");
+    if (it == prim.extensions.end()) return prim.material;
+    const tinygltf::Value& ext = it->second;
+    if (!ext.IsObject() || !ext.Has("mappings") || !ext.Get("mappings").IsArray())
+        fail(label + ": KHR_materials_variants without a mappings array");
+    const tinygltf::Value& mappings = ext.Get("mappings");
+    for (size_t m = 0; m < mappings.ArrayLen(); ++m) {
+        const tinygltf::Value& mapping = mappings.Get(static_cast<int>(m));
+        if (!mapping.IsObject() || !mapping.Has("variants") || !mapping.Get("variants").IsArray() ||
+            !mapping.Has("material") || !mapping.Get("material").IsInt())
+            fail(label + ": KHR_materials_variants mapping " + std::to_string(m) + " needs variants and a material");
+        const tinygltf::Value& variants = mapping.Get("variants");
+        for (size_t v = 0; v < variants.ArrayLen(); ++v) {
+            const tinygltf::Value& index = variants.Get(static_cast<int>(v));
+            if (index.IsInt() && index.GetNumberAsInt() == variantIndex_) {
+                const int material = mapping.Get("material").GetNumberAsInt();
+                if (material < 0)
+                    fail(label + ": KHR_materials_variants mapping to material " + std::to_string(material));
+                return material;
+            }
+        }
+    }
+    return prim.material;
+}
+
 void GltfImporter::noteUnsupportedExtensions() {
     static const std::set<std::string> supported = {"KHR_materials_emissive_strength", "KHR_materials_ior",
-        "KHR_materials_specular", "KHR_materials_transmission", "KHR_materials_volume", "KHR_lights_punctual",
-        "KHR_texture_transform"};
+        "KHR_materials_specular", "KHR_materials_transmission", "KHR_materials_volume", "KHR_materials_variants",
+        "KHR_lights_punctual", "KHR_texture_transform"};
     for (const auto& e : model_.extensionsUsed)
         if (!supported.count(e)) unsupported("extension " + e);
 }

@@ -43,8 +43,8 @@ inline std::string formatNumber(double v) {
 
 class GltfImporter {
 public:
-    GltfImporter(const tinygltf::Model& model, std::string file, DecodedImages& images)
-        : model_(model), file_(std::move(file)), decoded_(images) {}
+    GltfImporter(const tinygltf::Model& model, std::string file, DecodedImages& images, std::string variant = "")
+        : model_(model), file_(std::move(file)), decoded_(images), variant_(std::move(variant)) {}
 
     Scene run();
 
@@ -58,6 +58,8 @@ private:
     glm::mat4 localTransform(const tinygltf::Node& node, int index);
     void visitNode(int index, const glm::mat4& parent, std::vector<bool>& onPath, int depth);
     void noteUnsupportedExtensions();
+    void readMaterialVariants();
+    int primitiveMaterial(const tinygltf::Primitive& prim, const std::string& label) const;
 
     // ---- gltf_materials.cpp ----
     double number(const tinygltf::Value& obj, const char* key, double fallback, const std::string& where);
@@ -90,6 +92,9 @@ private:
     const tinygltf::Model& model_;
     std::string file_;
     DecodedImages& decoded_;
+    std::string variant_;   // KHR_materials_variants: the variant asked for, or empty
+    int variantIndex_ = -1; // its index in the scene's list
+
     std::map<int, uint32_t> imageIndices_;
     Scene scene_;
     int defaultMaterial_ = -1;

@@ -35,15 +35,15 @@ std::string firstLine(const std::string& s) {
 }
 
 Scene importModel(bool ok, const tinygltf::Model& model, const std::string& err, const std::string& displayName,
-    DecodedImages& images) {
+    DecodedImages& images, const std::string& variant = "") {
     if (!ok)
         throw SceneError(displayName, "invalid glTF: " + (err.empty() ? std::string("unknown error") : firstLine(err)));
-    return GltfImporter(model, displayName, images).run();
+    return GltfImporter(model, displayName, images, variant).run();
 }
 
 } // namespace
 
-Scene loadGltfFile(const std::filesystem::path& path) {
+Scene loadGltfFile(const std::filesystem::path& path, const std::string& variant) {
     const std::string name = path.string();
     // The input-file policy's first checks (image/file_read.h); tinygltf then reads the whole file
     // through our readWholeFile callback, which applies the rest. Here only the magic is peeked at.
@@ -66,10 +66,11 @@ Scene loadGltfFile(const std::filesystem::path& path) {
     std::string err, warn;
     bool ok = binary ? loader.LoadBinaryFromFile(&model, &err, &warn, name)
                      : loader.LoadASCIIFromFile(&model, &err, &warn, name);
-    return importModel(ok, model, err, name, images);
+    return importModel(ok, model, err, name, images, variant);
 }
 
-Scene loadGltfText(std::string_view text, const std::string& displayName, const std::filesystem::path& baseDir) {
+Scene loadGltfText(std::string_view text, const std::string& displayName, const std::filesystem::path& baseDir,
+    const std::string& variant) {
     tinygltf::TinyGLTF loader;
     DecodedImages images;
     configureLoader(loader, images);
@@ -77,7 +78,7 @@ Scene loadGltfText(std::string_view text, const std::string& displayName, const 
     std::string err, warn;
     bool ok = loader.LoadASCIIFromString(
         &model, &err, &warn, text.data(), static_cast<unsigned int>(text.size()), baseDir.string());
-    return importModel(ok, model, err, displayName, images);
+    return importModel(ok, model, err, displayName, images, variant);
 }
 
 Scene loadGltfMemory(std::string_view bytes, const std::string& displayName, const std::filesystem::path& baseDir) {

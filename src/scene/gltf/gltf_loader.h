@@ -7,11 +7,14 @@
 
 namespace pt {
 
-// Throws SceneError naming the file and the problem for anything malformed.
-Scene loadGltfFile(const std::filesystem::path& path);
+// Throws SceneError naming the file and the problem for anything malformed. `variant`: a
+// KHR_materials_variants variant by name, whose materials replace the primitives' defaults
+// (empty: the default materials; Scene::materialVariants lists the names either way).
+Scene loadGltfFile(const std::filesystem::path& path, const std::string& variant = "");
 
 // `text` is a .gltf JSON document; relative URIs resolve against `baseDir`.
-Scene loadGltfText(std::string_view text, const std::string& displayName, const std::filesystem::path& baseDir);
+Scene loadGltfText(std::string_view text, const std::string& displayName, const std::filesystem::path& baseDir,
+    const std::string& variant = "");
 
 // A .gltf (JSON) or .glb (binary, recognised by its magic) file already in memory; relative URIs
 // resolve against `baseDir`. Used by the fuzz target (tests/fuzz/).

@@ -187,8 +187,9 @@ void GltfImporter::addMesh(const tinygltf::Mesh& mesh, int meshIndex, const glm:
         } else {
             for (size_t i = 1; i + 1 < indices.size(); ++i) addTriangle(indices[0], indices[i], indices[i + 1]);
         }
-        if (prim.material >= static_cast<int>(model_.materials.size())) fail(label + ": material index out of range");
-        out.material = prim.material >= 0 ? static_cast<uint32_t>(prim.material) : defaultMaterial();
+        const int material = primitiveMaterial(prim, label);
+        if (material >= static_cast<int>(model_.materials.size())) fail(label + ": material index out of range");
+        out.material = material >= 0 ? static_cast<uint32_t>(material) : defaultMaterial();
         instancedVertices_ += out.positions.size();
         instancedTriangles_ += out.triangles.size();
         if (instancedTriangles_ > kMaxInstanced || instancedVertices_ > kMaxInstanced)
