@@ -1,5 +1,7 @@
 #include "flatten/flat_scene.h"
 
+#include "lights/texture_emission.h"
+
 #include "accel/quantized_bvh.h"
 
 #include <glm/gtc/type_ptr.hpp>
@@ -375,8 +377,17 @@ FlatScene flattenScene(const Scene& scene, const BvhBuildOptions& bvhOptions) {
     flat.tangents = std::move(tangents);
     flattenSpheres(scene, bvhOptions, flat);
     if (scene.environment) flat.environment = flattenEnvironment(*scene.environment, scene.source);
+    // Emitters are weighed by their emission texture's light (lights/texture_emission.h).
+    auto triangleEmission = [&](uint32_t i) {
+        const gpu::GpuMaterial& m = flat.materials[flat.triangles[i].materialIndex];
+        if (m.emissiveTexture == NO_TEXTURE || flat.textures[m.emissiveTexture].type != TEXTURE_IMAGE)
+            return glm::vec3(1.0f);
+        const gpu::GpuTriangleShading& s = flat.shading[i];
+        const glm::vec2 uv[3] = {{s.u0, s.v.x}, {s.u1, s.v.y}, {s.u2, s.v.z}};
+        return averageOverTriangle(flat.textures[m.emissiveTexture], flat.texels, uv);
+    };
     flat.lights = buildLightTable(flat.triangles, flat.spheres, scene.punctualLights, scene.materials,
-        sceneRadius(flat), flat.environment.width > 0 ? flat.environment.averageRadiance : -1.0);
+        sceneRadius(flat), flat.environment.width > 0 ? flat.environment.averageRadiance : -1.0, triangleEmission);
     return flat;
 }
 

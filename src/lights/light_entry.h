@@ -36,8 +36,10 @@ double lambertianEmitterPower(const Material& material, double area);
 std::optional<LightEntry> areaEmitter(uint32_t type, uint32_t index, float samplingArea, double power);
 
 // An emissive triangle (index: its position in the BVH-ordered array), or nothing for a
-// triangle that does not emit or has no area (it cannot be hit).
-std::optional<LightEntry> triangleLight(const gpu::GpuTriangle& triangle, uint32_t index, const Material& material);
+// triangle that does not emit or has no area (it cannot be hit). `textureAverage`: its
+// emission texture's mean over it (1 without one); black leaves it out.
+std::optional<LightEntry> triangleLight(const gpu::GpuTriangle& triangle, uint32_t index, const Material& material,
+    glm::vec3 textureAverage = glm::vec3(1.0f));
 // An emissive sphere or ellipsoid, or nothing for one that does not emit or is singular.
 std::optional<LightEntry> sphereLight(const gpu::GpuSphere& sphere, uint32_t index, const Material& material);
 // A point, spot, square or directional light, or nothing for one that emits nothing.

@@ -63,10 +63,15 @@ void addPrimitiveEmitters(std::span<Primitive> primitives, std::span<const Mater
 
 LightTable buildLightTable(std::span<gpu::GpuTriangle> triangles, std::span<gpu::GpuSphere> spheres,
     std::span<const PunctualLight> punctual, std::span<const Material> materials, float sceneRadius,
-    double environmentRadiance) {
+    double environmentRadiance, const std::function<glm::vec3(uint32_t)>& triangleEmission) {
     LightTable table;
     std::vector<double> power;
-    addPrimitiveEmitters(triangles, materials, triangleLight, table, power);
+    addPrimitiveEmitters(
+        triangles, materials,
+        [&](const gpu::GpuTriangle& tri, uint32_t index, const Material& m) {
+            return triangleLight(tri, index, m, triangleEmission ? triangleEmission(index) : glm::vec3(1.0f));
+        },
+        table, power);
     addPrimitiveEmitters(spheres, materials, sphereLight, table, power);
     for (const PunctualLight& pl : punctual)
         if (auto entry = punctualLight(pl, sceneRadius)) addEntry(*entry, table, power);

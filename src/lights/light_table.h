@@ -6,6 +6,7 @@
 #include "scene/scene.h"
 #include "shared/layout.h"
 
+#include <functional>
 #include <span>
 #include <vector>
 
@@ -23,9 +24,12 @@ struct LightTable {
 // are left out: they cannot be hit. `sceneRadius` sizes a directional light's power.
 // `environmentRadiance` >= 0 adds the environment (its average luminance sizes its power);
 // its entry is then the last one.
+// `triangleEmission(i)`, when given, is triangle i's emission texture averaged over it (RGB; 1
+// without a texture; lights/texture_emission.h): its power is weighed by it, and a triangle whose
+// average is black leaves the table.
 LightTable buildLightTable(std::span<gpu::GpuTriangle> triangles, std::span<gpu::GpuSphere> spheres,
     std::span<const PunctualLight> punctual, std::span<const Material> materials, float sceneRadius,
-    double environmentRadiance = -1.0);
+    double environmentRadiance = -1.0, const std::function<glm::vec3(uint32_t)>& triangleEmission = {});
 
 // Triangles only.
 LightTable buildLightTable(std::span<gpu::GpuTriangle> triangles, std::span<const Material> materials);

@@ -2,9 +2,11 @@
 // (luminance x area, x2 double-sided), a well-formed CDF whose differences are the pmf to the
 // last bit, light indices written back into the triangles, and the degenerate cases.
 #include "lights/light_table.h"
+#include "flatten/flat_scene.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <random>
@@ -246,3 +248,58 @@ TEST(LightTable, RebuildingOverwritesStaleLightIndices) {
 }
 
 } // namespace
+
+namespace {
+
+// A quad of two triangles over the uv rectangle [u0, u1] x [0, 1], facing +z.
+pt::Mesh uvQuadMesh(float x, float u0, float u1, uint32_t material) {
+    pt::Mesh m;
+    m.positions = {{x, 0, 0}, {x + 1, 0, 0}, {x + 1, 1, 0}, {x, 1, 0}};
+    m.uvs = {{u0, 1}, {u1, 1}, {u1, 0}, {u0, 0}};
+    m.triangles = {{0, 1, 2}, {0, 2, 3}};
+    m.material = material;
+    return m;
+}
+
+} // namespace
+
+// An emission texture weighs each emitting triangle by the light it gives there: over the black
+// half of a 2x1 texture nothing is sampled (the triangles leave the table), over the white half
+// the power is the factor's, and over a grey texel it is scaled by the texel's linear value.
+TEST(LightTable, TexturedEmittersAreWeighedByTheirTextureAndBlackOnesLeave) {
+    pt::Scene scene;
+    pt::TextureImage image;
+    image.width = 3;
+    image.height = 1;
+    image.source = "test";
+    image.rgba8 = {0xff000000u, 0xffffffffu, 0xff808080u}; // black, white, sRGB grey 128
+    scene.textureImages.push_back(image);
+    pt::Texture texture;
+    texture.image = 0;
+    texture.encoding = pt::Texture::Encoding::Srgb;
+    texture.bilinear = false;
+    scene.textures.push_back(texture);
+    pt::Material lamp;
+    lamp.emission = glm::vec3(2.0f);
+    lamp.emissiveTexture = 0;
+    scene.materials.push_back(lamp);
+    scene.meshes.push_back(uvQuadMesh(0, 0.02f, 0.31f, 0)); // the black texel
+    scene.meshes.push_back(uvQuadMesh(2, 0.36f, 0.64f, 0)); // the white one
+    scene.meshes.push_back(uvQuadMesh(4, 0.70f, 0.98f, 0)); // the grey one
+    const pt::FlatScene flat = pt::flattenScene(scene);
+    ASSERT_EQ(flat.triangles.size(), 6u);
+    ASSERT_EQ(flat.lights.lights.size(), 4u) << "the black quad's two triangles leave the table";
+    double white = 0, grey = 0;
+    for (const auto& t : flat.triangles) {
+        const float x = std::min({t.p0.x, t.p1.x, t.p2.x});
+        if (x < 1.0f) {
+            EXPECT_EQ(t.lightIndex, NO_LIGHT);
+            continue;
+        }
+        ASSERT_NE(t.lightIndex, NO_LIGHT);
+        (x < 3.0f ? white : grey) += flat.lights.lights[t.lightIndex].pmf;
+    }
+    const double greyLinear = std::pow((128.0 / 255 + 0.055) / 1.055, 2.4);
+    EXPECT_NEAR(grey / white, greyLinear, 1e-4);
+    EXPECT_NEAR(white + grey, 1.0, 1e-6);
+}

@@ -76,13 +76,14 @@ TEST(GltfVariants, AVariantTheSceneLacksIsAnErrorListingTheNames) {
         EXPECT_NE(m.find("red, blue, none"), std::string::npos) << m;
     }
     // A scene without the extension has none to choose.
-    EXPECT_THROW(loadGltfText(materialDocument(R"([{"name": "a"}])", 1), "plain.gltf", fs::temp_directory_path(), "red"),
+    EXPECT_THROW(
+        loadGltfText(materialDocument(R"([{"name": "a"}])", 1), "plain.gltf", fs::temp_directory_path(), "red"),
         SceneError);
 }
 
 TEST(GltfVariants, MalformedMappingsAreErrorsNamingThePrimitive) {
-    for (const char* mapping : {R"([{"variants": [0]}])", R"([{"material": 1}])", R"([{"material": 9, "variants": [0]}])",
-             R"([{"material": -1, "variants": [0]}])", R"("not an array")"}) {
+    for (const char* mapping : {R"([{"variants": [0]}])", R"([{"material": 1}])",
+             R"([{"material": 9, "variants": [0]}])", R"([{"material": -1, "variants": [0]}])", R"("not an array")"}) {
         SCOPED_TRACE(mapping);
         try {
             load(variantsDocument(mapping), "red");

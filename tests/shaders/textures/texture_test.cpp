@@ -2,6 +2,7 @@
 // the same filter, wrap and decode rules; the course's procedural patterns against their
 // definitions; and end-to-end renders where the answer is known exactly (an unshaded textured
 // quad and a background texture reproduce their image; flat normal and bump maps change nothing).
+#include "lights/texture_emission.h"
 #include "support/gpu_test_support.h"
 
 #include <cmath>
@@ -120,6 +121,47 @@ TEST_F(Textures, ImageLookupsMatchReferenceForEveryFilterWrapAndEncoding) {
                 continue;
             const glm::dvec4 want = lookup(scene.textureImages[0], cases[t], glm::dvec2(at[i]));
             for (int c = 0; c < 4; ++c) worst = std::max(worst, std::abs(double(got[i][c]) - want[c]));
+        }
+        EXPECT_LT(worst, 2e-4) << "texture case " << t;
+    }
+}
+
+// The light table weighs textured emitters with a CPU copy of the kernel's lookup
+// (lights/texture_emission.h): it must read every filter, wrap, encoding and uv transform as the
+// kernel does.
+TEST_F(Textures, TheLightTablesCpuLookupMatchesTheKernel) {
+    Scene scene;
+    scene.textureImages.push_back(makeImage(5, 3));
+    std::vector<Texture> cases;
+    for (bool bilinear : {false, true})
+        for (TextureWrap w : {TextureWrap::Repeat, TextureWrap::Clamp, TextureWrap::Mirror})
+            for (Texture::Encoding e :
+                {Texture::Encoding::Linear, Texture::Encoding::Srgb, Texture::Encoding::Gamma22}) {
+                Texture t;
+                t.bilinear = bilinear;
+                t.wrapU = w;
+                t.wrapV = w == TextureWrap::Clamp ? TextureWrap::Mirror : TextureWrap::Clamp;
+                t.encoding = e;
+                t.valueScale = e == Texture::Encoding::Linear ? 2.0f : 1.0f;
+                // KHR_texture_transform-like rows on half of them.
+                if (bilinear) {
+                    t.uvRow0 = glm::vec3(0.0f, 2.0f, 0.25f);
+                    t.uvRow1 = glm::vec3(-1.5f, 0.0f, 0.5f);
+                }
+                cases.push_back(t);
+            }
+    scene.textures = cases;
+    const Uploaded u = upload(scene);
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<float> coord(-2.3f, 3.1f);
+    std::vector<glm::vec4> at;
+    for (int i = 0; i < 2000; ++i) at.emplace_back(coord(rng), coord(rng), 0.0f, 0.0f);
+    for (uint32_t t = 0; t < cases.size(); ++t) {
+        const std::vector<glm::vec4> got = evaluate(u, t, at);
+        double worst = 0;
+        for (size_t i = 0; i < at.size(); ++i) {
+            const glm::vec4 cpu = sampleImageTexture(u.flat.textures[t], u.flat.texels, glm::vec2(at[i]));
+            for (int c = 0; c < 4; ++c) worst = std::max(worst, std::abs(double(got[i][c]) - cpu[c]));
         }
         EXPECT_LT(worst, 2e-4) << "texture case " << t;
     }
