@@ -48,7 +48,8 @@ int wrapTexel(int i, int size, uint32_t mode) {
 
 glm::vec4 sampleImageTexture(const gpu::GpuTexture& tex, std::span<const uint32_t> texels, glm::vec2 uv) {
     if (tex.type != TEXTURE_IMAGE || tex.width == 0 || tex.height == 0) return glm::vec4(1.0f);
-    const glm::vec2 t(glm::dot(glm::vec2(tex.uvRow0), uv) + tex.uvRow0.z, glm::dot(glm::vec2(tex.uvRow1), uv) + tex.uvRow1.z);
+    const glm::vec2 t(
+        glm::dot(glm::vec2(tex.uvRow0), uv) + tex.uvRow0.z, glm::dot(glm::vec2(tex.uvRow1), uv) + tex.uvRow1.z);
     const uint32_t wrapU = (tex.flags >> TEXTURE_WRAP_U_SHIFT) & 3u, wrapV = (tex.flags >> TEXTURE_WRAP_V_SHIFT) & 3u;
     const glm::ivec2 size(int(tex.width), int(tex.height));
     const glm::vec2 st = glm::clamp(t * glm::vec2(size), glm::vec2(-16777216.0f), glm::vec2(16777216.0f));
