@@ -20,6 +20,8 @@ int findMemoryType(
 
 namespace {
 
+StagingPolicy stagingPolicy;
+
 struct RawBuffer {
     VkBuffer buffer = VK_NULL_HANDLE;
     VkDeviceMemory memory = VK_NULL_HANDLE;
@@ -81,11 +83,17 @@ void destroyRawBuffer(VulkanContext& ctx, RawBuffer& raw) {
 
 } // namespace
 
+void setStagingPolicyForTests(const StagingPolicy& policy) { stagingPolicy = policy; }
+
 GpuBuffer::GpuBuffer(VulkanContext& context, VkDeviceSize size, const char* name)
     : context_(&context), size_(std::max<VkDeviceSize>(size, 16)), name_(name) {
     const VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT |
                                      VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
     RawBuffer raw = createRawBuffer(context, size_, usage, false, name);
+    if (stagingPolicy.forceStaging && raw.mapped) {
+        vkUnmapMemory(context.device(), raw.memory);
+        raw.mapped = nullptr;
+    }
     buffer_ = raw.buffer;
     memory_ = raw.memory;
     mapped_ = raw.mapped;
@@ -148,19 +156,24 @@ void GpuBuffer::fillZero() {
 
 void GpuBuffer::copyThroughStaging(
     const void* src, void* dst, VkDeviceSize bytes, VkDeviceSize offset, bool toDevice) const {
+    // One staging buffer of at most a chunk, filled (or drained) and copied chunk after chunk.
+    const VkDeviceSize chunk = std::min(bytes, std::max<VkDeviceSize>(stagingPolicy.chunkBytes, 16));
     RawBuffer staging = createRawBuffer(
-        *context_, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, true, "staging");
+        *context_, chunk, VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, true, "staging");
     try {
-        if (toDevice) std::memcpy(staging.mapped, src, bytes);
         VkBuffer buffer = buffer_;
-        context_->submitAndWait([&](VkCommandBuffer cmd) {
-            VkBufferCopy region{toDevice ? 0 : offset, toDevice ? offset : 0, bytes};
-            if (toDevice)
-                vkCmdCopyBuffer(cmd, staging.buffer, buffer, 1, &region);
-            else
-                vkCmdCopyBuffer(cmd, buffer, staging.buffer, 1, &region);
-        });
-        if (!toDevice) std::memcpy(dst, staging.mapped, bytes);
+        for (VkDeviceSize done = 0; done < bytes; done += chunk) {
+            const VkDeviceSize n = std::min(chunk, bytes - done);
+            if (toDevice) std::memcpy(staging.mapped, static_cast<const char*>(src) + done, n);
+            context_->submitAndWait([&](VkCommandBuffer cmd) {
+                VkBufferCopy region{toDevice ? 0 : offset + done, toDevice ? offset + done : 0, n};
+                if (toDevice)
+                    vkCmdCopyBuffer(cmd, staging.buffer, buffer, 1, &region);
+                else
+                    vkCmdCopyBuffer(cmd, buffer, staging.buffer, 1, &region);
+            });
+            if (!toDevice) std::memcpy(static_cast<char*>(dst) + done, staging.mapped, n);
+        }
     } catch (...) {
         destroyRawBuffer(*context_, staging);
         throw;

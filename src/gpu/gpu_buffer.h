@@ -1,13 +1,24 @@
 #pragma once
 // A storage buffer the shaders reach through its device address. Memory is host-visible
 // device memory where the device has it (lavapipe, resizable BAR); otherwise device-local
-// memory filled and read through a staging buffer.
+// memory filled and read through a staging buffer of at most kStagingChunkBytes, reused chunk
+// after chunk, so a big upload never holds a second full copy in host memory.
 #include "gpu/vulkan_context.h"
 
 #include <cstddef>
 #include <span>
 
 namespace pt {
+
+constexpr VkDeviceSize kStagingChunkBytes = VkDeviceSize(64) << 20;
+
+// Tests only: make new buffers take the staging path even on host-visible memory (lavapipe has
+// nothing else), with chunks of `chunkBytes`, so that path runs where the tests run.
+struct StagingPolicy {
+    bool forceStaging = false;
+    VkDeviceSize chunkBytes = kStagingChunkBytes;
+};
+void setStagingPolicyForTests(const StagingPolicy& policy);
 
 class GpuBuffer {
 public:
