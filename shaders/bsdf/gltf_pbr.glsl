@@ -3,9 +3,14 @@
 //   material   = mix(dielectric, metal, metallic)
 //   metal      = GGX reflection, Fresnel = Schlick with F0 = baseColor
 //   dielectric = GGX reflection with Fresnel Fs (from ior, scaled by the specular factors)
-//                over a base: mix(Lambert(baseColor), GGX transmission tinted by baseColor, transmission)
+//                over a base: mix(mix(Lambert(baseColor), Lambertian transmission(dtColor), dt),
+//                                 GGX transmission tinted by baseColor, transmission)
+//   (dt: KHR_materials_diffuse_transmission's factor, dtColor its colour; the Lambertian
+//   transmission goes to the other side without bending, as through a thin wall, weighted by the
+//   base's share at both directions like the Lambertian reflection, so it is reciprocal on thin
+//   walls and never gives more than arrives)
 // Lobes: diffuse (Lambert), specular (the dielectric and metal reflections share D and G2, so
-// they are one lobe with a blended Fresnel) and transmission. Each is sampled with a
+// they are one lobe with a blended Fresnel), transmission and diffuse transmission. Each is sampled with a
 // probability from its estimated albedo at wo; eval and pdf are the sums over the lobes, so a
 // sample's weight is f cos / pdf of the whole material and MIS sees one pdf. When alpha == 0
 // the specular and transmission lobes are delta: eval and pdf leave them out, and sampling
@@ -82,7 +87,11 @@ struct PbrLobeProbabilities {
     float specular;
     float transmission;
     float diffuse;
+    float diffuseTransmission;
 };
+
+// KHR_materials_diffuse_transmission's factor (0 where the kernel has no such material).
+float pbrDiffuseTransmission(GpuMaterial m) { return HAS_DIFFUSE_TRANSMISSION ? m.diffuseTransmission : 0.0; }
 
 // Lobe probabilities from the albedo each lobe would have at wo (wo.z > 0).
 PbrLobeProbabilities pbrLobeProbabilities(GpuMaterial m, vec3 wo, float eta) {
@@ -92,14 +101,18 @@ PbrLobeProbabilities pbrLobeProbabilities(GpuMaterial m, vec3 wo, float eta) {
                      m.metallic * average(fresnelSchlick(m.baseColor, wo.z));
     float specularMass = dielectric * m.specularWeight + m.metallic;
     specular = max(specular, PBR_MIN_SPECULAR_ESTIMATE * specularMass);
-    float base = dielectric * max(pbrBaseShare(m, wo.z, eta), PBR_MIN_BASE_SHARE) * average(m.baseColor);
+    float share = dielectric * max(pbrBaseShare(m, wo.z, eta), PBR_MIN_BASE_SHARE);
+    float base = share * average(m.baseColor);
+    float dt = pbrDiffuseTransmission(m);
     float transmission = base * m.transmission;
-    float diffuse = base * (1.0 - m.transmission);
-    float total = specular + transmission + diffuse;
+    float diffuse = base * (1.0 - m.transmission) * (1.0 - dt);
+    float diffuseTransmission = share * (1.0 - m.transmission) * dt * average(m.diffuseTransmissionColor);
+    float total = specular + transmission + diffuse + diffuseTransmission;
     float inv = total > 0.0 ? 1.0 / total : 0.0;
     p.specular = specular * inv;
     p.transmission = transmission * inv;
     p.diffuse = diffuse * inv;
+    p.diffuseTransmission = diffuseTransmission * inv;
     return p;
 }
 
@@ -109,25 +122,31 @@ vec3 mirrorThroughSurface(vec3 w) { return vec3(w.xy, -w.z); }
 // f * |cos(theta_i)| of the non-delta lobes; wo.z > 0, eta from pbrSide.
 vec3 pbrEvalUpper(GpuMaterial m, vec3 wo, vec3 wi, float eta) {
     float dielectric = 1.0 - m.metallic;
+    float dt = pbrDiffuseTransmission(m);
     if (wi.z > 0.0) {
-        vec3 f = dielectric * (1.0 - m.transmission) * m.baseColor * (INV_PI * wi.z) * pbrBaseShare(m, wo.z, eta) *
-                 pbrBaseShare(m, wi.z, eta);
+        vec3 f = dielectric * (1.0 - m.transmission) * (1.0 - dt) * m.baseColor * (INV_PI * wi.z) *
+                 pbrBaseShare(m, wo.z, eta) * pbrBaseShare(m, wi.z, eta);
         if (!pbrSmooth(m)) {
             vec3 wm = normalize(wo + wi);
             f += pbrSpecularFresnel(m, dot(wo, wm), eta) * (ggxD(wm, m.alpha) * ggxG2OverCosO(wo, wi, m.alpha) * 0.25);
         }
         return f;
     }
-    if (pbrSmooth(m) || m.transmission <= 0.0) return vec3(0.0);
+    vec3 f = vec3(0.0);
+    if (dt > 0.0)
+        f = dielectric * (1.0 - m.transmission) * dt * m.diffuseTransmissionColor * (INV_PI * -wi.z) *
+            pbrBaseShare(m, wo.z, eta) * pbrBaseShare(m, -wi.z, eta);
+    if (pbrSmooth(m) || m.transmission <= 0.0) return f;
     vec3 tint = dielectric * m.transmission * m.baseColor;
     if (pbrThin(m)) {
         vec3 wr = mirrorThroughSurface(wi);
         vec3 wm = normalize(wo + wr);
-        return tint * pbrBaseShare(m, dot(wo, wm), eta) * (ggxD(wm, m.alpha) * ggxG2OverCosO(wo, wr, m.alpha) * 0.25);
+        return f +
+               tint * pbrBaseShare(m, dot(wo, wm), eta) * (ggxD(wm, m.alpha) * ggxG2OverCosO(wo, wr, m.alpha) * 0.25);
     }
     vec3 wm;
-    if (!refractionHalfVector(wo, wi, eta, wm)) return vec3(0.0);
-    return tint * pbrBaseShare(m, dot(wo, wm), eta) * ggxTransmissionNoFresnel(wo, wi, wm, eta, m.alpha);
+    if (!refractionHalfVector(wo, wi, eta, wm)) return f;
+    return f + tint * pbrBaseShare(m, dot(wo, wm), eta) * ggxTransmissionNoFresnel(wo, wi, wm, eta, m.alpha);
 }
 
 float pbrPdfUpper(GpuMaterial m, vec3 wo, vec3 wi, float eta) {
@@ -137,11 +156,12 @@ float pbrPdfUpper(GpuMaterial m, vec3 wo, vec3 wi, float eta) {
         if (!pbrSmooth(m)) pdf += p.specular * ggxReflectionPdf(wo, wi, m.alpha);
         return pdf;
     }
-    if (pbrSmooth(m) || p.transmission <= 0.0) return 0.0;
-    if (pbrThin(m)) return p.transmission * ggxReflectionPdf(wo, mirrorThroughSurface(wi), m.alpha);
+    float pdf = p.diffuseTransmission > 0.0 ? p.diffuseTransmission * lambertPdf(wo, mirrorThroughSurface(wi)) : 0.0;
+    if (pbrSmooth(m) || p.transmission <= 0.0) return pdf;
+    if (pbrThin(m)) return pdf + p.transmission * ggxReflectionPdf(wo, mirrorThroughSurface(wi), m.alpha);
     vec3 wm;
-    if (!refractionHalfVector(wo, wi, eta, wm)) return 0.0;
-    return p.transmission * ggxVisibleNormalPdf(wo, wm, m.alpha) * refractionJacobian(wo, wi, wm, eta);
+    if (!refractionHalfVector(wo, wi, eta, wm)) return pdf;
+    return pdf + p.transmission * ggxVisibleNormalPdf(wo, wm, m.alpha) * refractionJacobian(wo, wi, wm, eta);
 }
 
 vec3 pbrEval(GpuMaterial m, vec3 wo, vec3 wi) {
@@ -207,9 +227,10 @@ BsdfSample pbrSample(GpuMaterial m, Frame frame, vec3 wo, float uLobe, vec2 u) {
             s.etaScale = eta * eta;
         }
     } else {
+        // The Lambertian lobes: reflection, or the same direction mirrored to the other side.
         BsdfSample d = lambertSample(vec3(1.0), makeFrame(vec3(0.0, 0.0, 1.0)), woUp, u);
         if (!d.valid) return s;
-        wi = d.wi;
+        wi = uLobe < p.specular + p.transmission + p.diffuse ? d.wi : mirrorThroughSurface(d.wi);
     }
     s.pdf = pbrPdfUpper(m, woUp, wi, eta);
     if (!(s.pdf > 0.0)) return invalidBsdfSample();

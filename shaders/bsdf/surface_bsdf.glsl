@@ -23,7 +23,10 @@ bool isRoughDielectric(GpuMaterial m) { return HAS_DIELECTRIC && isRough(m) && m
 bool isPbr(GpuMaterial m) { return HAS_PBR && m.type == MATERIAL_PBR; }
 
 // Surfaces that both sides of shade (light passes through them).
-bool isTransmissiveSurface(GpuMaterial m) { return isRoughDielectric(m) || (isPbr(m) && m.transmission > 0.0); }
+bool isTransmissiveSurface(GpuMaterial m) {
+    return isRoughDielectric(m) ||
+           (isPbr(m) && (m.transmission > 0.0 || (HAS_DIFFUSE_TRANSMISSION && m.diffuseTransmission > 0.0)));
+}
 
 bool isSurfaceBsdf(GpuMaterial m) {
     return (HAS_DIFFUSE && m.type == MATERIAL_DIFFUSE) || (HAS_GLOSSY && m.type == MATERIAL_GLOSSY) || isPbr(m) ||

@@ -8,7 +8,8 @@
 
 bool hasAnyTexture(GpuMaterial m) {
     return (m.baseColorTexture & m.specularTexture & m.metallicRoughnessTexture & m.normalTexture & m.emissiveTexture &
-               m.specularWeightTexture & m.transmissionTexture) != NO_TEXTURE;
+               m.specularWeightTexture & m.transmissionTexture & m.diffuseTransmissionTexture &
+               m.diffuseTransmissionColorTexture) != NO_TEXTURE;
 }
 
 // Shading normal from a tangent-space normal map: +x along dp/du, +y up the image (towards
@@ -86,6 +87,10 @@ void applyTextures(inout GpuMaterial m, inout SurfaceInteraction si) {
     }
     if (m.specularWeightTexture != NO_TEXTURE) m.specularWeight *= evalTexture(m.specularWeightTexture, si.uv, si.p).a;
     if (m.transmissionTexture != NO_TEXTURE) m.transmission *= evalTexture(m.transmissionTexture, si.uv, si.p).r;
+    if (HAS_DIFFUSE_TRANSMISSION && m.diffuseTransmissionTexture != NO_TEXTURE)
+        m.diffuseTransmission *= evalTexture(m.diffuseTransmissionTexture, si.uv, si.p).a;
+    if (HAS_DIFFUSE_TRANSMISSION && m.diffuseTransmissionColorTexture != NO_TEXTURE)
+        m.diffuseTransmissionColor *= evalTexture(m.diffuseTransmissionColorTexture, si.uv, si.p).rgb;
     if (m.metallicRoughnessTexture != NO_TEXTURE) {
         vec4 c = evalTexture(m.metallicRoughnessTexture, si.uv, si.p);
         // alpha = roughness^2, so the roughness channel scales sqrt(alpha).

@@ -40,6 +40,9 @@
         v ? "glossy" : nullptr, "the course's BRDFs: Lambert plus one Phong, Blinn-Phong or Torrance-Sparrow lobe")    \
     PT_FEATURE(pbr, flag, HAS_PBR, 24, true, true, usesMaterialType(scene, MATERIAL_PBR), v ? "pbr" : nullptr,         \
         "glTF metallic-roughness materials")                                                                           \
+    PT_FEATURE(diffuseTransmission, flag, HAS_DIFFUSE_TRANSMISSION, 33, true, true,                                    \
+        f.pbr&& usesDiffuseTransmission(scene), v ? "diffuse-transmission" : nullptr,                                  \
+        "glTF KHR_materials_diffuse_transmission (Lambertian transmission)")                                           \
     PT_FEATURE(microfacet, flag, HAS_MICROFACET, 23, true, true, usesRoughConductorOrDielectric(scene),                \
         v ? "microfacet" : nullptr, "GGX-rough conductors or dielectrics")                                             \
     PT_FEATURE(absorption, flag, HAS_ABSORPTION, 5, true, true, usesMaterialFlag(scene, MATERIAL_FLAG_ABSORBING),      \

@@ -250,14 +250,20 @@ struct GpuMaterial {
     uint specularWeightTexture; // a x specularWeight: glTF KHR_materials_specular specularTexture
     // The course's classic shading (CLASSIC): ka * Ia + sum over lights of
     // (kd cos(theta) + ks cos^p(alpha_h)) E, added on every surface type, mirrors included.
-    vec3 ambient;             // ka
-    float classicExponent;    // Blinn-Phong p
-    vec3 classicDiffuse;      // kd (no 1/pi: the course's convention)
-    uint transmissionTexture; // r x transmission: glTF KHR_materials_transmission transmissionTexture
-    vec3 classicSpecular;     // ks
-    float pad2;
+    vec3 ambient;              // ka
+    float classicExponent;     // Blinn-Phong p
+    vec3 classicDiffuse;       // kd (no 1/pi: the course's convention)
+    uint transmissionTexture;  // r x transmission: glTF KHR_materials_transmission transmissionTexture
+    vec3 classicSpecular;      // ks
+    float diffuseTransmission; // PBR: KHR_materials_diffuse_transmission factor
+    vec3 diffuseTransmissionColor;
+    uint diffuseTransmissionTexture;      // a x diffuseTransmission
+    uint diffuseTransmissionColorTexture; // rgb (sRGB) x diffuseTransmissionColor
+    uint pad3;
+    uint pad4;
+    uint pad5;
 };
-PT_CHECK_SIZE(GpuMaterial, 192);
+PT_CHECK_SIZE(GpuMaterial, 224);
 
 // A texture: an image in the texel buffer (with filter, wrap, encoding and a uv transform) or
 // a course procedural pattern.

@@ -63,6 +63,13 @@ bool usesCausticReceiver(const FlatScene& scene) {
     return false;
 }
 
+bool usesDiffuseTransmission(const FlatScene& scene) {
+    for (const auto& m : scene.materials)
+        if (m.type == MATERIAL_PBR && (m.diffuseTransmission > 0.0f || m.diffuseTransmissionTexture != NO_TEXTURE))
+            return true;
+    return false;
+}
+
 bool usesEmission(const FlatScene& scene) {
     for (const auto& m : scene.materials) {
         if (m.emissiveTexture != NO_TEXTURE || (m.flags & MATERIAL_FLAG_UNLIT) != 0u) return true;
@@ -79,7 +86,8 @@ bool usesTextureKind(const FlatScene& scene, bool image) {
     };
     for (const auto& m : scene.materials)
         for (uint32_t slot : {m.baseColorTexture, m.specularTexture, m.metallicRoughnessTexture, m.normalTexture,
-                 m.emissiveTexture, m.specularWeightTexture, m.transmissionTexture})
+                 m.emissiveTexture, m.specularWeightTexture, m.transmissionTexture, m.diffuseTransmissionTexture,
+                 m.diffuseTransmissionColorTexture})
             if (matches(slot)) return true;
     return matches(scene.backgroundTexture);
 }

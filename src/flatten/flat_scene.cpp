@@ -42,6 +42,8 @@ gpu::GpuMaterial toGpu(const Material& m) {
     g.alpha = std::min(g.alpha, 1.0f);
     g.metallic = m.metallic;
     g.transmission = m.transmission;
+    g.diffuseTransmission = m.diffuseTransmission;
+    g.diffuseTransmissionColor = m.diffuseTransmissionColor;
     g.specularWeight = m.specularWeight;
     if (m.type == MaterialType::Pbr && m.thinWalled) g.flags |= MATERIAL_FLAG_THIN_WALLED;
     auto slot = [](const std::optional<uint32_t>& t) { return t ? *t : NO_TEXTURE; };
@@ -49,6 +51,8 @@ gpu::GpuMaterial toGpu(const Material& m) {
     g.specularTexture = slot(m.specularTexture);
     g.specularWeightTexture = slot(m.specularWeightTexture);
     g.transmissionTexture = slot(m.transmissionTexture);
+    g.diffuseTransmissionTexture = slot(m.diffuseTransmissionTexture);
+    g.diffuseTransmissionColorTexture = slot(m.diffuseTransmissionColorTexture);
     g.metallicRoughnessTexture = slot(m.metallicRoughnessTexture);
     g.normalTexture = slot(m.normalTexture);
     g.emissiveTexture = slot(m.emissiveTexture);

@@ -75,7 +75,8 @@ void flattenTextures(const Scene& scene, FlatScene& flat) {
     if (scene.backgroundTexture) flat.backgroundTexture = *scene.backgroundTexture;
     for (const gpu::GpuMaterial& m : flat.materials)
         for (uint32_t slot : {m.baseColorTexture, m.specularTexture, m.metallicRoughnessTexture, m.normalTexture,
-                 m.emissiveTexture, m.specularWeightTexture, m.transmissionTexture})
+                 m.emissiveTexture, m.specularWeightTexture, m.transmissionTexture, m.diffuseTransmissionTexture,
+                 m.diffuseTransmissionColorTexture})
             if (slot != NO_TEXTURE && slot >= flat.textures.size())
                 throw std::runtime_error(scene.source + ": a material refers to a texture that does not exist");
 }

@@ -44,18 +44,23 @@ struct Material {
     bool kdFresnel = false;  // Torrance-Sparrow: diffuse term scaled by (1 - F)
 
     // Microfacet (GGX) and glTF PBR parameters.
-    float roughness = 0.0f;      // perceptual roughness; GGX alpha = roughness^2
-    float metallic = 0.0f;       // Pbr
-    float transmission = 0.0f;   // Pbr: KHR_materials_transmission
+    float roughness = 0.0f;    // perceptual roughness; GGX alpha = roughness^2
+    float metallic = 0.0f;     // Pbr
+    float transmission = 0.0f; // Pbr: KHR_materials_transmission
+    // Pbr: KHR_materials_diffuse_transmission (Lambertian transmission of the base, tinted).
+    float diffuseTransmission = 0.0f;
+    glm::vec3 diffuseTransmissionColor{1.0f};
     float specularWeight = 1.0f; // Pbr: KHR_materials_specular factor (colour in `specular`)
     bool thinWalled = true;      // Pbr transmission: no KHR_materials_volume, so no bending
 
     // Textures: indices into Scene::textures. Colour slots multiply the factor above.
-    std::optional<uint32_t> baseColorTexture;      // rgb: baseColor, a: opacity
-    std::optional<uint32_t> specularTexture;       // rgb multiplies `specular`: the course's replace_ks,
-                                                   // glTF's KHR_materials_specular specularColorTexture
-    std::optional<uint32_t> specularWeightTexture; // a multiplies specularWeight (specularTexture)
-    std::optional<uint32_t> transmissionTexture;   // r multiplies transmission (KHR_materials_transmission)
+    std::optional<uint32_t> baseColorTexture;                // rgb: baseColor, a: opacity
+    std::optional<uint32_t> specularTexture;                 // rgb multiplies `specular`: the course's replace_ks,
+                                                             // glTF's KHR_materials_specular specularColorTexture
+    std::optional<uint32_t> specularWeightTexture;           // a multiplies specularWeight (specularTexture)
+    std::optional<uint32_t> transmissionTexture;             // r multiplies transmission (KHR_materials_transmission)
+    std::optional<uint32_t> diffuseTransmissionTexture;      // a multiplies diffuseTransmission
+    std::optional<uint32_t> diffuseTransmissionColorTexture; // rgb multiplies diffuseTransmissionColor
     std::optional<uint32_t> metallicRoughnessTexture;
     std::optional<uint32_t> normalTexture; // tangent-space normal map, or heights if bumpMap
     std::optional<uint32_t> emissiveTexture;

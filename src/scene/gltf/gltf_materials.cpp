@@ -110,8 +110,15 @@ void GltfImporter::convertFactors(const tinygltf::Material& src, const std::stri
             glm::any(glm::lessThan(m.attenuationColor, glm::vec3(0))))
             fail(label + ": KHR_materials_volume attenuation must be positive");
     }
+    if (const auto* e = extension(src, "KHR_materials_diffuse_transmission")) {
+        m.diffuseTransmission = unit(number(*e, "diffuseTransmissionFactor", 0.0, label), "diffuseTransmissionFactor");
+        m.diffuseTransmissionColor = color(*e, "diffuseTransmissionColorFactor", glm::vec3(1.0f), label);
+        if (!finite(m.diffuseTransmissionColor) || glm::any(glm::lessThan(m.diffuseTransmissionColor, glm::vec3(0))) ||
+            glm::any(glm::greaterThan(m.diffuseTransmissionColor, glm::vec3(1))))
+            fail(label + ": diffuseTransmissionColorFactor must be in [0, 1]");
+    }
     const bool defaultSpecular = m.specularWeight == 1.0f && m.specular == glm::vec3(1.0f);
-    if (m.metallic == 0.0f && m.transmission == 0.0f && m.specularWeight == 0.0f) {
+    if (m.metallic == 0.0f && m.transmission == 0.0f && m.specularWeight == 0.0f && m.diffuseTransmission == 0.0f) {
         m.type = MaterialType::Diffuse;
     } else if (m.metallic == 1.0f) {
         m.type = MaterialType::Mirror;
@@ -146,6 +153,13 @@ void GltfImporter::convertTextures(const tinygltf::Material& src, const std::str
         extensionTexture(specular, "specularColorTexture", Texture::Encoding::Srgb, label + ": KHR_materials_specular");
     m.transmissionTexture = extensionTexture(extension(src, "KHR_materials_transmission"), "transmissionTexture",
         Texture::Encoding::Linear, label + ": KHR_materials_transmission");
+    // KHR_materials_diffuse_transmission: the factor's texture in alpha (linear), the colour's in
+    // RGB (sRGB).
+    const tinygltf::Value* diffuse = extension(src, "KHR_materials_diffuse_transmission");
+    m.diffuseTransmissionTexture = extensionTexture(diffuse, "diffuseTransmissionTexture", Texture::Encoding::Linear,
+        label + ": KHR_materials_diffuse_transmission");
+    m.diffuseTransmissionColorTexture = extensionTexture(diffuse, "diffuseTransmissionColorTexture",
+        Texture::Encoding::Srgb, label + ": KHR_materials_diffuse_transmission");
     // A texture can make a "metal" vary in roughness or part-dielectric, and a "glass"
     // part-transmissive or of varying specular: only the full model covers those.
     if (m.metallicRoughnessTexture && m.type == MaterialType::Mirror) m.type = MaterialType::Pbr;

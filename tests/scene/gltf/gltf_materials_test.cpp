@@ -311,3 +311,37 @@ TEST(GltfLoaderTextures, TangentsAreTransformedWithTheirHandedness) {
 
 } // namespace
 } // namespace pt::test::gltf
+
+namespace pt::test::gltf {
+namespace {
+
+// KHR_materials_diffuse_transmission: factor, colour and both textures land in the model (the
+// factor's texture read from alpha, linear; the colour's sRGB), with no warning; a material that
+// would be Lambertian but transmits diffusely stays the full model.
+TEST(GltfLoaderMaterials, DiffuseTransmissionIsRead) {
+    const std::string images = std::string(R"([{"uri": ")") + kOnePixelPng + R"("}])";
+    const pt::Scene s = loadText(texturedDocument(R"([
+      {"name": "leaf", "pbrMetallicRoughness": {"metallicFactor": 0, "roughnessFactor": 0.6},
+       "extensions": {"KHR_materials_specular": {"specularFactor": 0},
+         "KHR_materials_diffuse_transmission": {"diffuseTransmissionFactor": 0.4,
+           "diffuseTransmissionColorFactor": [0.5, 1, 0.25], "diffuseTransmissionTexture": {"index": 0},
+           "diffuseTransmissionColorTexture": {"index": 1}}}}
+    ])",
+        1, R"([{"source": 0}, {"source": 0}])", images, "[]"));
+    const pt::Material* leaf = findMaterial(s, "leaf");
+    ASSERT_TRUE(leaf);
+    EXPECT_EQ(leaf->type, pt::MaterialType::Pbr) << "not the Lambertian shortcut";
+    EXPECT_FLOAT_EQ(leaf->diffuseTransmission, 0.4f);
+    EXPECT_TRUE(near3(leaf->diffuseTransmissionColor, glm::vec3(0.5f, 1.0f, 0.25f), 0.0f));
+    ASSERT_TRUE(leaf->diffuseTransmissionTexture && leaf->diffuseTransmissionColorTexture);
+    EXPECT_EQ(s.textures.at(*leaf->diffuseTransmissionTexture).encoding, pt::Texture::Encoding::Linear);
+    EXPECT_EQ(s.textures.at(*leaf->diffuseTransmissionColorTexture).encoding, pt::Texture::Encoding::Srgb);
+    EXPECT_TRUE(s.unsupported.empty()) << ::testing::PrintToString(s.unsupported);
+    EXPECT_THROW(loadText(materialDocument(R"([{"extensions": {"KHR_materials_diffuse_transmission":
+        {"diffuseTransmissionColorFactor": [2, 0, 0]}}}])",
+                     1)),
+        pt::SceneError);
+}
+
+} // namespace
+} // namespace pt::test::gltf
