@@ -192,12 +192,17 @@ def materials_lights_camera(doc):
             'KHR_materials_volume': {'thicknessFactor': 1, 'attenuationColor': [0.9, 0.8, 0.7], 'attenuationDistance': 2}}},
         {'pbrMetallicRoughness': {'metallicFactor': 0}, 'extensions': {'KHR_materials_specular': {
             'specularFactor': 0.5, 'specularColorFactor': [1, 0.5, 0.5]}}, 'alphaMode': 'BLEND'},
-        {'emissiveFactor': [1, 1, 1], 'extensions': {'KHR_materials_emissive_strength': {'emissiveStrength': 5}}}]
+        {'emissiveFactor': [1, 1, 1], 'extensions': {'KHR_materials_emissive_strength': {'emissiveStrength': 5}}},
+        {'pbrMetallicRoughness': {'metallicFactor': 0}, 'extensions': {'KHR_materials_diffuse_transmission': {
+            'diffuseTransmissionFactor': 0.5, 'diffuseTransmissionColorFactor': [0.5, 1, 0.5]}}}]
+    doc['meshes'][0]['primitives'][0]['extensions'] = {'KHR_materials_variants': {'mappings': [
+        {'material': 3, 'variants': [0]}, {'material': 1, 'variants': [1, 0]}]}}
     doc['meshes'][0]['primitives'].append(dict(doc['meshes'][0]['primitives'][0], material=1, mode=5))
     doc['meshes'][0]['primitives'].append(dict(doc['meshes'][0]['primitives'][0], material=2, mode=6))
     doc['cameras'] = [{'type': 'perspective', 'perspective': {'yfov': 0.8, 'znear': 0.1, 'aspectRatio': 1.5}},
                       {'type': 'orthographic', 'orthographic': {'xmag': 1, 'ymag': 1, 'znear': 0.1, 'zfar': 10}}]
-    doc['extensions'] = {'KHR_lights_punctual': {'lights': [
+    doc['extensions'] = {'KHR_materials_variants': {'variants': [{'name': 'leaf'}, {'name': 'glass'}]},
+                         'KHR_lights_punctual': {'lights': [
         {'type': 'point', 'intensity': 10, 'color': [1, 1, 1]},
         {'type': 'spot', 'intensity': 10, 'spot': {'innerConeAngle': 0.2, 'outerConeAngle': 0.5}, 'range': 5},
         {'type': 'directional', 'intensity': 2}]}}
@@ -210,7 +215,7 @@ def materials_lights_camera(doc):
     doc['scenes'] = [{'nodes': [0], 'extras': {'width': 64, 'height': 48, 'max_depth': 4}}]
     doc['extensionsUsed'] = ['KHR_lights_punctual', 'KHR_materials_transmission', 'KHR_materials_ior',
                              'KHR_materials_volume', 'KHR_materials_specular', 'KHR_materials_emissive_strength',
-                             'KHR_materials_unknown']
+                             'KHR_materials_diffuse_transmission', 'KHR_materials_variants', 'KHR_materials_unknown']
 
 
 def no_scene(doc):
