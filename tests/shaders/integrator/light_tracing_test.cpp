@@ -56,6 +56,36 @@ TEST_F(LightTracing, SphereLightCausticsAgreeWithBsdfSampling) {
     EXPECT_GT(control.chi2PerDof, 10.0);
 }
 
+// The glTF metal (a GGX-rough Schlick mirror since the loader reduces metallic 1 to it) receives
+// caustics like any rough conductor: the glass box with its mirror block made rough gold,
+// light tracing on against BSDF sampling alone.
+TEST_F(LightTracing, RoughGltfMetalReceivesCausticsAsBsdfSamplingDoes) {
+    Scene scene = loadGltfFile(testDataDir() / "references" / "cbox-glass-mirror" / "scene.gltf");
+    size_t mirrors = 0;
+    for (Material& m : scene.materials)
+        if (m.type == MaterialType::Mirror) {
+            m.roughness = 0.4f;
+            m.baseColor = glm::vec3(1.0f, 0.78f, 0.34f);
+            ++mirrors;
+        }
+    ASSERT_GT(mirrors, 0u);
+    IntegratorSettings s = independentSettings();
+    s.maxDepth = 12;
+    ASSERT_TRUE(computeFeatures(flattenScene(scene), s).lightTracing) << "the glass still makes caustics";
+    const Camera& camera = scene.cameras.at(0);
+    s.seed = 1000;
+    const auto traced = renderScene(scene, s, camera, 48, 48, 256);
+    IntegratorSettings off = s;
+    off.lightTracing = false;
+    off.seed = 1;
+    const auto sampled = renderScene(scene, off, camera, 48, 48, 2048);
+    const AgreementResult r = agreement(traced, sampled);
+    std::printf("[          ] rough gold receiving: light traced vs BSDF sampled: chi2/dof %.3f, mean z %+.3f\n",
+        r.chi2PerDof, r.meanZ);
+    EXPECT_LT(r.chi2PerDof, 1.6);
+    EXPECT_LT(std::abs(r.meanZ), 0.5);
+}
+
 TEST_F(LightTracing, UsedOnlyWhereTheSceneHasCausticsItModels) {
     IntegratorSettings s = independentSettings();
     const auto features = [&](const std::filesystem::path& path) {
