@@ -73,7 +73,11 @@ FlatScene flattenWithNotes(const Scene& scene) {
     if (flat.degenerateSpheres > 0)
         std::fprintf(stderr, "pt: note: %s: dropped %zu spheres with a singular transform\n", scene.source.c_str(),
             flat.degenerateSpheres);
-    if (flat.lights.lights.empty() && scene.background == glm::vec3(0.0f) && flat.environment.width == 0)
+    // Unlit surfaces (glTF KHR_materials_unlit, the course's replace_all) show their colour
+    // without light, outside the light table.
+    const bool anyUnlit =
+        std::any_of(scene.materials.begin(), scene.materials.end(), [](const Material& m) { return m.unlit; });
+    if (flat.lights.lights.empty() && scene.background == glm::vec3(0.0f) && flat.environment.width == 0 && !anyUnlit)
         std::fprintf(stderr,
             "pt: warning: %s: nothing emits light (no emissive surfaces or lights, black background): "
             "the image will be black\n",

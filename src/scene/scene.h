@@ -68,7 +68,7 @@ struct Material {
     bool bumpMap = false;        // normalTexture holds heights (the course's bump_normal)
     bool normalMapYDown = false; // the map's +y runs down the image (the course's), not up (glTF)
     bool blendBaseColor = false; // the course's blend_kd: kd = (kd + texel) / 2
-    bool unlit = false;          // the course's replace_all: the base colour is shown unshaded
+    bool unlit = false; // the course's replace_all, glTF KHR_materials_unlit: the base colour is shown unshaded
 
     // The course's classic shading (its Whitted / direct-lighting ray tracer; the classic
     // integrator uses these, the path tracer ignores them): ka, and Blinn-Phong kd, ks, p.

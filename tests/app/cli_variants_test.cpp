@@ -1,6 +1,7 @@
 // pt render and glTF material variants (KHR_materials_variants): --list-variants prints the
 // names, --variant NAME renders that variant's materials and records it in the EXR, and a name
-// the scene lacks is one error line listing the ones it has.
+// the scene lacks is one error line listing the ones it has. Also KHR_materials_unlit, the other
+// material extension that changes what a material is rather than how it scatters.
 #include "cli_fixture.h"
 #include "image/image_io.h"
 
@@ -74,6 +75,31 @@ TEST_F(CliTest, UnknownVariantIsOneErrorListingTheScenes) {
     EXPECT_NE(line.find("'dim'"), std::string::npos) << line;
     EXPECT_NE(line.find("strong, plain"), std::string::npos) << line;
     EXPECT_FALSE(fs::exists(dir_ / "x.exr"));
+}
+
+// KHR_materials_unlit: the base colour shown as is, in a scene with no light at all: no
+// "not supported" warning, no "nothing emits light" warning, and the quad's pixels are its colour.
+TEST_F(CliTest, UnlitMaterialShowsItsColourWithoutLight) {
+    const fs::path scene = dir_ / "unlit.gltf";
+    std::ofstream(scene) << R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}],
+  "nodes": [{"mesh": 0}],
+  "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1, "material": 0}]}],
+  "materials": [{"name": "sign", "pbrMetallicRoughness": {"baseColorFactor": [0.2, 0.5, 0.8, 1]},
+                 "extensions": {"KHR_materials_unlit": {}}}],
+  "extensionsUsed": ["KHR_materials_unlit"],
+  "accessors": [{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]},
+                {"bufferView": 1, "componentType": 5123, "count": 6, "type": "SCALAR"}],
+  "bufferViews": [{"buffer": 0, "byteLength": 48}, {"buffer": 0, "byteOffset": 48, "byteLength": 12}],
+  "buffers": [{"byteLength": 60, "uri": "data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAACAPwAAgD8AAAAAAAAAAAAAgD8AAAAAAAABAAIAAAACAAMA"}]})";
+    const PtRun r = run({"render", scene.string(), "--spp", "2", "--width", "16", "--height", "16", "-o",
+        (dir_ / "unlit.exr").string()});
+    EXPECT_EXIT_STATUS(r, 0);
+    EXPECT_EQ(r.err.find("warning"), std::string::npos) << r.err;
+    const Image image = readExr(dir_ / "unlit.exr");
+    const size_t centre = 4 * (size_t(8) * 16 + 8);
+    EXPECT_NEAR(image.rgba[centre + 0], 0.2f, 1e-6f);
+    EXPECT_NEAR(image.rgba[centre + 1], 0.5f, 1e-6f);
+    EXPECT_NEAR(image.rgba[centre + 2], 0.8f, 1e-6f);
 }
 
 } // namespace

@@ -127,6 +127,12 @@ void GltfImporter::convertFactors(const tinygltf::Material& src, const std::stri
     } else {
         m.type = MaterialType::Pbr;
     }
+    // KHR_materials_unlit: the base colour (and texture) shown as is, the course's replace_all
+    // surfaces' model: radiance baseColor toward every ray that hits it, no reflection.
+    if (extension(src, "KHR_materials_unlit")) {
+        m.unlit = true;
+        m.type = MaterialType::Diffuse;
+    }
 }
 
 // ---- textures ----
