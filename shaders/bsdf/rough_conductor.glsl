@@ -18,16 +18,8 @@ vec3 roughConductorFresnel(GpuMaterial m, float cosI) {
     return m.baseColor * fresnelConductor(cosI, m.conductorEta, m.conductorK);
 }
 
-vec3 roughConductorEval(GpuMaterial m, vec3 wo, vec3 wi) {
-    if (wo.z <= 0.0 || wi.z <= 0.0) return vec3(0.0);
-    vec3 wm = normalize(wo + wi);
-    vec3 F = roughConductorFresnel(m, clamp(dot(wo, wm), 0.0, 1.0));
-    return F * (ggxD(wm, m.alpha) * ggxG2OverCosO(wo, wi, m.alpha) * 0.25);
-}
-
-float roughConductorPdf(GpuMaterial m, vec3 wo, vec3 wi) { return ggxReflectionPdf(wo, wi, m.alpha); }
-
-// Eval and pdf at once, sharing the half vector and D (light sampling needs both).
+// f * cos(theta_i) and the pdf of sampling wi, at once: they share the half vector and D (light
+// sampling needs both; the driver drops what a caller leaves unused).
 vec3 roughConductorEvalPdf(GpuMaterial m, vec3 wo, vec3 wi, out float pdf) {
     pdf = 0.0;
     if (wo.z <= 0.0 || wi.z <= 0.0) return vec3(0.0);
@@ -42,6 +34,17 @@ vec3 roughConductorEvalPdf(GpuMaterial m, vec3 wo, vec3 wi, out float pdf) {
     pdf = cosOM > 0.0 && wm.z > 0.0 ? D / (2.0 * (wo.z + lo)) : 0.0;
     vec3 F = roughConductorFresnel(m, clamp(cosOM, 0.0, 1.0));
     return F * (D * ggxG2OverCosO(wo, wi, m.alpha) * 0.25);
+}
+
+vec3 roughConductorEval(GpuMaterial m, vec3 wo, vec3 wi) {
+    float pdf;
+    return roughConductorEvalPdf(m, wo, wi, pdf);
+}
+
+float roughConductorPdf(GpuMaterial m, vec3 wo, vec3 wi) {
+    float pdf;
+    roughConductorEvalPdf(m, wo, wi, pdf);
+    return pdf;
 }
 
 BsdfSample roughConductorSample(GpuMaterial m, Frame frame, vec3 wo, vec2 u) {

@@ -31,38 +31,8 @@ float ggxTransmissionNoFresnel(vec3 wo, vec3 wi, vec3 wm, float eta, float alpha
            (eta * eta);
 }
 
-// f * |cos(theta_i)|
-vec3 roughDielectricEval(GpuMaterial m, vec3 wo, vec3 wi) {
-    if (wo.z == 0.0 || wi.z == 0.0) return vec3(0.0);
-    float eta = dielectricSide(m.ior, wo, wi);
-    float cosT;
-    if (wi.z > 0.0) {
-        vec3 wm = normalize(wo + wi);
-        float F = fresnelDielectric(clamp(dot(wo, wm), 0.0, 1.0), eta, cosT);
-        return vec3(F * ggxD(wm, m.alpha) * ggxG2OverCosO(wo, wi, m.alpha) * 0.25);
-    }
-    vec3 wm;
-    if (!refractionHalfVector(wo, wi, eta, wm)) return vec3(0.0);
-    float F = fresnelDielectric(dot(wo, wm), eta, cosT);
-    return m.baseColor * ((1.0 - F) * ggxTransmissionNoFresnel(wo, wi, wm, eta, m.alpha));
-}
-
-float roughDielectricPdf(GpuMaterial m, vec3 wo, vec3 wi) {
-    if (wo.z == 0.0 || wi.z == 0.0) return 0.0;
-    float eta = dielectricSide(m.ior, wo, wi);
-    float cosT;
-    if (wi.z > 0.0) {
-        vec3 wm = normalize(wo + wi);
-        float F = fresnelDielectric(clamp(dot(wo, wm), 0.0, 1.0), eta, cosT);
-        return F * ggxReflectionPdf(wo, wi, m.alpha);
-    }
-    vec3 wm;
-    if (!refractionHalfVector(wo, wi, eta, wm)) return 0.0;
-    float F = fresnelDielectric(dot(wo, wm), eta, cosT);
-    return (1.0 - F) * ggxVisibleNormalPdf(wo, wm, m.alpha) * refractionJacobian(wo, wi, wm, eta);
-}
-
-// Eval and pdf at once, sharing the half vector, Fresnel and D (light sampling needs both).
+// f * |cos(theta_i)| and the pdf of sampling wi, at once: they share the half vector, Fresnel and
+// D (light sampling needs both; the driver drops what a caller leaves unused).
 vec3 roughDielectricEvalPdf(GpuMaterial m, vec3 wo, vec3 wi, out float pdf) {
     pdf = 0.0;
     if (wo.z == 0.0 || wi.z == 0.0) return vec3(0.0);
@@ -86,6 +56,17 @@ vec3 roughDielectricEvalPdf(GpuMaterial m, vec3 wo, vec3 wi, out float pdf) {
     // ggxVisibleNormalPdf with D shared.
     pdf = (1.0 - F) * (2.0 * cosOM * D / (wo.z + lo)) * jacobian;
     return m.baseColor * ((1.0 - F) * D * ggxG2OverCosO(wo, wi, m.alpha) * cosOM * jacobian / (eta * eta));
+}
+
+vec3 roughDielectricEval(GpuMaterial m, vec3 wo, vec3 wi) {
+    float pdf;
+    return roughDielectricEvalPdf(m, wo, wi, pdf);
+}
+
+float roughDielectricPdf(GpuMaterial m, vec3 wo, vec3 wi) {
+    float pdf;
+    roughDielectricEvalPdf(m, wo, wi, pdf);
+    return pdf;
 }
 
 BsdfSample roughDielectricSample(GpuMaterial m, Frame frame, vec3 wo, float uLobe, vec2 u) {
