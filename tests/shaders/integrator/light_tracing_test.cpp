@@ -24,6 +24,25 @@ AgreementResult agreement(const Renderer::Readback& a, const Renderer::Readback&
     return compareBlocks(blockStats(a.mean, &a.varianceOfMean, 8), blockStats(b.mean, &b.varianceOfMean, 8));
 }
 
+// The same image two ways, 48x48: with light tracing at 256 spp, and by BSDF sampling alone at
+// 8x the samples (at equal spp most caustic blocks have not yet seen their rare bright paths and
+// their variance estimate is too small; see switch_agreement_test.cpp), with their agreement.
+struct TracedAndSampled {
+    Renderer::Readback traced, sampled;
+    AgreementResult agreement;
+};
+
+TracedAndSampled traceAndSample(const Scene& scene, IntegratorSettings s, const Camera& camera) {
+    TracedAndSampled r;
+    s.seed = 1000;
+    r.traced = renderScene(scene, s, camera, 48, 48, 256);
+    s.lightTracing = false;
+    s.seed = 1;
+    r.sampled = renderScene(scene, s, camera, 48, 48, 2048);
+    r.agreement = agreement(r.traced, r.sampled);
+    return r;
+}
+
 class LightTracing : public GpuTest {};
 
 TEST_F(LightTracing, SphereLightCausticsAgreeWithBsdfSampling) {
@@ -32,23 +51,19 @@ TEST_F(LightTracing, SphereLightCausticsAgreeWithBsdfSampling) {
     s.maxDepth = 8;
     ASSERT_TRUE(computeFeatures(flattenScene(scene), s).lightTracing);
     const Camera& camera = scene.cameras.at(0);
-    s.seed = 1000;
-    const auto traced = renderScene(scene, s, camera, 48, 48, 256);
-    // BSDF sampling at 8x the samples: at equal spp most caustic blocks have not yet seen their
-    // rare bright paths and their variance estimate is too small (see switch_agreement_test.cpp).
-    IntegratorSettings off = s;
-    off.lightTracing = false;
-    off.seed = 1;
-    const auto sampled = renderScene(scene, off, camera, 48, 48, 2048);
+    const TracedAndSampled both = traceAndSample(scene, s, camera);
+    const auto& traced = both.traced;
     EXPECT_EQ(traced.droppedSamples, 0u);
-    const AgreementResult r = agreement(traced, sampled);
+    const AgreementResult& r = both.agreement;
     std::printf("[          ] light traced vs BSDF sampled: chi2/dof %.3f, mean z %+.3f, max |z| %.2f\n", r.chi2PerDof,
         r.meanZ, r.maxAbsZ);
     EXPECT_LT(r.chi2PerDof, 1.6);
     EXPECT_LT(std::abs(r.meanZ), 0.5);
 
     // The control: without the caustics (direct light only, depth 2) the same comparison fails.
-    IntegratorSettings direct = off;
+    IntegratorSettings direct = s;
+    direct.lightTracing = false;
+    direct.seed = 1;
     direct.maxDepth = 2;
     const auto noCaustics = renderScene(scene, direct, camera, 48, 48, 256);
     const AgreementResult control = agreement(traced, noCaustics);
@@ -72,14 +87,7 @@ TEST_F(LightTracing, RoughGltfMetalReceivesCausticsAsBsdfSamplingDoes) {
     IntegratorSettings s = independentSettings();
     s.maxDepth = 12;
     ASSERT_TRUE(computeFeatures(flattenScene(scene), s).lightTracing) << "the glass still makes caustics";
-    const Camera& camera = scene.cameras.at(0);
-    s.seed = 1000;
-    const auto traced = renderScene(scene, s, camera, 48, 48, 256);
-    IntegratorSettings off = s;
-    off.lightTracing = false;
-    off.seed = 1;
-    const auto sampled = renderScene(scene, off, camera, 48, 48, 2048);
-    const AgreementResult r = agreement(traced, sampled);
+    const AgreementResult r = traceAndSample(scene, s, scene.cameras.at(0)).agreement;
     std::printf("[          ] rough gold receiving: light traced vs BSDF sampled: chi2/dof %.3f, mean z %+.3f\n",
         r.chi2PerDof, r.meanZ);
     EXPECT_LT(r.chi2PerDof, 1.6);

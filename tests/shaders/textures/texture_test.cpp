@@ -86,11 +86,9 @@ std::vector<glm::vec4> evaluate(const Uploaded& u, uint32_t texture, const std::
         glm::vec3(0.0f), glm::vec3(0, 0, 1), 1, texture);
 }
 
-class Textures : public GpuTest {};
-
-TEST_F(Textures, ImageLookupsMatchReferenceForEveryFilterWrapAndEncoding) {
-    Scene scene;
-    scene.textureImages.push_back(makeImage(5, 3));
+// Every filter, wrap pair and encoding (18 textures of image 0; the linear ones scaled by 2);
+// with `transformBilinear`, the bilinear ones also carry a KHR_texture_transform-like uv transform.
+std::vector<Texture> everyFilterWrapAndEncoding(bool transformBilinear) {
     std::vector<Texture> cases;
     for (bool bilinear : {false, true})
         for (TextureWrap w : {TextureWrap::Repeat, TextureWrap::Clamp, TextureWrap::Mirror})
@@ -102,14 +100,33 @@ TEST_F(Textures, ImageLookupsMatchReferenceForEveryFilterWrapAndEncoding) {
                 t.wrapV = w == TextureWrap::Clamp ? TextureWrap::Mirror : TextureWrap::Clamp;
                 t.encoding = e;
                 t.valueScale = e == Texture::Encoding::Linear ? 2.0f : 1.0f;
+                if (bilinear && transformBilinear) {
+                    t.uvRow0 = glm::vec3(0.0f, 2.0f, 0.25f);
+                    t.uvRow1 = glm::vec3(-1.5f, 0.0f, 0.5f);
+                }
                 cases.push_back(t);
             }
-    scene.textures = cases;
-    const Uploaded u = upload(scene);
-    std::mt19937 rng(7);
+    return cases;
+}
+
+// 2000 texture coordinates over several periods of the image, negative ones included.
+std::vector<glm::vec4> randomUvs(uint32_t seed) {
+    std::mt19937 rng(seed);
     std::uniform_real_distribution<float> coord(-2.3f, 3.1f);
     std::vector<glm::vec4> at;
     for (int i = 0; i < 2000; ++i) at.emplace_back(coord(rng), coord(rng), 0.0f, 0.0f);
+    return at;
+}
+
+class Textures : public GpuTest {};
+
+TEST_F(Textures, ImageLookupsMatchReferenceForEveryFilterWrapAndEncoding) {
+    Scene scene;
+    scene.textureImages.push_back(makeImage(5, 3));
+    const std::vector<Texture> cases = everyFilterWrapAndEncoding(false);
+    scene.textures = cases;
+    const Uploaded u = upload(scene);
+    const std::vector<glm::vec4> at = randomUvs(7);
     for (uint32_t t = 0; t < cases.size(); ++t) {
         const std::vector<glm::vec4> got = evaluate(u, t, at);
         double worst = 0;
@@ -132,30 +149,10 @@ TEST_F(Textures, ImageLookupsMatchReferenceForEveryFilterWrapAndEncoding) {
 TEST_F(Textures, TheLightTablesCpuLookupMatchesTheKernel) {
     Scene scene;
     scene.textureImages.push_back(makeImage(5, 3));
-    std::vector<Texture> cases;
-    for (bool bilinear : {false, true})
-        for (TextureWrap w : {TextureWrap::Repeat, TextureWrap::Clamp, TextureWrap::Mirror})
-            for (Texture::Encoding e :
-                {Texture::Encoding::Linear, Texture::Encoding::Srgb, Texture::Encoding::Gamma22}) {
-                Texture t;
-                t.bilinear = bilinear;
-                t.wrapU = w;
-                t.wrapV = w == TextureWrap::Clamp ? TextureWrap::Mirror : TextureWrap::Clamp;
-                t.encoding = e;
-                t.valueScale = e == Texture::Encoding::Linear ? 2.0f : 1.0f;
-                // KHR_texture_transform-like rows on half of them.
-                if (bilinear) {
-                    t.uvRow0 = glm::vec3(0.0f, 2.0f, 0.25f);
-                    t.uvRow1 = glm::vec3(-1.5f, 0.0f, 0.5f);
-                }
-                cases.push_back(t);
-            }
+    const std::vector<Texture> cases = everyFilterWrapAndEncoding(true);
     scene.textures = cases;
     const Uploaded u = upload(scene);
-    std::mt19937 rng(11);
-    std::uniform_real_distribution<float> coord(-2.3f, 3.1f);
-    std::vector<glm::vec4> at;
-    for (int i = 0; i < 2000; ++i) at.emplace_back(coord(rng), coord(rng), 0.0f, 0.0f);
+    const std::vector<glm::vec4> at = randomUvs(11);
     for (uint32_t t = 0; t < cases.size(); ++t) {
         const std::vector<glm::vec4> got = evaluate(u, t, at);
         double worst = 0;
