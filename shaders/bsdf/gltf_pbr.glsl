@@ -37,6 +37,7 @@
 #include "bsdf/lambert.glsl"
 #include "bsdf/rough_dielectric.glsl"
 #include "bsdf/bsdf_sample.glsl"
+#include "bsdf/pbr_layers.glsl"
 
 // Lower bounds on the lobe-selection estimates, so a lobe that can be non-zero somewhere is
 // never given probability 0 by an estimate made at wo only: the base share can be 0 at wo
@@ -84,6 +85,8 @@ float pbrSide(GpuMaterial m, inout vec3 wo, inout vec3 wi) {
 }
 
 struct PbrLobeProbabilities {
+    float coat; // the layers (shaders/bsdf/pbr_layers.glsl), front side only
+    float sheen;
     float specular;
     float transmission;
     float diffuse;
@@ -93,8 +96,9 @@ struct PbrLobeProbabilities {
 // KHR_materials_diffuse_transmission's factor (0 where the kernel has no such material).
 float pbrDiffuseTransmission(GpuMaterial m) { return HAS_DIFFUSE_TRANSMISSION ? m.diffuseTransmission : 0.0; }
 
-// Lobe probabilities from the albedo each lobe would have at wo (wo.z > 0).
-PbrLobeProbabilities pbrLobeProbabilities(GpuMaterial m, vec3 wo, float eta) {
+// Lobe probabilities from the albedo each lobe would have at wo (wo.z > 0); `front`: wo is on
+// the side of the layers (not inside a volume or behind a thin wall).
+PbrLobeProbabilities pbrLobeProbabilities(GpuMaterial m, vec3 wo, float eta, bool front) {
     PbrLobeProbabilities p;
     float dielectric = 1.0 - m.metallic;
     float specular = dielectric * average(pbrDielectricFresnel(m, wo.z, eta)) +
@@ -107,12 +111,18 @@ PbrLobeProbabilities pbrLobeProbabilities(GpuMaterial m, vec3 wo, float eta) {
     float transmission = base * m.transmission;
     float diffuse = base * (1.0 - m.transmission) * (1.0 - dt);
     float diffuseTransmission = share * (1.0 - m.transmission) * dt * average(m.diffuseTransmissionColor);
-    float total = specular + transmission + diffuse + diffuseTransmission;
+    PbrLayerWeights layers = pbrLayerWeights(m, front ? wo : vec3(0.0));
+    float baseTotal = specular + transmission + diffuse + diffuseTransmission;
+    // The base's lobes share what the layers leave (all of it without layers).
+    float scale = baseTotal > 0.0 ? layers.base / baseTotal : 0.0;
+    float total = layers.coat + layers.sheen + (baseTotal > 0.0 ? layers.base : 0.0);
     float inv = total > 0.0 ? 1.0 / total : 0.0;
-    p.specular = specular * inv;
-    p.transmission = transmission * inv;
-    p.diffuse = diffuse * inv;
-    p.diffuseTransmission = diffuseTransmission * inv;
+    p.coat = layers.coat * inv;
+    p.sheen = layers.sheen * inv;
+    p.specular = specular * scale * inv;
+    p.transmission = transmission * scale * inv;
+    p.diffuse = diffuse * scale * inv;
+    p.diffuseTransmission = diffuseTransmission * scale * inv;
     return p;
 }
 
@@ -149,11 +159,15 @@ vec3 pbrEvalUpper(GpuMaterial m, vec3 wo, vec3 wi, float eta) {
     return f + tint * pbrBaseShare(m, dot(wo, wm), eta) * ggxTransmissionNoFresnel(wo, wi, wm, eta, m.alpha);
 }
 
-float pbrPdfUpper(GpuMaterial m, vec3 wo, vec3 wi, float eta) {
-    PbrLobeProbabilities p = pbrLobeProbabilities(m, wo, eta);
+// The pdf over the base's non-delta lobes and the layers' (wo.z > 0, eta from pbrSide; `front`:
+// wo and wi are as the caller gave them, not mirrored from inside).
+float pbrPdfUpper(GpuMaterial m, vec3 wo, vec3 wi, float eta, bool front) {
+    PbrLobeProbabilities p = pbrLobeProbabilities(m, wo, eta, front);
     if (wi.z > 0.0) {
         float pdf = p.diffuse * lambertPdf(wo, wi);
         if (!pbrSmooth(m)) pdf += p.specular * ggxReflectionPdf(wo, wi, m.alpha);
+        if (p.coat > 0.0) pdf += p.coat * coatPdf(m, wo, wi);
+        if (p.sheen > 0.0) pdf += p.sheen * uniformHemispherePdf(wi.z);
         return pdf;
     }
     float pdf = p.diffuseTransmission > 0.0 ? p.diffuseTransmission * lambertPdf(wo, mirrorThroughSurface(wi)) : 0.0;
@@ -166,76 +180,100 @@ float pbrPdfUpper(GpuMaterial m, vec3 wo, vec3 wi, float eta) {
 
 vec3 pbrEval(GpuMaterial m, vec3 wo, vec3 wi) {
     if (wo.z == 0.0 || wi.z == 0.0) return vec3(0.0);
-    float eta = pbrSide(m, wo, wi);
-    return pbrEvalUpper(m, wo, wi, eta);
+    vec3 woSide = wo, wiSide = wi;
+    float eta = pbrSide(m, woSide, wiSide);
+    vec3 f = pbrEvalUpper(m, woSide, wiSide, eta);
+    if (pbrLayered(m)) f = f * pbrBaseScale(m, wo, wi) + pbrLayerEval(m, wo, wi);
+    return f;
 }
 
 float pbrPdf(GpuMaterial m, vec3 wo, vec3 wi) {
     if (wo.z == 0.0 || wi.z == 0.0) return 0.0;
+    bool front = wo.z > 0.0;
     float eta = pbrSide(m, wo, wi);
-    return pbrPdfUpper(m, wo, wi, eta);
+    return pbrPdfUpper(m, wo, wi, eta, front);
+}
+
+// A delta sample's direction and weight: `weight` is the lobe's f cos over its probability
+// before the layers, which scale it by what they let through both ways.
+BsdfSample pbrDeltaSample(GpuMaterial m, Frame frame, vec3 wo, vec3 wi, vec3 weight, float p, float etaScale) {
+    BsdfSample s = invalidBsdfSample();
+    s.wi = normalize(toWorld(frame, wi));
+    s.weight = pbrLayered(m) ? weight * pbrBaseScale(m, wo, wi) : weight;
+    s.pdf = p;
+    s.etaScale = etaScale;
+    s.isDelta = true;
+    s.valid = true;
+    return s;
 }
 
 BsdfSample pbrSample(GpuMaterial m, Frame frame, vec3 wo, float uLobe, vec2 u) {
     BsdfSample s = invalidBsdfSample();
     if (wo.z == 0.0) return s;
-    float side = wo.z > 0.0 ? 1.0 : -1.0;
+    bool front = wo.z > 0.0;
+    float side = front ? 1.0 : -1.0;
     vec3 woUp = wo, unused = vec3(0.0);
     float eta = pbrSide(m, woUp, unused);
-    PbrLobeProbabilities p = pbrLobeProbabilities(m, woUp, eta);
+    PbrLobeProbabilities p = pbrLobeProbabilities(m, woUp, eta, front);
     vec3 wi;
-    if (uLobe < p.specular) {
-        if (pbrSmooth(m)) {
-            s.wi = toWorld(frame, vec3(-wo.xy, wo.z));
-            s.weight = pbrSpecularFresnel(m, woUp.z, eta) / p.specular;
-            s.pdf = p.specular;
-            s.isDelta = true;
-            s.valid = true;
-            return s;
+    if (uLobe < p.coat) {
+        BsdfSample c = coatSample(m, wo, p.coat, u);
+        if (!c.valid || c.isDelta) {
+            if (c.valid) c.wi = normalize(toWorld(frame, c.wi));
+            return c;
         }
-        wi = reflectAbout(woUp, ggxSampleVisibleNormal(woUp, m.alpha, u));
-        if (wi.z <= 0.0) return s;
-    } else if (uLobe < p.specular + p.transmission) {
-        bool thin = pbrThin(m);
-        vec3 tint = (1.0 - m.metallic) * m.transmission * m.baseColor;
-        if (pbrSmooth(m)) {
-            float cosT;
-            float share = pbrBaseShare(m, woUp.z, eta);
-            if (thin) {
-                wi = -woUp;
-                s.weight = tint * share / p.transmission;
-            } else {
+        wi = c.wi;
+    } else if (uLobe < p.coat + p.sheen) {
+        wi = sampleUniformHemisphere(u);
+    } else {
+        uLobe -= p.coat + p.sheen;
+        if (uLobe < p.specular) {
+            if (pbrSmooth(m)) {
+                vec3 mirror = vec3(-woUp.xy, woUp.z);
+                vec3 weight = pbrSpecularFresnel(m, woUp.z, eta) / p.specular;
+                return pbrDeltaSample(m, frame, wo, mirror * vec3(1.0, 1.0, side), weight, p.specular, 1.0);
+            }
+            wi = reflectAbout(woUp, ggxSampleVisibleNormal(woUp, m.alpha, u));
+            if (wi.z <= 0.0) return s;
+        } else if (uLobe < p.specular + p.transmission) {
+            bool thin = pbrThin(m);
+            vec3 tint = (1.0 - m.metallic) * m.transmission * m.baseColor;
+            if (pbrSmooth(m)) {
+                float cosT;
+                float share = pbrBaseShare(m, woUp.z, eta);
+                if (thin) return pbrDeltaSample(m, frame, wo, -wo, tint * share / p.transmission, p.transmission, 1.0);
                 fresnelDielectric(woUp.z, eta, cosT);
                 if (cosT <= 0.0) return s; // total internal reflection: nothing refracts
                 wi = vec3(-woUp.xy / eta, -cosT);
-                s.weight = tint * share / (eta * eta * p.transmission);
+                wi.z *= side;
+                return pbrDeltaSample(
+                    m, frame, wo, wi, tint * share / (eta * eta * p.transmission), p.transmission, eta * eta);
+            }
+            vec3 wm = ggxSampleVisibleNormal(woUp, m.alpha, u);
+            if (thin) {
+                wi = mirrorThroughSurface(reflectAbout(woUp, wm));
+                if (wi.z >= 0.0) return s;
+            } else {
+                if (!refractAbout(woUp, wm, eta, wi) || wi.z >= 0.0) return s;
                 s.etaScale = eta * eta;
             }
-            wi.z *= side;
-            s.wi = normalize(toWorld(frame, wi));
-            s.pdf = p.transmission;
-            s.isDelta = true;
-            s.valid = true;
-            return s;
-        }
-        vec3 wm = ggxSampleVisibleNormal(woUp, m.alpha, u);
-        if (thin) {
-            wi = mirrorThroughSurface(reflectAbout(woUp, wm));
-            if (wi.z >= 0.0) return s;
         } else {
-            if (!refractAbout(woUp, wm, eta, wi) || wi.z >= 0.0) return s;
-            s.etaScale = eta * eta;
+            // The Lambertian lobes: reflection, or the same direction mirrored to the other side.
+            BsdfSample d = lambertSample(vec3(1.0), makeFrame(vec3(0.0, 0.0, 1.0)), woUp, u);
+            if (!d.valid) return s;
+            wi = uLobe < p.specular + p.transmission + p.diffuse ? d.wi : mirrorThroughSurface(d.wi);
         }
-    } else {
-        // The Lambertian lobes: reflection, or the same direction mirrored to the other side.
-        BsdfSample d = lambertSample(vec3(1.0), makeFrame(vec3(0.0, 0.0, 1.0)), woUp, u);
-        if (!d.valid) return s;
-        wi = uLobe < p.specular + p.transmission + p.diffuse ? d.wi : mirrorThroughSurface(d.wi);
+        wi.z *= side;
     }
-    s.pdf = pbrPdfUpper(m, woUp, wi, eta);
+    // Non-delta: the whole material's f cos over its pdf, so MIS sees one pdf. (Coat and sheen
+    // directions are front-side ones, as given.)
+    vec3 woSide = wo, wiSide = wi;
+    pbrSide(m, woSide, wiSide);
+    s.pdf = pbrPdfUpper(m, woSide, wiSide, eta, front);
     if (!(s.pdf > 0.0)) return invalidBsdfSample();
-    s.weight = pbrEvalUpper(m, woUp, wi, eta) / s.pdf;
-    wi.z *= side;
+    vec3 f = pbrEvalUpper(m, woSide, wiSide, eta);
+    if (pbrLayered(m)) f = f * pbrBaseScale(m, wo, wi) + pbrLayerEval(m, wo, wi);
+    s.weight = f / s.pdf;
     s.wi = toWorld(frame, wi);
     s.valid = true;
     return s;

@@ -9,7 +9,8 @@
 bool hasAnyTexture(GpuMaterial m) {
     return (m.baseColorTexture & m.specularTexture & m.metallicRoughnessTexture & m.normalTexture & m.emissiveTexture &
                m.specularWeightTexture & m.transmissionTexture & m.diffuseTransmissionTexture &
-               m.diffuseTransmissionColorTexture) != NO_TEXTURE;
+               m.diffuseTransmissionColorTexture & m.clearcoatTexture & m.clearcoatRoughnessTexture &
+               m.clearcoatNormalTexture & m.sheenColorTexture & m.sheenRoughnessTexture) != NO_TEXTURE;
 }
 
 // Shading normal from a tangent-space normal map: +x along dp/du, +y up the image (towards
@@ -70,6 +71,25 @@ vec3 normalFromBump(SurfaceInteraction si, uint index, float factor) {
     return (len2 > 0.0 && !isinf(len2)) ? bumped * inversesqrt(len2) : n;
 }
 
+// KHR_materials_clearcoat's textures: the factor in red, the roughness in green (alpha scales by
+// its square), and the coat's normal, which is the surface's own (not the base's normal map)
+// unless the coat has a map of its own; called before the base's normal map changes si.ns.
+void applyClearcoatTextures(inout GpuMaterial m, SurfaceInteraction si) {
+    if (m.clearcoatTexture != NO_TEXTURE) m.clearcoat *= evalTexture(m.clearcoatTexture, si.uv, si.p).r;
+    if (m.clearcoatRoughnessTexture != NO_TEXTURE) {
+        float g = evalTexture(m.clearcoatRoughnessTexture, si.uv, si.p).g;
+        float alpha = m.clearcoatAlpha * g * g;
+        m.clearcoatAlpha = alpha >= MIN_ROUGH_ALPHA ? min(alpha, 1.0) : 0.0;
+    }
+    if (m.clearcoatNormalTexture != NO_TEXTURE) {
+        vec3 n =
+            normalFromMap(si, evalTexture(m.clearcoatNormalTexture, si.uv, si.p).rgb, m.clearcoatNormalScale, false);
+        m.clearcoatNormal = dot(n, si.ng) < 0.0 ? -n : n;
+    } else {
+        m.clearcoatNormal = si.nSurface;
+    }
+}
+
 void applyTextures(inout GpuMaterial m, inout SurfaceInteraction si) {
     if (!(HAS_TEXTURES || HAS_PROCEDURAL)) return;
     if (!hasAnyTexture(m)) return;
@@ -99,6 +119,11 @@ void applyTextures(inout GpuMaterial m, inout SurfaceInteraction si) {
         m.metallic *= c.b;
     }
     if (m.emissiveTexture != NO_TEXTURE) m.emission *= evalTexture(m.emissiveTexture, si.uv, si.p).rgb;
+    if (HAS_CLEARCOAT) applyClearcoatTextures(m, si);
+    if (HAS_SHEEN && m.sheenColorTexture != NO_TEXTURE)
+        m.sheenColor *= evalTexture(m.sheenColorTexture, si.uv, si.p).rgb;
+    if (HAS_SHEEN && m.sheenRoughnessTexture != NO_TEXTURE)
+        m.sheenRoughness *= evalTexture(m.sheenRoughnessTexture, si.uv, si.p).a;
     if (HAS_NORMAL_MAPS && m.normalTexture != NO_TEXTURE) {
         vec3 ns = (m.flags & MATERIAL_FLAG_BUMP_MAP) != 0u
                       ? normalFromBump(si, m.normalTexture, m.normalScale)

@@ -43,6 +43,10 @@
     PT_FEATURE(diffuseTransmission, flag, HAS_DIFFUSE_TRANSMISSION, 33, true, true,                                    \
         f.pbr&& usesDiffuseTransmission(scene), v ? "diffuse-transmission" : nullptr,                                  \
         "glTF KHR_materials_diffuse_transmission (Lambertian transmission)")                                           \
+    PT_FEATURE(clearcoat, flag, HAS_CLEARCOAT, 34, true, true, f.pbr&& usesClearcoat(scene),                           \
+        v ? "clearcoat" : nullptr, "glTF KHR_materials_clearcoat (a GGX coat over the material)")                      \
+    PT_FEATURE(sheen, flag, HAS_SHEEN, 35, true, true, f.pbr&& usesSheen(scene), v ? "sheen" : nullptr,                \
+        "glTF KHR_materials_sheen (Charlie sheen under the coat, over the base)")                                      \
     PT_FEATURE(microfacet, flag, HAS_MICROFACET, 23, true, true, usesRoughConductorOrDielectric(scene),                \
         v ? "microfacet" : nullptr, "GGX-rough conductors or dielectrics")                                             \
     PT_FEATURE(absorption, flag, HAS_ABSORPTION, 5, true, true, usesMaterialFlag(scene, MATERIAL_FLAG_ABSORBING),      \

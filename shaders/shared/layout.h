@@ -32,6 +32,10 @@ using uint64_t = std::uint64_t;
 // MATERIAL_MIRROR, MATERIAL_CONDUCTOR and MATERIAL_DIELECTRIC with alpha > 0 are GGX-rough
 // (alpha below MIN_ROUGH_ALPHA stays a smooth delta surface); a rough mirror is the glTF metal.
 #define MIN_ROUGH_ALPHA 1e-3
+// The sheen lobe's tables (src/flatten/sheen_tables.h): this many cos theta by as many roughness
+// points each, the projected area then the albedo, as float bits at GpuSceneParams::sheenTables
+// in the texel buffer.
+#define SHEEN_TABLE_SIZE 32
 
 // ---- Glossy lobes (GpuMaterial::glossyModel), the CENG795 course's BRDFs ----
 #define GLOSSY_ORIGINAL_PHONG 0u
@@ -259,11 +263,24 @@ struct GpuMaterial {
     vec3 diffuseTransmissionColor;
     uint diffuseTransmissionTexture;      // a x diffuseTransmission
     uint diffuseTransmissionColorTexture; // rgb (sRGB) x diffuseTransmissionColor
-    uint pad3;
-    uint pad4;
-    uint pad5;
+    // PBR layers (shaders/bsdf/pbr_layers.glsl): KHR_materials_clearcoat over KHR_materials_sheen
+    // over the base.
+    float clearcoat;        // coat weight (0: no coat)
+    float clearcoatAlpha;   // coat GGX alpha (clearcoatRoughness squared); below MIN_ROUGH_ALPHA: smooth
+    float sheenRoughness;   // sheen perceptual roughness (the Charlie distribution's alpha is its square)
+    vec3 sheenColor;        // sheen colour (black: no sheen)
+    uint sheenColorTexture; // rgb (sRGB) x sheenColor
+    // The coat's normal. In the buffer: (0, 0, 0), "the surface's normal without the base's normal
+    // map"; applyTextures sets it at a hit (world space, from clearcoatNormalTexture if any), and
+    // orientClearcoat moves it into the BSDF's local frame.
+    vec3 clearcoatNormal;
+    float clearcoatNormalScale;
+    uint clearcoatTexture;          // r x clearcoat
+    uint clearcoatRoughnessTexture; // g x clearcoat roughness
+    uint clearcoatNormalTexture;    // tangent-space normals of the coat
+    uint sheenRoughnessTexture;     // a x sheenRoughness
 };
-PT_CHECK_SIZE(GpuMaterial, 224);
+PT_CHECK_SIZE(GpuMaterial, 272);
 
 // A texture: an image in the texel buffer (with filter, wrap, encoding and a uv transform) or
 // a course procedural pattern.
@@ -378,7 +395,7 @@ struct GpuSceneParams {
     uint64_t motions;       // vec4[]: xyz = an object's translation over the shutter interval
     uint64_t tangents;      // GpuTriangleTangents[] (one per triangle), or none
     uint nodeFormat;        // BVH_NODES_*: how `nodes` stores the triangle tree (the sphere tree is always float)
-    uint pad2;
+    uint sheenTables;       // texel-buffer offset of the sheen lobe's tables (SHEEN_TABLE_SIZE), if any
     uint pad3;
     uint pad4;
 };

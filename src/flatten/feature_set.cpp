@@ -70,6 +70,19 @@ bool usesDiffuseTransmission(const FlatScene& scene) {
     return false;
 }
 
+bool usesClearcoat(const FlatScene& scene) {
+    for (const auto& m : scene.materials)
+        if (m.type == MATERIAL_PBR && m.clearcoat > 0.0f) return true;
+    return false;
+}
+
+bool usesSheen(const FlatScene& scene) {
+    for (const auto& m : scene.materials)
+        if (m.type == MATERIAL_PBR && (m.sheenColor.x > 0.0f || m.sheenColor.y > 0.0f || m.sheenColor.z > 0.0f))
+            return true;
+    return false;
+}
+
 bool usesEmission(const FlatScene& scene) {
     for (const auto& m : scene.materials) {
         if (m.emissiveTexture != NO_TEXTURE || (m.flags & MATERIAL_FLAG_UNLIT) != 0u) return true;
@@ -85,9 +98,7 @@ bool usesTextureKind(const FlatScene& scene, bool image) {
         return slot != NO_TEXTURE && (scene.textures[slot].type == TEXTURE_IMAGE) == image;
     };
     for (const auto& m : scene.materials)
-        for (uint32_t slot : {m.baseColorTexture, m.specularTexture, m.metallicRoughnessTexture, m.normalTexture,
-                 m.emissiveTexture, m.specularWeightTexture, m.transmissionTexture, m.diffuseTransmissionTexture,
-                 m.diffuseTransmissionColorTexture})
+        for (uint32_t slot : materialTextureSlots(m))
             if (matches(slot)) return true;
     return matches(scene.backgroundTexture);
 }

@@ -45,6 +45,12 @@ gpu::GpuMaterial toGpu(const Material& m) {
     g.diffuseTransmission = m.diffuseTransmission;
     g.diffuseTransmissionColor = m.diffuseTransmissionColor;
     g.specularWeight = m.specularWeight;
+    g.clearcoat = m.clearcoat;
+    g.clearcoatAlpha = m.clearcoatRoughness * m.clearcoatRoughness;
+    if (!(g.clearcoatAlpha >= float(MIN_ROUGH_ALPHA))) g.clearcoatAlpha = 0.0f;
+    g.clearcoatNormalScale = m.clearcoatNormalScale;
+    g.sheenColor = m.sheenColor;
+    g.sheenRoughness = m.sheenRoughness;
     if (m.type == MaterialType::Pbr && m.thinWalled) g.flags |= MATERIAL_FLAG_THIN_WALLED;
     auto slot = [](const std::optional<uint32_t>& t) { return t ? *t : NO_TEXTURE; };
     g.baseColorTexture = slot(m.baseColorTexture);
@@ -53,6 +59,11 @@ gpu::GpuMaterial toGpu(const Material& m) {
     g.transmissionTexture = slot(m.transmissionTexture);
     g.diffuseTransmissionTexture = slot(m.diffuseTransmissionTexture);
     g.diffuseTransmissionColorTexture = slot(m.diffuseTransmissionColorTexture);
+    g.clearcoatTexture = slot(m.clearcoatTexture);
+    g.clearcoatRoughnessTexture = slot(m.clearcoatRoughnessTexture);
+    g.clearcoatNormalTexture = slot(m.clearcoatNormalTexture);
+    g.sheenColorTexture = slot(m.sheenColorTexture);
+    g.sheenRoughnessTexture = slot(m.sheenRoughnessTexture);
     g.metallicRoughnessTexture = slot(m.metallicRoughnessTexture);
     g.normalTexture = slot(m.normalTexture);
     g.emissiveTexture = slot(m.emissiveTexture);

@@ -7,9 +7,19 @@
 #include "scene/scene.h"
 #include "shared/layout.h"
 
+#include <array>
 #include <vector>
 
 namespace pt {
+
+// Every texture slot of a material (NO_TEXTURE where unused), for the passes that look at all
+// of them: which texture kinds a scene uses, which indices must exist.
+inline std::array<uint32_t, 14> materialTextureSlots(const gpu::GpuMaterial& m) {
+    return {m.baseColorTexture, m.specularTexture, m.metallicRoughnessTexture, m.normalTexture, m.emissiveTexture,
+        m.specularWeightTexture, m.transmissionTexture, m.diffuseTransmissionTexture, m.diffuseTransmissionColorTexture,
+        m.clearcoatTexture, m.clearcoatRoughnessTexture, m.clearcoatNormalTexture, m.sheenColorTexture,
+        m.sheenRoughnessTexture};
+}
 
 // The environment as the kernel samples it (shaders/lights/environment_light.glsl).
 struct FlatEnvironment {
@@ -36,6 +46,7 @@ struct FlatScene {
     std::vector<gpu::GpuTexture> textures;
     std::vector<uint32_t> texels; // every image texture's texels, packed (see GpuTexture)
     uint32_t backgroundTexture = NO_TEXTURE;
+    uint32_t sheenTables = 0;       // offset of the sheen lobe's tables in `texels` (scenes with a sheen)
     glm::vec3 ambientLight{0.0f};   // classic integrator
     std::vector<glm::vec4> motions; // motion blur: xyz = translation over the shutter interval
     FlatEnvironment environment;

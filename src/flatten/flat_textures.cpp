@@ -2,7 +2,9 @@
 // holding every image (packed RGBA8 as loaded, or 4 floats per texel for HDR images), so the
 // kernel needs no descriptor indexing (Debian 12's own lavapipe lacks it).
 #include "flatten/flat_scene.h"
+#include "flatten/sheen_tables.h"
 
+#include <bit>
 #include <cstring>
 #include <stdexcept>
 
@@ -73,10 +75,16 @@ void flattenTextures(const Scene& scene, FlatScene& flat) {
         flat.textures.push_back(g);
     }
     if (scene.backgroundTexture) flat.backgroundTexture = *scene.backgroundTexture;
+    // The sheen lobe's tables, where a material has a sheen.
     for (const gpu::GpuMaterial& m : flat.materials)
-        for (uint32_t slot : {m.baseColorTexture, m.specularTexture, m.metallicRoughnessTexture, m.normalTexture,
-                 m.emissiveTexture, m.specularWeightTexture, m.transmissionTexture, m.diffuseTransmissionTexture,
-                 m.diffuseTransmissionColorTexture})
+        if (m.type == MATERIAL_PBR && (m.sheenColor.x > 0.0f || m.sheenColor.y > 0.0f || m.sheenColor.z > 0.0f)) {
+            flat.sheenTables = static_cast<uint32_t>(flat.texels.size());
+            for (const auto* table : {&kSheenProjectedArea, &kSheenAlbedo})
+                for (float v : *table) flat.texels.push_back(std::bit_cast<uint32_t>(v));
+            break;
+        }
+    for (const gpu::GpuMaterial& m : flat.materials)
+        for (uint32_t slot : materialTextureSlots(m))
             if (slot != NO_TEXTURE && slot >= flat.textures.size())
                 throw std::runtime_error(scene.source + ": a material refers to a texture that does not exist");
 }

@@ -114,6 +114,7 @@ void GpuScene::build(VulkanContext& context, const FlatScene& scene, FlatScene* 
     params.textures = textures_.address();
     params.texels = texels_.address();
     params.backgroundTexture = scene.backgroundTexture;
+    params.sheenTables = scene.sheenTables;
     params.ambientLight = scene.ambientLight;
     params.motions = motions_.address();
     params.tangents = tangents_.address();

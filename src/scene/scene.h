@@ -52,6 +52,12 @@ struct Material {
     glm::vec3 diffuseTransmissionColor{1.0f};
     float specularWeight = 1.0f; // Pbr: KHR_materials_specular factor (colour in `specular`)
     bool thinWalled = true;      // Pbr transmission: no KHR_materials_volume, so no bending
+    // Pbr layers: KHR_materials_clearcoat (a GGX coat, F0 0.04) over KHR_materials_sheen (Charlie).
+    float clearcoat = 0.0f;
+    float clearcoatRoughness = 0.0f; // perceptual; GGX alpha = its square
+    float clearcoatNormalScale = 1.0f;
+    glm::vec3 sheenColor{0.0f};
+    float sheenRoughness = 0.0f; // perceptual; the Charlie alpha = its square
 
     // Textures: indices into Scene::textures. Colour slots multiply the factor above.
     std::optional<uint32_t> baseColorTexture;                // rgb: baseColor, a: opacity
@@ -61,6 +67,11 @@ struct Material {
     std::optional<uint32_t> transmissionTexture;             // r multiplies transmission (KHR_materials_transmission)
     std::optional<uint32_t> diffuseTransmissionTexture;      // a multiplies diffuseTransmission
     std::optional<uint32_t> diffuseTransmissionColorTexture; // rgb multiplies diffuseTransmissionColor
+    std::optional<uint32_t> clearcoatTexture;                // r multiplies clearcoat
+    std::optional<uint32_t> clearcoatRoughnessTexture;       // g multiplies clearcoatRoughness
+    std::optional<uint32_t> clearcoatNormalTexture;          // the coat's own tangent-space normal map
+    std::optional<uint32_t> sheenColorTexture;               // rgb multiplies sheenColor
+    std::optional<uint32_t> sheenRoughnessTexture;           // a multiplies sheenRoughness
     std::optional<uint32_t> metallicRoughnessTexture;
     std::optional<uint32_t> normalTexture; // tangent-space normal map, or heights if bumpMap
     std::optional<uint32_t> emissiveTexture;

@@ -1,5 +1,6 @@
 // glTF materials into the scene model (gltf_importer.h): the metallic-roughness factors, the
-// KHR_materials_* extensions (emissive_strength, ior, specular, transmission, volume), the
+// KHR_materials_* extensions (emissive_strength, ior, specular, transmission, volume,
+// diffuse_transmission, clearcoat, sheen, unlit), the
 // textures with their samplers and KHR_texture_transform, the images they use, and the glTF
 // default material for primitives without one.
 #include "scene/gltf/gltf_importer.h"
@@ -117,8 +118,24 @@ void GltfImporter::convertFactors(const tinygltf::Material& src, const std::stri
             glm::any(glm::greaterThan(m.diffuseTransmissionColor, glm::vec3(1))))
             fail(label + ": diffuseTransmissionColorFactor must be in [0, 1]");
     }
+    if (const auto* e = extension(src, "KHR_materials_clearcoat")) {
+        m.clearcoat = unit(number(*e, "clearcoatFactor", 0.0, label), "clearcoatFactor");
+        m.clearcoatRoughness = unit(number(*e, "clearcoatRoughnessFactor", 0.0, label), "clearcoatRoughnessFactor");
+    }
+    if (const auto* e = extension(src, "KHR_materials_sheen")) {
+        m.sheenColor = color(*e, "sheenColorFactor", glm::vec3(0.0f), label);
+        if (!finite(m.sheenColor) || glm::any(glm::lessThan(m.sheenColor, glm::vec3(0))) ||
+            glm::any(glm::greaterThan(m.sheenColor, glm::vec3(1))))
+            fail(label + ": sheenColorFactor must be in [0, 1]");
+        m.sheenRoughness = unit(number(*e, "sheenRoughnessFactor", 0.0, label), "sheenRoughnessFactor");
+    }
+    // A coat or a sheen layers over whatever the base is: only the full model has the layers.
+    const bool layered = m.clearcoat > 0.0f || glm::any(glm::greaterThan(m.sheenColor, glm::vec3(0)));
     const bool defaultSpecular = m.specularWeight == 1.0f && m.specular == glm::vec3(1.0f);
-    if (m.metallic == 0.0f && m.transmission == 0.0f && m.specularWeight == 0.0f && m.diffuseTransmission == 0.0f) {
+    if (layered) {
+        m.type = MaterialType::Pbr;
+    } else if (m.metallic == 0.0f && m.transmission == 0.0f && m.specularWeight == 0.0f &&
+               m.diffuseTransmission == 0.0f) {
         m.type = MaterialType::Diffuse;
     } else if (m.metallic == 1.0f) {
         m.type = MaterialType::Mirror;
@@ -166,6 +183,28 @@ void GltfImporter::convertTextures(const tinygltf::Material& src, const std::str
         label + ": KHR_materials_diffuse_transmission");
     m.diffuseTransmissionColorTexture = extensionTexture(diffuse, "diffuseTransmissionColorTexture",
         Texture::Encoding::Srgb, label + ": KHR_materials_diffuse_transmission");
+    // KHR_materials_clearcoat: the factor's texture in red, the roughness's in green (both
+    // linear), and the coat's own normal map (none: the coat keeps the surface's normal, not the
+    // base's normal map). KHR_materials_sheen: the colour's texture in RGB (sRGB), the
+    // roughness's in alpha (linear).
+    const tinygltf::Value* clearcoat = extension(src, "KHR_materials_clearcoat");
+    m.clearcoatTexture =
+        extensionTexture(clearcoat, "clearcoatTexture", Texture::Encoding::Linear, label + ": KHR_materials_clearcoat");
+    m.clearcoatRoughnessTexture = extensionTexture(
+        clearcoat, "clearcoatRoughnessTexture", Texture::Encoding::Linear, label + ": KHR_materials_clearcoat");
+    m.clearcoatNormalTexture = extensionTexture(
+        clearcoat, "clearcoatNormalTexture", Texture::Encoding::Linear, label + ": KHR_materials_clearcoat");
+    if (m.clearcoatNormalTexture) {
+        const tinygltf::Value& info = clearcoat->Get("clearcoatNormalTexture");
+        m.clearcoatNormalScale =
+            static_cast<float>(number(info, "scale", 1.0, label + ": KHR_materials_clearcoat clearcoatNormalTexture"));
+        if (!std::isfinite(m.clearcoatNormalScale)) fail(label + ": clearcoatNormalTexture scale must be finite");
+    }
+    const tinygltf::Value* sheen = extension(src, "KHR_materials_sheen");
+    m.sheenColorTexture =
+        extensionTexture(sheen, "sheenColorTexture", Texture::Encoding::Srgb, label + ": KHR_materials_sheen");
+    m.sheenRoughnessTexture =
+        extensionTexture(sheen, "sheenRoughnessTexture", Texture::Encoding::Linear, label + ": KHR_materials_sheen");
     // A texture can make a "metal" vary in roughness or part-dielectric, and a "glass"
     // part-transmissive or of varying specular: only the full model covers those.
     if (m.metallicRoughnessTexture && m.type == MaterialType::Mirror) m.type = MaterialType::Pbr;

@@ -121,6 +121,15 @@ Material diffuseTransmitting(float dt, glm::vec3 colour, float transmission, boo
     return m;
 }
 
+// The layers of KHR_materials_clearcoat and KHR_materials_sheen over a metallic-roughness base.
+Material layered(Material base, float clearcoat, float coatRoughness, glm::vec3 sheen, float sheenRoughness) {
+    base.clearcoat = clearcoat;
+    base.clearcoatRoughness = coatRoughness;
+    base.sheenColor = sheen;
+    base.sheenRoughness = sheenRoughness;
+    return base;
+}
+
 std::vector<Case> cases() {
     Material lowSpecular = pbr(0.5f, 0.0f, std::sqrt(0.5f));
     lowSpecular.ior = 1.3f;
@@ -144,6 +153,14 @@ std::vector<Case> cases() {
         // diffuse transmission, which carries no radiance scaling (the albedo is then a lower bound).
         {"pbr diffuse transmission 0.5 and transmission 0.3 with volume",
             diffuseTransmitting(0.5f, glm::vec3(1.0f), 0.3f, false), {0.7f, -0.6f, -0.2f}},
+        {"pbr clearcoat 1 (roughness 0.3) over a dielectric", layered(pbr(0.6f, 0.0f, 0.5f), 1.0f, 0.3f, {}, 0.0f),
+            {0.8f, 0.2f, 0.05f}},
+        {"pbr sheen (0.9, 0.6, 0.3), roughness 0.5",
+            layered(pbr(0.5f, 0.0f, 0.6f), 0.0f, 0.0f, {0.9f, 0.6f, 0.3f}, 0.5f), {0.9f, 0.3f, 0.05f}},
+        {"pbr clearcoat 0.6 over sheen 1 (roughness 0.15) over a half metal",
+            layered(pbr(0.7f, 0.5f, 0.4f), 0.6f, 0.3f, glm::vec3(1.0f), 0.15f), {0.7f, 0.15f}},
+        {"pbr clearcoat and sheen over transmission with volume",
+            layered(pbr(0.9f, 0.0f, 0.4f, 0.7f, false), 1.0f, 0.4f, glm::vec3(0.5f), 0.6f), {0.7f, -0.8f, -0.3f}, 1.5},
     };
 }
 
@@ -465,8 +482,9 @@ TEST_F(MicrofacetBsdf, ReflectionLobesAreReciprocal) {
     // Directions above the surface, away from grazing.
     std::vector<glm::vec4> dirs;
     for (int i = 0; i < 12; ++i) dirs.emplace_back(direction(0.15 + 0.8 * ((i * 7) % 12) / 11.0, 0.7 + 2.1 * i), 0.0f);
-    // Rough conductor, rough dielectric (reflection), opaque PBR, half-metal PBR.
-    for (uint32_t index : {0u, 2u, 4u, 5u}) {
+    // Rough conductor, rough dielectric (reflection), opaque PBR, half-metal PBR, and the three
+    // opaque layered ones (clearcoat, sheen, both).
+    for (uint32_t index : {0u, 2u, 4u, 5u, 12u, 13u, 14u}) {
         std::vector<std::vector<glm::vec4>> f;
         for (const glm::vec4& wo : dirs) f.push_back(evaluate(index, glm::vec3(wo), dirs));
         for (size_t a = 0; a < dirs.size(); ++a)
