@@ -59,8 +59,7 @@ float sheenProjectedArea(float cosTheta, float roughness) { return sheenTable(0u
 float sheenEval(vec3 wo, vec3 wi, float roughness) {
     if (wo.z <= 0.0 || wi.z <= 0.0) return 0.0;
     vec3 h = normalize(wo + wi);
-    float denom = sheenProjectedArea(wo.z, roughness) * wi.z + sheenProjectedArea(wi.z, roughness) * wo.z -
-                  wo.z * wi.z;
+    float denom = sheenProjectedArea(wo.z, roughness) * wi.z + sheenProjectedArea(wi.z, roughness) * wo.z - wo.z * wi.z;
     return denom > 0.0 ? charlieD(h.z, sheenAlpha(roughness)) * wi.z / (4.0 * denom) : 0.0;
 }
 

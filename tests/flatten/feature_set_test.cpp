@@ -66,6 +66,24 @@ TEST(FeatureTable, LightTracingNeedsASmoothSpecularSurfaceAndAReceiver) {
     EXPECT_TRUE(computeFeatures(box, IntegratorSettings{}).lightTracing);
 }
 
+// The glTF layers are compiled in only where a metallic-roughness material has them: a zero
+// factor or a zero sheen colour is no layer, and other material types ignore the fields.
+TEST(FeatureTable, ClearcoatAndSheenOnlyWhereAPbrMaterialHasThem) {
+    FlatScene box = flattenScene(loadDefaultScene());
+    box.materials[0].type = MATERIAL_PBR;
+    auto decide = [&] { return computeFeatures(box, IntegratorSettings{}); };
+    EXPECT_TRUE(decide().pbr);
+    EXPECT_FALSE(decide().clearcoat || decide().sheen);
+    box.materials[0].clearcoat = 0.5f;
+    EXPECT_TRUE(decide().clearcoat);
+    EXPECT_FALSE(decide().sheen);
+    box.materials[0].sheenColor = glm::vec3(0.0f, 0.1f, 0.0f);
+    EXPECT_TRUE(decide().sheen);
+    box.materials[0].type = MATERIAL_DIFFUSE;
+    EXPECT_FALSE(decide().clearcoat || decide().sheen) << "only the full model has layers";
+    EXPECT_TRUE(FeatureSet::all(IntegratorSettings{}).clearcoat && FeatureSet::all(IntegratorSettings{}).sheen);
+}
+
 TEST(FeatureTable, AllCompilesEverySceneFeatureAndKeepsTheSwitches) {
     IntegratorSettings s;
     s.mis = false;

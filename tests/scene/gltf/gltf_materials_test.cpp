@@ -345,3 +345,52 @@ TEST(GltfLoaderMaterials, DiffuseTransmissionIsRead) {
 
 } // namespace
 } // namespace pt::test::gltf
+
+namespace pt::test::gltf {
+namespace {
+
+// KHR_materials_clearcoat and KHR_materials_sheen: factors, roughnesses, the coat's normal map
+// with its scale and every texture land in the model with the spec's encodings (the sheen
+// colour's sRGB, the rest linear), with no warning; a layer turns what would be a Lambertian
+// surface or a plain metal into the full model, which has the layers. Out-of-range factors fail.
+TEST(GltfLoaderMaterials, ClearcoatAndSheenAreRead) {
+    const std::string images = std::string(R"([{"uri": ")") + kOnePixelPng + R"("}])";
+    const pt::Scene s = loadText(texturedDocument(R"([
+      {"name": "car paint", "pbrMetallicRoughness": {"metallicFactor": 1, "roughnessFactor": 0.4},
+       "extensions": {"KHR_materials_clearcoat": {"clearcoatFactor": 0.8, "clearcoatRoughnessFactor": 0.1,
+         "clearcoatTexture": {"index": 0}, "clearcoatRoughnessTexture": {"index": 1},
+         "clearcoatNormalTexture": {"index": 2, "scale": 0.5}}}},
+      {"name": "velvet", "pbrMetallicRoughness": {"metallicFactor": 0},
+       "extensions": {"KHR_materials_specular": {"specularFactor": 0},
+         "KHR_materials_sheen": {"sheenColorFactor": [0.9, 0.2, 0.4], "sheenRoughnessFactor": 0.6,
+           "sheenColorTexture": {"index": 3}, "sheenRoughnessTexture": {"index": 4}}}}
+    ])",
+        2, R"([{"source": 0}, {"source": 0}, {"source": 0}, {"source": 0}, {"source": 0}])", images, "[]"));
+    const pt::Material* paint = findMaterial(s, "car paint");
+    const pt::Material* velvet = findMaterial(s, "velvet");
+    ASSERT_TRUE(paint && velvet);
+    EXPECT_EQ(paint->type, pt::MaterialType::Pbr) << "not the plain-metal shortcut";
+    EXPECT_EQ(velvet->type, pt::MaterialType::Pbr) << "not the Lambertian shortcut";
+    EXPECT_FLOAT_EQ(paint->clearcoat, 0.8f);
+    EXPECT_FLOAT_EQ(paint->clearcoatRoughness, 0.1f);
+    EXPECT_FLOAT_EQ(paint->clearcoatNormalScale, 0.5f);
+    ASSERT_TRUE(paint->clearcoatTexture && paint->clearcoatRoughnessTexture && paint->clearcoatNormalTexture);
+    for (auto t : {paint->clearcoatTexture, paint->clearcoatRoughnessTexture, paint->clearcoatNormalTexture})
+        EXPECT_EQ(s.textures.at(*t).encoding, pt::Texture::Encoding::Linear);
+    EXPECT_TRUE(near3(velvet->sheenColor, glm::vec3(0.9f, 0.2f, 0.4f), 0.0f));
+    EXPECT_FLOAT_EQ(velvet->sheenRoughness, 0.6f);
+    ASSERT_TRUE(velvet->sheenColorTexture && velvet->sheenRoughnessTexture);
+    EXPECT_EQ(s.textures.at(*velvet->sheenColorTexture).encoding, pt::Texture::Encoding::Srgb);
+    EXPECT_EQ(s.textures.at(*velvet->sheenRoughnessTexture).encoding, pt::Texture::Encoding::Linear);
+    EXPECT_TRUE(s.unsupported.empty()) << ::testing::PrintToString(s.unsupported);
+
+    for (const char* bad : {R"({"KHR_materials_clearcoat": {"clearcoatFactor": 1.5}})",
+             R"({"KHR_materials_clearcoat": {"clearcoatRoughnessFactor": -0.1}})",
+             R"({"KHR_materials_sheen": {"sheenColorFactor": [2, 0, 0]}})",
+             R"({"KHR_materials_sheen": {"sheenRoughnessFactor": 3}})"})
+        EXPECT_THROW(loadText(materialDocument(std::string(R"([{"extensions": )") + bad + "}]", 1)), pt::SceneError)
+            << bad;
+}
+
+} // namespace
+} // namespace pt::test::gltf

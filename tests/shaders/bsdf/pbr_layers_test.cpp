@@ -98,8 +98,7 @@ double coatFCos(glm::dvec3 wo, glm::dvec3 wi, double roughness, double weight) {
     const double F = 0.04 + 0.96 * std::pow(1.0 - std::abs(vh), 5.0);
     const double denom = nh * nh * (a2 - 1.0) + 1.0;
     const double D = a2 / (M_PI * denom * denom);
-    const double V =
-        0.5 / (nl * std::sqrt(nv * nv * (1.0 - a2) + a2) + nv * std::sqrt(nl * nl * (1.0 - a2) + a2));
+    const double V = 0.5 / (nl * std::sqrt(nv * nv * (1.0 - a2) + a2) + nv * std::sqrt(nl * nl * (1.0 - a2) + a2));
     return weight * F * D * V * nl;
 }
 

@@ -30,7 +30,7 @@ TEST_P(GltfSamples, LoadsWithoutWarningsAndRendersFinite) {
 
 INSTANTIATE_TEST_SUITE_P(Khronos, GltfSamples,
     ::testing::Values("TextureTransformTest", "TextureCoordinateTest", "TextureSettingsTest", "EmissiveStrengthTest",
-        "SpecularTest", "TransmissionRoughnessTest"));
+        "SpecularTest", "TransmissionRoughnessTest", "ClearCoatTest"));
 
 } // namespace
 } // namespace pt::test
