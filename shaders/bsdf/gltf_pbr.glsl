@@ -9,7 +9,9 @@
 //   transmission goes to the other side without bending, as through a thin wall, weighted by the
 //   base's share at both directions like the Lambertian reflection, so it is reciprocal on thin
 //   walls and never gives more than arrives)
-// Lobes: diffuse (Lambert), specular (the dielectric and metal reflections share D and G2, so
+// Over it the layers of KHR_materials_clearcoat and KHR_materials_sheen (shaders/bsdf/pbr_layers.glsl),
+// and in its Fresnel terms KHR_materials_iridescence's thin film (shaders/bsdf/thin_film.glsl).
+// Lobes: coat and sheen (front side only), diffuse (Lambert), specular (the dielectric and metal reflections share D and G2, so
 // they are one lobe with a blended Fresnel), transmission and diffuse transmission. Each is sampled with a
 // probability from its estimated albedo at wo; eval and pdf are the sums over the lobes, so a
 // sample's weight is f cos / pdf of the whole material and MIS sees one pdf. When alpha == 0
@@ -38,6 +40,7 @@
 #include "bsdf/rough_dielectric.glsl"
 #include "bsdf/bsdf_sample.glsl"
 #include "bsdf/pbr_layers.glsl"
+#include "bsdf/thin_film.glsl"
 
 // Lower bounds on the lobe-selection estimates, so a lobe that can be non-zero somewhere is
 // never given probability 0 by an estimate made at wo only: the base share can be 0 at wo
@@ -50,8 +53,22 @@ float average(vec3 c) { return (c.x + c.y + c.z) * (1.0 / 3.0); }
 bool pbrThin(GpuMaterial m) { return (m.flags & MATERIAL_FLAG_THIN_WALLED) != 0u; }
 bool pbrSmooth(GpuMaterial m) { return m.alpha <= 0.0; }
 
+// KHR_materials_iridescence's film (shaders/bsdf/thin_film.glsl) over a base of reflectance f0
+// at normal incidence, mixed into the base's Fresnel F by the iridescence weight. The film sees
+// air, or the coat's index 1.5 under a clearcoat. A film thinner than 30 nm fades out (smoothly,
+// to exactly the base's Fresnel at 0 nm, where the Schlick interfaces of the film model would
+// still reflect). Not from inside a volume (eta < 1), where the exact Fresnel's total internal
+// reflection is kept.
+vec3 pbrIridescent(GpuMaterial m, vec3 F, vec3 f0, float cosI, float eta) {
+    float weight = m.iridescence * smoothstep(0.0, 30.0, m.iridescenceThickness);
+    if (!HAS_IRIDESCENCE || weight <= 0.0 || eta < 1.0) return F;
+    float outside = pbrHasCoat(m) ? 1.5 : 1.0;
+    vec3 film = thinFilmFresnel(outside, m.iridescenceIor, m.iridescenceThickness, f0, cosI);
+    return mix(F, film, weight);
+}
+
 // Fresnel reflectance of the dielectric layer (see the header): exact, remapped to the
-// KHR_materials_specular F0 and scaled by its factor.
+// KHR_materials_specular F0 and scaled by its factor; iridescent where there is a film.
 vec3 pbrDielectricFresnel(GpuMaterial m, float cosI, float eta) {
     float cosT;
     float F = fresnelDielectric(clamp(cosI, 0.0, 1.0), eta, cosT);
@@ -59,12 +76,17 @@ vec3 pbrDielectricFresnel(GpuMaterial m, float cosI, float eta) {
     float F0 = r0 * r0;
     vec3 f0 = min(F0 * m.specular, vec3(1.0));
     float t = F0 < 1.0 ? clamp((F - F0) / (1.0 - F0), 0.0, 1.0) : 1.0;
-    return m.specularWeight * (f0 + (1.0 - f0) * t);
+    return m.specularWeight * pbrIridescent(m, f0 + (1.0 - f0) * t, f0, cosI, eta);
+}
+
+// The metal's Fresnel: Schlick's with F0 = base colour, iridescent where there is a film.
+vec3 pbrMetalFresnel(GpuMaterial m, float cosI) {
+    return pbrIridescent(m, fresnelSchlick(m.baseColor, cosI), m.baseColor, cosI, 1.0);
 }
 
 // The blended Fresnel of the specular (reflection) lobe at a facet.
 vec3 pbrSpecularFresnel(GpuMaterial m, float cosI, float eta) {
-    return (1.0 - m.metallic) * pbrDielectricFresnel(m, cosI, eta) + m.metallic * fresnelSchlick(m.baseColor, cosI);
+    return (1.0 - m.metallic) * pbrDielectricFresnel(m, cosI, eta) + m.metallic * pbrMetalFresnel(m, cosI);
 }
 
 // The share of light the dielectric layer passes to the base at a facet.
@@ -101,8 +123,8 @@ float pbrDiffuseTransmission(GpuMaterial m) { return HAS_DIFFUSE_TRANSMISSION ? 
 PbrLobeProbabilities pbrLobeProbabilities(GpuMaterial m, vec3 wo, float eta, bool front) {
     PbrLobeProbabilities p;
     float dielectric = 1.0 - m.metallic;
-    float specular = dielectric * average(pbrDielectricFresnel(m, wo.z, eta)) +
-                     m.metallic * average(fresnelSchlick(m.baseColor, wo.z));
+    float specular =
+        dielectric * average(pbrDielectricFresnel(m, wo.z, eta)) + m.metallic * average(pbrMetalFresnel(m, wo.z));
     float specularMass = dielectric * m.specularWeight + m.metallic;
     specular = max(specular, PBR_MIN_SPECULAR_ESTIMATE * specularMass);
     float share = dielectric * max(pbrBaseShare(m, wo.z, eta), PBR_MIN_BASE_SHARE);

@@ -10,7 +10,8 @@ bool hasAnyTexture(GpuMaterial m) {
     return (m.baseColorTexture & m.specularTexture & m.metallicRoughnessTexture & m.normalTexture & m.emissiveTexture &
                m.specularWeightTexture & m.transmissionTexture & m.diffuseTransmissionTexture &
                m.diffuseTransmissionColorTexture & m.clearcoatTexture & m.clearcoatRoughnessTexture &
-               m.clearcoatNormalTexture & m.sheenColorTexture & m.sheenRoughnessTexture) != NO_TEXTURE;
+               m.clearcoatNormalTexture & m.sheenColorTexture & m.sheenRoughnessTexture & m.iridescenceTexture &
+               m.iridescenceThicknessTexture) != NO_TEXTURE;
 }
 
 // Shading normal from a tangent-space normal map: +x along dp/du, +y up the image (towards
@@ -124,6 +125,11 @@ void applyTextures(inout GpuMaterial m, inout SurfaceInteraction si) {
         m.sheenColor *= evalTexture(m.sheenColorTexture, si.uv, si.p).rgb;
     if (HAS_SHEEN && m.sheenRoughnessTexture != NO_TEXTURE)
         m.sheenRoughness *= evalTexture(m.sheenRoughnessTexture, si.uv, si.p).a;
+    if (HAS_IRIDESCENCE && m.iridescenceTexture != NO_TEXTURE)
+        m.iridescence *= evalTexture(m.iridescenceTexture, si.uv, si.p).r;
+    if (HAS_IRIDESCENCE && m.iridescenceThicknessTexture != NO_TEXTURE)
+        m.iridescenceThickness = mix(m.iridescenceThicknessMinimum, m.iridescenceThickness,
+            evalTexture(m.iridescenceThicknessTexture, si.uv, si.p).g);
     if (HAS_NORMAL_MAPS && m.normalTexture != NO_TEXTURE) {
         vec3 ns = (m.flags & MATERIAL_FLAG_BUMP_MAP) != 0u
                       ? normalFromBump(si, m.normalTexture, m.normalScale)

@@ -279,8 +279,17 @@ struct GpuMaterial {
     uint clearcoatRoughnessTexture; // g x clearcoat roughness
     uint clearcoatNormalTexture;    // tangent-space normals of the coat
     uint sheenRoughnessTexture;     // a x sheenRoughness
+    // KHR_materials_iridescence: a thin film over the base's Fresnel (shaders/bsdf/thin_film.glsl).
+    float iridescence;                 // weight of the film's Fresnel (0: no film)
+    float iridescenceIor;              // the film's index of refraction
+    float iridescenceThicknessMinimum; // nm, at thickness texture value 0
+    float iridescenceThickness;        // nm: the maximum in the buffer; applyTextures sets it at a hit
+    uint iridescenceTexture;           // r x iridescence
+    uint iridescenceThicknessTexture;  // g: mix(minimum, maximum, g)
+    uint pad6;
+    uint pad7;
 };
-PT_CHECK_SIZE(GpuMaterial, 272);
+PT_CHECK_SIZE(GpuMaterial, 304);
 
 // A texture: an image in the texel buffer (with filter, wrap, encoding and a uv transform) or
 // a course procedural pattern.

@@ -83,6 +83,12 @@ bool usesSheen(const FlatScene& scene) {
     return false;
 }
 
+bool usesIridescence(const FlatScene& scene) {
+    for (const auto& m : scene.materials)
+        if (m.type == MATERIAL_PBR && m.iridescence > 0.0f) return true;
+    return false;
+}
+
 bool usesEmission(const FlatScene& scene) {
     for (const auto& m : scene.materials) {
         if (m.emissiveTexture != NO_TEXTURE || (m.flags & MATERIAL_FLAG_UNLIT) != 0u) return true;

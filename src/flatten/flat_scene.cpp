@@ -51,6 +51,10 @@ gpu::GpuMaterial toGpu(const Material& m) {
     g.clearcoatNormalScale = m.clearcoatNormalScale;
     g.sheenColor = m.sheenColor;
     g.sheenRoughness = m.sheenRoughness;
+    g.iridescence = m.iridescence;
+    g.iridescenceIor = m.iridescenceIor;
+    g.iridescenceThicknessMinimum = m.iridescenceThicknessMinimum;
+    g.iridescenceThickness = m.iridescenceThicknessMaximum;
     if (m.type == MaterialType::Pbr && m.thinWalled) g.flags |= MATERIAL_FLAG_THIN_WALLED;
     auto slot = [](const std::optional<uint32_t>& t) { return t ? *t : NO_TEXTURE; };
     g.baseColorTexture = slot(m.baseColorTexture);
@@ -64,6 +68,8 @@ gpu::GpuMaterial toGpu(const Material& m) {
     g.clearcoatNormalTexture = slot(m.clearcoatNormalTexture);
     g.sheenColorTexture = slot(m.sheenColorTexture);
     g.sheenRoughnessTexture = slot(m.sheenRoughnessTexture);
+    g.iridescenceTexture = slot(m.iridescenceTexture);
+    g.iridescenceThicknessTexture = slot(m.iridescenceThicknessTexture);
     g.metallicRoughnessTexture = slot(m.metallicRoughnessTexture);
     g.normalTexture = slot(m.normalTexture);
     g.emissiveTexture = slot(m.emissiveTexture);

@@ -58,6 +58,10 @@ struct Material {
     float clearcoatNormalScale = 1.0f;
     glm::vec3 sheenColor{0.0f};
     float sheenRoughness = 0.0f; // perceptual; the Charlie alpha = its square
+    // Pbr: KHR_materials_iridescence, a thin film (thicknesses in nm).
+    float iridescence = 0.0f;
+    float iridescenceIor = 1.3f;
+    float iridescenceThicknessMinimum = 100.0f, iridescenceThicknessMaximum = 400.0f;
 
     // Textures: indices into Scene::textures. Colour slots multiply the factor above.
     std::optional<uint32_t> baseColorTexture;                // rgb: baseColor, a: opacity
@@ -72,6 +76,8 @@ struct Material {
     std::optional<uint32_t> clearcoatNormalTexture;          // the coat's own tangent-space normal map
     std::optional<uint32_t> sheenColorTexture;               // rgb multiplies sheenColor
     std::optional<uint32_t> sheenRoughnessTexture;           // a multiplies sheenRoughness
+    std::optional<uint32_t> iridescenceTexture;              // r multiplies iridescence
+    std::optional<uint32_t> iridescenceThicknessTexture;     // g: thickness from minimum to maximum
     std::optional<uint32_t> metallicRoughnessTexture;
     std::optional<uint32_t> normalTexture; // tangent-space normal map, or heights if bumpMap
     std::optional<uint32_t> emissiveTexture;

@@ -66,9 +66,10 @@ TEST(FeatureTable, LightTracingNeedsASmoothSpecularSurfaceAndAReceiver) {
     EXPECT_TRUE(computeFeatures(box, IntegratorSettings{}).lightTracing);
 }
 
-// The glTF layers are compiled in only where a metallic-roughness material has them: a zero
-// factor or a zero sheen colour is no layer, and other material types ignore the fields.
-TEST(FeatureTable, ClearcoatAndSheenOnlyWhereAPbrMaterialHasThem) {
+// The glTF layers (coat, sheen, thin film) are compiled in only where a metallic-roughness
+// material has them: a zero factor or a zero sheen colour is no layer, and other material types
+// ignore the fields.
+TEST(FeatureTable, ClearcoatSheenAndIridescenceOnlyWhereAPbrMaterialHasThem) {
     FlatScene box = flattenScene(loadDefaultScene());
     box.materials[0].type = MATERIAL_PBR;
     auto decide = [&] { return computeFeatures(box, IntegratorSettings{}); };
@@ -79,9 +80,13 @@ TEST(FeatureTable, ClearcoatAndSheenOnlyWhereAPbrMaterialHasThem) {
     EXPECT_FALSE(decide().sheen);
     box.materials[0].sheenColor = glm::vec3(0.0f, 0.1f, 0.0f);
     EXPECT_TRUE(decide().sheen);
+    EXPECT_FALSE(decide().iridescence);
+    box.materials[0].iridescence = 1.0f;
+    EXPECT_TRUE(decide().iridescence);
     box.materials[0].type = MATERIAL_DIFFUSE;
-    EXPECT_FALSE(decide().clearcoat || decide().sheen) << "only the full model has layers";
-    EXPECT_TRUE(FeatureSet::all(IntegratorSettings{}).clearcoat && FeatureSet::all(IntegratorSettings{}).sheen);
+    EXPECT_FALSE(decide().clearcoat || decide().sheen || decide().iridescence) << "only the full model has layers";
+    const FeatureSet all = FeatureSet::all(IntegratorSettings{});
+    EXPECT_TRUE(all.clearcoat && all.sheen && all.iridescence);
 }
 
 TEST(FeatureTable, AllCompilesEverySceneFeatureAndKeepsTheSwitches) {

@@ -1,6 +1,6 @@
 // glTF materials into the scene model (gltf_importer.h): the metallic-roughness factors, the
 // KHR_materials_* extensions (emissive_strength, ior, specular, transmission, volume,
-// diffuse_transmission, clearcoat, sheen, unlit), the
+// diffuse_transmission, clearcoat, sheen, iridescence, unlit), the
 // textures with their samplers and KHR_texture_transform, the images they use, and the glTF
 // default material for primitives without one.
 #include "scene/gltf/gltf_importer.h"
@@ -129,8 +129,20 @@ void GltfImporter::convertFactors(const tinygltf::Material& src, const std::stri
             fail(label + ": sheenColorFactor must be in [0, 1]");
         m.sheenRoughness = unit(number(*e, "sheenRoughnessFactor", 0.0, label), "sheenRoughnessFactor");
     }
-    // A coat or a sheen layers over whatever the base is: only the full model has the layers.
-    const bool layered = m.clearcoat > 0.0f || glm::any(glm::greaterThan(m.sheenColor, glm::vec3(0)));
+    if (const auto* e = extension(src, "KHR_materials_iridescence")) {
+        m.iridescence = unit(number(*e, "iridescenceFactor", 0.0, label), "iridescenceFactor");
+        m.iridescenceIor = static_cast<float>(number(*e, "iridescenceIor", 1.3, label));
+        m.iridescenceThicknessMinimum = static_cast<float>(number(*e, "iridescenceThicknessMinimum", 100.0, label));
+        m.iridescenceThicknessMaximum = static_cast<float>(number(*e, "iridescenceThicknessMaximum", 400.0, label));
+        if (!(m.iridescenceIor >= 1.0f && m.iridescenceIor < 10.0f))
+            fail(label + ": iridescenceIor " + std::to_string(m.iridescenceIor) + " must be in [1, 10)");
+        if (!(m.iridescenceThicknessMinimum >= 0.0f && m.iridescenceThicknessMaximum >= 0.0f &&
+                m.iridescenceThicknessMinimum < 1e6f && m.iridescenceThicknessMaximum < 1e6f))
+            fail(label + ": iridescence thicknesses must be in [0, 1e6) nm");
+    }
+    // A coat, a sheen or a film layers over whatever the base is: only the full model has them.
+    const bool layered =
+        m.clearcoat > 0.0f || glm::any(glm::greaterThan(m.sheenColor, glm::vec3(0))) || m.iridescence > 0.0f;
     const bool defaultSpecular = m.specularWeight == 1.0f && m.specular == glm::vec3(1.0f);
     if (layered) {
         m.type = MaterialType::Pbr;
@@ -205,6 +217,12 @@ void GltfImporter::convertTextures(const tinygltf::Material& src, const std::str
         extensionTexture(sheen, "sheenColorTexture", Texture::Encoding::Srgb, label + ": KHR_materials_sheen");
     m.sheenRoughnessTexture =
         extensionTexture(sheen, "sheenRoughnessTexture", Texture::Encoding::Linear, label + ": KHR_materials_sheen");
+    // KHR_materials_iridescence: the factor's texture in red, the thickness's in green (linear).
+    const tinygltf::Value* film = extension(src, "KHR_materials_iridescence");
+    m.iridescenceTexture =
+        extensionTexture(film, "iridescenceTexture", Texture::Encoding::Linear, label + ": KHR_materials_iridescence");
+    m.iridescenceThicknessTexture = extensionTexture(
+        film, "iridescenceThicknessTexture", Texture::Encoding::Linear, label + ": KHR_materials_iridescence");
     // A texture can make a "metal" vary in roughness or part-dielectric, and a "glass"
     // part-transmissive or of varying specular: only the full model covers those.
     if (m.metallicRoughnessTexture && m.type == MaterialType::Mirror) m.type = MaterialType::Pbr;

@@ -394,3 +394,47 @@ TEST(GltfLoaderMaterials, ClearcoatAndSheenAreRead) {
 
 } // namespace
 } // namespace pt::test::gltf
+
+namespace pt::test::gltf {
+namespace {
+
+// KHR_materials_iridescence: factor, film index, thickness range and both textures (linear); a
+// film on a metal keeps the full model (the plain-metal shortcut has no film); bad values fail.
+TEST(GltfLoaderMaterials, IridescenceIsRead) {
+    const std::string images = std::string(R"([{"uri": ")") + kOnePixelPng + R"("}])";
+    const pt::Scene s = loadText(texturedDocument(R"([
+      {"name": "soap", "pbrMetallicRoughness": {"metallicFactor": 1, "roughnessFactor": 0.1},
+       "extensions": {"KHR_materials_iridescence": {"iridescenceFactor": 0.9, "iridescenceIor": 1.8,
+         "iridescenceThicknessMinimum": 200, "iridescenceThicknessMaximum": 600,
+         "iridescenceTexture": {"index": 0}, "iridescenceThicknessTexture": {"index": 1}}}}
+    ])",
+        1, R"([{"source": 0}, {"source": 0}])", images, "[]"));
+    const pt::Material* soap = findMaterial(s, "soap");
+    ASSERT_TRUE(soap);
+    EXPECT_EQ(soap->type, pt::MaterialType::Pbr);
+    EXPECT_FLOAT_EQ(soap->iridescence, 0.9f);
+    EXPECT_FLOAT_EQ(soap->iridescenceIor, 1.8f);
+    EXPECT_FLOAT_EQ(soap->iridescenceThicknessMinimum, 200.0f);
+    EXPECT_FLOAT_EQ(soap->iridescenceThicknessMaximum, 600.0f);
+    ASSERT_TRUE(soap->iridescenceTexture && soap->iridescenceThicknessTexture);
+    EXPECT_EQ(s.textures.at(*soap->iridescenceTexture).encoding, pt::Texture::Encoding::Linear);
+    EXPECT_EQ(s.textures.at(*soap->iridescenceThicknessTexture).encoding, pt::Texture::Encoding::Linear);
+    EXPECT_TRUE(s.unsupported.empty()) << ::testing::PrintToString(s.unsupported);
+    // The extension's defaults: film index 1.3, 100 to 400 nm.
+    const pt::Scene d = loadText(materialDocument(
+        R"([{"name": "thin", "extensions": {"KHR_materials_iridescence": {"iridescenceFactor": 1}}}])", 1));
+    const pt::Material* thin = findMaterial(d, "thin");
+    ASSERT_TRUE(thin);
+    EXPECT_FLOAT_EQ(thin->iridescenceIor, 1.3f);
+    EXPECT_FLOAT_EQ(thin->iridescenceThicknessMinimum, 100.0f);
+    EXPECT_FLOAT_EQ(thin->iridescenceThicknessMaximum, 400.0f);
+    for (const char* bad :
+        {R"({"iridescenceFactor": 2})", R"({"iridescenceIor": 0.5})", R"({"iridescenceThicknessMaximum": -5})"})
+        EXPECT_THROW(loadText(materialDocument(
+                         std::string(R"([{"extensions": {"KHR_materials_iridescence": )") + bad + "}}]", 1)),
+            pt::SceneError)
+            << bad;
+}
+
+} // namespace
+} // namespace pt::test::gltf

@@ -130,6 +130,14 @@ Material layered(Material base, float clearcoat, float coatRoughness, glm::vec3 
     return base;
 }
 
+// A KHR_materials_iridescence film (1.4, 350 nm) over the whole Fresnel.
+Material iridescent(Material m) {
+    m.iridescence = 1.0f;
+    m.iridescenceIor = 1.4f;
+    m.iridescenceThicknessMaximum = 350.0f;
+    return m;
+}
+
 std::vector<Case> cases() {
     Material lowSpecular = pbr(0.5f, 0.0f, std::sqrt(0.5f));
     lowSpecular.ior = 1.3f;
@@ -159,6 +167,8 @@ std::vector<Case> cases() {
             layered(pbr(0.5f, 0.0f, 0.6f), 0.0f, 0.0f, {0.9f, 0.6f, 0.3f}, 0.5f), {0.9f, 0.3f, 0.05f}},
         {"pbr clearcoat 0.6 over sheen 1 (roughness 0.15) over a half metal",
             layered(pbr(0.7f, 0.5f, 0.4f), 0.6f, 0.3f, glm::vec3(1.0f), 0.15f), {0.7f, 0.15f}},
+        {"pbr iridescent half metal under a clearcoat",
+            iridescent(layered(pbr(0.7f, 0.5f, 0.4f), 0.5f, 0.3f, {}, 0.0f)), {0.8f, 0.2f}},
         {"pbr clearcoat and sheen over transmission with volume",
             layered(pbr(0.9f, 0.0f, 0.4f, 0.7f, false), 1.0f, 0.4f, glm::vec3(0.5f), 0.6f), {0.7f, -0.8f, -0.3f}, 1.5},
     };

@@ -245,6 +245,122 @@ TEST_F(PbrLayers, SmoothCoatIsADeltaLobeWithItsFresnelWeight) {
     }
 }
 
+// ---- KHR_materials_iridescence: the extension's thin-film Fresnel, written again here ----
+
+double schlick(double f0, double c) { return f0 + (1.0 - f0) * std::pow(1.0 - c, 5.0); }
+double iorToF0(double nt, double ni) { return std::pow((nt - ni) / (nt + ni), 2.0); }
+
+// The CIE sensitivities' Fourier transforms (Gaussian fits) at optical path difference opd nm,
+// as linear Rec. 709 RGB.
+glm::dvec3 sensitivity(double opd, glm::dvec3 shift) {
+    const double phase = 2.0 * M_PI * opd * 1e-9;
+    const double val[3] = {5.4856e-13, 4.4201e-13, 5.2481e-13}, pos[3] = {1.6810e+06, 1.7953e+06, 2.2084e+06},
+                 var[3] = {4.3278e+09, 9.3046e+09, 6.6121e+09};
+    double xyz[3];
+    for (int k = 0; k < 3; ++k)
+        xyz[k] = val[k] * std::sqrt(2.0 * M_PI * var[k]) * std::cos(pos[k] * phase + shift[k]) *
+                 std::exp(-phase * phase * var[k]);
+    xyz[0] += 9.7470e-14 * std::sqrt(2.0 * M_PI * 4.5282e+09) * std::cos(2.2399e+06 * phase + shift[0]) *
+              std::exp(-4.5282e+09 * phase * phase);
+    for (double& v : xyz) v /= 1.0685e-7;
+    return {3.2404542 * xyz[0] - 1.5371385 * xyz[1] - 0.4985314 * xyz[2],
+        -0.9692660 * xyz[0] + 1.8760108 * xyz[1] + 0.0415560 * xyz[2],
+        0.0556434 * xyz[0] - 0.2040259 * xyz[1] + 1.0572252 * xyz[2]};
+}
+
+// F_iridescence of the extension's implementation notes, air outside. (The notes write the path
+// difference with cos theta_1; the film's own angle, cos theta_2, is the physical one and the
+// one Belcour and Barla's code uses, and is used here and in the kernel.)
+glm::dvec3 thinFilm(double filmIor, double thickness, glm::dvec3 baseF0, double cos1) {
+    const double outside = 1.0;
+    const double sin2Sq = std::pow(outside / filmIor, 2.0) * (1.0 - cos1 * cos1);
+    const double cos2 = std::sqrt(1.0 - sin2Sq);
+    const double R12 = schlick(iorToF0(filmIor, outside), cos1), T121 = 1.0 - R12;
+    const double phi21 = M_PI - (filmIor < outside ? M_PI : 0.0);
+    glm::dvec3 I, R23, phi, baseIor;
+    for (int k = 0; k < 3; ++k) {
+        const double s = std::sqrt(baseF0[k]);
+        baseIor[k] = (1.0 + s) / (1.0 - s);
+        R23[k] = schlick(iorToF0(baseIor[k], filmIor), cos2);
+        phi[k] = phi21 + (baseIor[k] < filmIor ? M_PI : 0.0);
+    }
+    const double opd = 2.0 * filmIor * thickness * cos2;
+    for (int k = 0; k < 3; ++k) {
+        const double R123 = std::clamp(R12 * R23[k], 1e-5, 0.9999), r123 = std::sqrt(R123);
+        const double Rs = T121 * T121 * R23[k] / (1.0 - R123);
+        double Cm = Rs - T121, sum = R12 + Rs;
+        for (int m = 1; m <= 2; ++m) {
+            Cm *= r123;
+            sum += Cm * 2.0 * sensitivity(m * opd, double(m) * phi)[k];
+        }
+        I[k] = std::clamp(sum, 0.0, 1.0);
+    }
+    return I;
+}
+
+// Smooth materials whose only lobe is the specular reflection (black base, or metal): a sample's
+// weight times its probability is the Fresnel reflectance, here the film's, in RGB; a film of no
+// thickness leaves the base's own Fresnel.
+TEST_F(PbrLayers, IridescenceIsTheExtensionsThinFilmFresnel) {
+    auto film = [](Material m, float weight, float ior, float thickness) {
+        m.iridescence = weight;
+        m.iridescenceIor = ior;
+        m.iridescenceThicknessMaximum = thickness;
+        return m;
+    };
+    Material dielectric = layeredPbr(0.0f, 1.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f); // ior 1.5, F0 0.04
+    Material metal = dielectric;
+    metal.metallic = 1.0f;
+    metal.baseColor = glm::vec3(0.9f, 0.6f, 0.3f);
+    struct Case {
+        uint32_t index;
+        const char* name;
+        glm::dvec3 f0;
+        double weight, ior, thickness;
+    };
+    std::vector<Case> cases = {
+        {add(film(dielectric, 1.0f, 1.33f, 400.0f)), "dielectric under a 400 nm film of 1.33", glm::dvec3(0.04), 1.0,
+            1.33, 400.0},
+        {add(film(dielectric, 1.0f, 1.8f, 250.0f)), "dielectric under a 250 nm film of 1.8", glm::dvec3(0.04), 1.0, 1.8,
+            250.0},
+        {add(film(metal, 1.0f, 1.33f, 400.0f)), "metal under a 400 nm film of 1.33", glm::dvec3(0.9, 0.6, 0.3), 1.0,
+            1.33, 400.0},
+        {add(film(metal, 0.5f, 1.5f, 600.0f)), "metal, half weight, 600 nm film of 1.5", glm::dvec3(0.9, 0.6, 0.3), 0.5,
+            1.5, 600.0},
+        {add(film(metal, 1.0f, 1.5f, 0.0f)), "metal under a film of no thickness", glm::dvec3(0.9, 0.6, 0.3), 1.0, 1.0,
+            0.0},
+    };
+    upload();
+    for (const Case& c : cases)
+        for (double cosO : {0.95, 0.7, 0.4, 0.15}) {
+            const glm::vec3 wo = direction(cosO, 0.0);
+            const auto s = sample(c.index, wo);
+            ASSERT_GT(s[0].w, 0.0f);
+            const glm::dvec3 got = glm::dvec3(s[kSamples]) * double(s[0].w);
+            glm::dvec3 without; // the base's own Fresnel: exact for the dielectric, Schlick for the metal
+            for (int k = 0; k < 3; ++k) without[k] = schlick(c.f0[k], cosO);
+            if (c.f0.x == 0.04) {
+                const double eta = 1.5, sin2T = (1 - cosO * cosO) / (eta * eta), cosT = std::sqrt(1 - sin2T);
+                const double rs = (cosO - eta * cosT) / (cosO + eta * cosT),
+                             rp = (eta * cosO - cosT) / (eta * cosO + cosT);
+                without = glm::dvec3(0.5 * (rs * rs + rp * rp));
+            }
+            const glm::dvec3 expected =
+                c.thickness == 0.0 ? without : glm::mix(without, thinFilm(c.ior, c.thickness, c.f0, cosO), c.weight);
+            for (int k = 0; k < 3; ++k)
+                EXPECT_NEAR(got[k], expected[k], 2e-4 + 2e-3 * expected[k])
+                    << c.name << ", cos_o " << cosO << ", channel " << k;
+        }
+}
+
+Material iridescentWhite() {
+    Material m = layeredPbr(1.0f, 1.0f, 0.0f, 0.0f, 0.0f, 0.0f);
+    m.iridescence = 1.0f;
+    m.iridescenceIor = 1.8f;
+    m.iridescenceThicknessMaximum = 300.0f;
+    return m;
+}
+
 // White furnaces: a white base under a coat and a sheen reflects at most what arrives and, away
 // from grazing, most of it (what single-scattering GGX and the layers' albedo scaling lose).
 TEST_F(PbrLayers, WhiteFurnaceLayeredStackNeverGainsAndLosesLittle) {
@@ -263,6 +379,7 @@ TEST_F(PbrLayers, WhiteFurnaceLayeredStackNeverGainsAndLosesLittle) {
         {layeredPbr(1.0f, 1.0f, 0.0f, 0.0f, 1.0f, 0.5f), "sheen over white", 0.8},
         {layeredPbr(1.0f, 1.0f, 1.0f, 0.3f, 1.0f, 0.2f), "coat over sheen over white", 0.8},
         {layeredPbr(1.0f, 1.0f, 1.0f, 0.0f, 1.0f, 1.0f), "smooth coat over rough sheen over white", 0.76},
+        {iridescentWhite(), "iridescent film (1.8, 300 nm) over white", 0.75},
     };
     std::vector<uint32_t> index;
     for (const Level& l : levels) index.push_back(add(l.material));

@@ -30,7 +30,7 @@ TEST_P(GltfSamples, LoadsWithoutWarningsAndRendersFinite) {
 
 INSTANTIATE_TEST_SUITE_P(Khronos, GltfSamples,
     ::testing::Values("TextureTransformTest", "TextureCoordinateTest", "TextureSettingsTest", "EmissiveStrengthTest",
-        "SpecularTest", "TransmissionRoughnessTest", "ClearCoatTest"));
+        "SpecularTest", "TransmissionRoughnessTest", "ClearCoatTest", "IridescenceSuzanne"));
 
 } // namespace
 } // namespace pt::test
