@@ -4,13 +4,13 @@ screenshot (the Khronos sample viewer's look: a visual check, not a reference im
 
 Each model is rendered under a studio environment made here (a dim grey gradient with two
 softboxes and a top light, so coats and sheens have something to reflect), at the framing camera
-`pt render` gives a scene without one, and placed left of screenshot/screenshot.jpg scaled to the
+`pt render` gives a scene without one (at the screenshot's aspect), and placed left of screenshot/screenshot.jpg scaled to the
 same height; the sheet's caption says the model, the spp, the seconds and any loader warning.
 
   /usr/bin/python3 bench/gltf_contact_sheets.py [--model-dir DIR] [--pt build/pt] [--spp 256]
       [--size 360] [--out bench/images] [MODEL ...]
-  (default models: ClearCoatTest SheenCloth, from ../shared/gltf-samples; needs python3-numpy,
-   python3-pil)
+  (default models: ClearCoatTest SheenCloth IridescenceSuzanne AnisotropyStrengthTest, from
+   ../shared/gltf-samples; needs python3-numpy, python3-pil)
 """
 import argparse
 import pathlib
@@ -82,8 +82,10 @@ def caption_bar(width, lines):
 def sheet(model_dir, model, args, work):
     gltf = model_dir / model / "glTF" / f"{model}.gltf"
     out_exr = work / f"{model}.exr"
+    shot = Image.open(model_dir / model / "screenshot" / "screenshot.jpg").convert("RGB")
+    width = max(1, round(args.size * shot.width / shot.height))  # the screenshot's aspect
     cmd = [str(args.pt), "render", str(gltf), "--env", str(work / "studio.exr"), "--spp", str(args.spp),
-           "--width", str(args.size), "--height", str(args.size), "-o", str(out_exr)]
+           "--width", str(width), "--height", str(args.size), "-o", str(out_exr)]
     run = subprocess.run(cmd, capture_output=True, text=True)
     if run.returncode != 0:
         sys.exit(f"{model}: pt failed:\n{run.stderr}")
@@ -91,7 +93,6 @@ def sheet(model_dir, model, args, work):
     summary = next((line for line in run.stderr.splitlines() if "wrote" in line), "")
     seconds = summary.split(" spp in ")[1].split(" s,")[0] if " spp in " in summary else "?"
     ours = Image.open(work / f"{model}.png").convert("RGB")
-    shot = Image.open(model_dir / model / "screenshot" / "screenshot.jpg").convert("RGB")
     shot = shot.resize((max(1, round(shot.width * ours.height / shot.height)), ours.height), Image.LANCZOS)
     body = Image.new("RGB", (ours.width + shot.width + 8, ours.height), (255, 255, 255))
     body.paste(ours, (0, 0))
@@ -110,7 +111,8 @@ def sheet(model_dir, model, args, work):
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("models", nargs="*", default=["ClearCoatTest", "SheenCloth"])
+    parser.add_argument("models", nargs="*",
+                        default=["ClearCoatTest", "SheenCloth", "IridescenceSuzanne", "AnisotropyStrengthTest"])
     parser.add_argument("--model-dir", type=pathlib.Path, default=ROOT.parent / "shared" / "gltf-samples")
     parser.add_argument("--pt", type=pathlib.Path, default=ROOT / "build" / "pt")
     parser.add_argument("--spp", type=int, default=256)

@@ -1,4 +1,4 @@
-// The isotropic GGX (Trowbridge-Reitz) microfacet distribution: normal distribution D, Smith
+// The GGX (Trowbridge-Reitz) microfacet distribution: normal distribution D, Smith
 // masking G1 and height-correlated masking-shadowing G2 (Heitz 2014, "Understanding the
 // Masking-Shadowing Function in Microfacet-Based BRDFs"), and sampling of the normals visible
 // from wo with the spherical-cap method of Dupuy and Benyoub 2023 ("Sampling Visible GGX
@@ -7,24 +7,33 @@
 // to that side first). alpha = perceptual roughness^2, at least MIN_ROUGH_ALPHA.
 //
 // The formulas are written so the 1 / cos(theta) factors cancel analytically: with
-// L(w) = sqrt(z^2 + alpha^2 (x^2 + y^2)) (= |z| (1 + 2 Lambda(w))), G1(w) = 2 |z| / (|z| + L(w))
+// L(w) = sqrt(z^2 + alpha.x^2 x^2 + alpha.y^2 y^2) (= |z| (1 + 2 Lambda(w))), G1(w) = 2 |z| / (|z| + L(w))
 // and G2 = 2 |zo| |zi| / (L(wo) |zi| + L(wi) |zo|) stay finite at grazing angles.
 #ifndef PT_BSDF_GGX_GLSL
 #define PT_BSDF_GGX_GLSL
 #include "common/math.glsl"
 
-// D(wm) = alpha^2 / (pi (x^2 + y^2 + alpha^2 z^2)^2): the sum x^2 + y^2 avoids the cancellation
-// of 1 - z^2 near the normal, where D peaks at 1 / (pi alpha^2).
-float ggxD(vec3 wm, float alpha) {
-    float a2 = alpha * alpha;
-    float t = dot(wm.xy, wm.xy) + a2 * wm.z * wm.z;
-    return t > 0.0 ? a2 / (PI * t * t) : 0.0;
+// Anisotropic in general (KHR_materials_anisotropy): alpha.x is the roughness along the local x
+// axis, alpha.y along y; the isotropic forms (a float alpha) are the same with both equal.
+
+// D(wm) = 1 / (pi ax ay (x^2 / ax^2 + y^2 / ay^2 + z^2)^2), multiplied through by (ax ay)^2 so
+// nothing divides by a small alpha; isotropic, alpha^2 / (pi (x^2 + y^2 + alpha^2 z^2)^2), whose
+// sum x^2 + y^2 avoids the cancellation of 1 - z^2 near the normal, where D peaks at
+// 1 / (pi alpha^2).
+float ggxD(vec3 wm, vec2 alpha) {
+    float axy = alpha.x * alpha.y;
+    vec3 f = vec3(alpha.y * wm.x, alpha.x * wm.y, axy * wm.z);
+    float t = dot(f, f);
+    return t > 0.0 ? axy * axy * axy / (PI * t * t) : 0.0;
 }
 
 // |z| (1 + 2 Lambda(w)), the Smith term without its 1 / cos(theta).
-float ggxSmithL(vec3 w, float alpha) { return sqrt(w.z * w.z + alpha * alpha * dot(w.xy, w.xy)); }
+float ggxSmithL(vec3 w, vec2 alpha) {
+    vec2 s = alpha * w.xy;
+    return sqrt(w.z * w.z + dot(s, s));
+}
 
-float ggxG1(vec3 w, float alpha) {
+float ggxG1(vec3 w, vec2 alpha) {
     float z = abs(w.z);
     float denom = z + ggxSmithL(w, alpha);
     return denom > 0.0 ? 2.0 * z / denom : 0.0;
@@ -32,18 +41,16 @@ float ggxG1(vec3 w, float alpha) {
 
 // Height-correlated masking-shadowing divided by |wo.z|: G2 / |cos(theta_o)|. Reflection and
 // transmission both need G2 over cos(theta_o), and this form is finite when wo is grazing.
-float ggxG2OverCosO(vec3 wo, vec3 wi, float alpha) {
+float ggxG2OverCosO(vec3 wo, vec3 wi, vec2 alpha) {
     float denom = ggxSmithL(wo, alpha) * abs(wi.z) + ggxSmithL(wi, alpha) * abs(wo.z);
     return denom > 0.0 ? 2.0 * abs(wi.z) / denom : 0.0;
 }
-
-float ggxG2(vec3 wo, vec3 wi, float alpha) { return ggxG2OverCosO(wo, wi, alpha) * abs(wo.z); }
 
 // A microfacet normal distributed as the normals visible from wo (wo.z >= 0):
 // D_wo(wm) = G1(wo) max(0, wo . wm) D(wm) / wo.z. Stretch wo to the alpha = 1 configuration,
 // where the visible normals are the sum of wo and a uniform point on the spherical cap
 // z > -wo.z of the unit sphere, then unstretch.
-vec3 ggxSampleVisibleNormal(vec3 wo, float alpha, vec2 u) {
+vec3 ggxSampleVisibleNormal(vec3 wo, vec2 alpha, vec2 u) {
     vec3 woStd = normalize(vec3(alpha * wo.xy, wo.z));
     float phi = TWO_PI * u.x;
     float z = (1.0 - u.y) * (1.0 + woStd.z) - woStd.z;
@@ -55,7 +62,7 @@ vec3 ggxSampleVisibleNormal(vec3 wo, float alpha, vec2 u) {
 }
 
 // The density of ggxSampleVisibleNormal, per solid angle of wm. G1(wo) / wo.z = 2 / (wo.z + L(wo)).
-float ggxVisibleNormalPdf(vec3 wo, vec3 wm, float alpha) {
+float ggxVisibleNormalPdf(vec3 wo, vec3 wm, vec2 alpha) {
     float cosOM = dot(wo, wm);
     if (cosOM <= 0.0 || wm.z <= 0.0) return 0.0;
     float denom = wo.z + ggxSmithL(wo, alpha);
@@ -64,7 +71,7 @@ float ggxVisibleNormalPdf(vec3 wo, vec3 wm, float alpha) {
 
 // Solid-angle pdf of wi = reflect(wo) about a visible normal: D_wo(wm) / (4 |wo . wm|)
 // (the Jacobian of the half-vector map, Walter et al. 2007 eq. 14).
-float ggxReflectionPdf(vec3 wo, vec3 wi, float alpha) {
+float ggxReflectionPdf(vec3 wo, vec3 wi, vec2 alpha) {
     vec3 h = wo + wi;
     float len2 = dot(h, h);
     if (wo.z <= 0.0 || wi.z <= 0.0 || !(len2 > 0.0)) return 0.0;
@@ -75,11 +82,22 @@ float ggxReflectionPdf(vec3 wo, vec3 wi, float alpha) {
 
 // G2(wo, wi) / G1(wo), the weight f cos / pdf of a direction made from a visible normal (the D,
 // Fresnel and Jacobian factors cancel): |zi| (zo + L(wo)) / (L(wo) |zi| + L(wi) zo), wo.z > 0.
-float ggxG2OverG1(vec3 wo, vec3 wi, float alpha) {
+float ggxG2OverG1(vec3 wo, vec3 wi, vec2 alpha) {
     float zi = abs(wi.z), lo = ggxSmithL(wo, alpha);
     float denom = lo * zi + ggxSmithL(wi, alpha) * wo.z;
     return denom > 0.0 ? zi * (wo.z + lo) / denom : 0.0;
 }
+
+// The isotropic forms.
+float ggxD(vec3 wm, float alpha) { return ggxD(wm, vec2(alpha)); }
+float ggxSmithL(vec3 w, float alpha) { return ggxSmithL(w, vec2(alpha)); }
+float ggxG1(vec3 w, float alpha) { return ggxG1(w, vec2(alpha)); }
+float ggxG2OverCosO(vec3 wo, vec3 wi, float alpha) { return ggxG2OverCosO(wo, wi, vec2(alpha)); }
+float ggxG2(vec3 wo, vec3 wi, float alpha) { return ggxG2OverCosO(wo, wi, vec2(alpha)) * abs(wo.z); }
+vec3 ggxSampleVisibleNormal(vec3 wo, float alpha, vec2 u) { return ggxSampleVisibleNormal(wo, vec2(alpha), u); }
+float ggxVisibleNormalPdf(vec3 wo, vec3 wm, float alpha) { return ggxVisibleNormalPdf(wo, wm, vec2(alpha)); }
+float ggxReflectionPdf(vec3 wo, vec3 wi, float alpha) { return ggxReflectionPdf(wo, wi, vec2(alpha)); }
+float ggxG2OverG1(vec3 wo, vec3 wi, float alpha) { return ggxG2OverG1(wo, wi, vec2(alpha)); }
 
 // Mirror reflection of wo about wm (both pointing away from the surface).
 vec3 reflectAbout(vec3 wo, vec3 wm) { return 2.0 * dot(wo, wm) * wm - wo; }

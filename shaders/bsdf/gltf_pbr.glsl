@@ -51,7 +51,30 @@ const float PBR_MIN_SPECULAR_ESTIMATE = 0.02;
 
 float average(vec3 c) { return (c.x + c.y + c.z) * (1.0 / 3.0); }
 bool pbrThin(GpuMaterial m) { return (m.flags & MATERIAL_FLAG_THIN_WALLED) != 0u; }
-bool pbrSmooth(GpuMaterial m) { return m.alpha <= 0.0; }
+// The specular lobes' GGX alpha along the local x and y axes. KHR_materials_anisotropy raises it
+// along x, which the caller has turned to the anisotropy direction (alignAnisotropy), to
+// mix(alpha, 1, strength^2); both stay at least MIN_ROUGH_ALPHA there, so a smooth material made
+// anisotropic becomes a rough one.
+vec2 pbrAlpha(GpuMaterial m) {
+    if (!HAS_ANISOTROPY || m.anisotropy <= 0.0) return vec2(m.alpha);
+    return max(vec2(mix(m.alpha, 1.0, m.anisotropy * m.anisotropy), m.alpha), vec2(MIN_ROUGH_ALPHA));
+}
+bool pbrSmooth(GpuMaterial m) { return pbrAlpha(m).x <= 0.0; }
+
+// What a glTF material needs of the local frame the integrator builds at a hit: its x axis along
+// the anisotropy direction (in the tangent plane of the frame's normal), and the coat's normal in
+// it. Every other material leaves both alone.
+void orientMaterialFrame(inout Frame frame, inout GpuMaterial m) {
+    if (HAS_ANISOTROPY && m.anisotropy > 0.0) {
+        vec3 t = m.anisotropyDirection - frame.n * dot(frame.n, m.anisotropyDirection);
+        float len2 = dot(t, t);
+        if (len2 > 0.0 && !isinf(len2)) {
+            frame.t = t * inversesqrt(len2);
+            frame.b = cross(frame.n, frame.t);
+        }
+    }
+    orientClearcoat(m, frame);
+}
 
 // KHR_materials_iridescence's film (shaders/bsdf/thin_film.glsl) over a base of reflectance f0
 // at normal incidence, mixed into the base's Fresnel F by the iridescence weight. The film sees
@@ -160,7 +183,8 @@ vec3 pbrEvalUpper(GpuMaterial m, vec3 wo, vec3 wi, float eta) {
                  pbrBaseShare(m, wo.z, eta) * pbrBaseShare(m, wi.z, eta);
         if (!pbrSmooth(m)) {
             vec3 wm = normalize(wo + wi);
-            f += pbrSpecularFresnel(m, dot(wo, wm), eta) * (ggxD(wm, m.alpha) * ggxG2OverCosO(wo, wi, m.alpha) * 0.25);
+            f += pbrSpecularFresnel(m, dot(wo, wm), eta) *
+                 (ggxD(wm, pbrAlpha(m)) * ggxG2OverCosO(wo, wi, pbrAlpha(m)) * 0.25);
         }
         return f;
     }
@@ -173,12 +197,12 @@ vec3 pbrEvalUpper(GpuMaterial m, vec3 wo, vec3 wi, float eta) {
     if (pbrThin(m)) {
         vec3 wr = mirrorThroughSurface(wi);
         vec3 wm = normalize(wo + wr);
-        return f +
-               tint * pbrBaseShare(m, dot(wo, wm), eta) * (ggxD(wm, m.alpha) * ggxG2OverCosO(wo, wr, m.alpha) * 0.25);
+        return f + tint * pbrBaseShare(m, dot(wo, wm), eta) *
+                       (ggxD(wm, pbrAlpha(m)) * ggxG2OverCosO(wo, wr, pbrAlpha(m)) * 0.25);
     }
     vec3 wm;
     if (!refractionHalfVector(wo, wi, eta, wm)) return f;
-    return f + tint * pbrBaseShare(m, dot(wo, wm), eta) * ggxTransmissionNoFresnel(wo, wi, wm, eta, m.alpha);
+    return f + tint * pbrBaseShare(m, dot(wo, wm), eta) * ggxTransmissionNoFresnel(wo, wi, wm, eta, pbrAlpha(m));
 }
 
 // The pdf over the base's non-delta lobes and the layers' (wo.z > 0, eta from pbrSide; `front`:
@@ -187,17 +211,17 @@ float pbrPdfUpper(GpuMaterial m, vec3 wo, vec3 wi, float eta, bool front) {
     PbrLobeProbabilities p = pbrLobeProbabilities(m, wo, eta, front);
     if (wi.z > 0.0) {
         float pdf = p.diffuse * lambertPdf(wo, wi);
-        if (!pbrSmooth(m)) pdf += p.specular * ggxReflectionPdf(wo, wi, m.alpha);
+        if (!pbrSmooth(m)) pdf += p.specular * ggxReflectionPdf(wo, wi, pbrAlpha(m));
         if (p.coat > 0.0) pdf += p.coat * coatPdf(m, wo, wi);
         if (p.sheen > 0.0) pdf += p.sheen * uniformHemispherePdf(wi.z);
         return pdf;
     }
     float pdf = p.diffuseTransmission > 0.0 ? p.diffuseTransmission * lambertPdf(wo, mirrorThroughSurface(wi)) : 0.0;
     if (pbrSmooth(m) || p.transmission <= 0.0) return pdf;
-    if (pbrThin(m)) return pdf + p.transmission * ggxReflectionPdf(wo, mirrorThroughSurface(wi), m.alpha);
+    if (pbrThin(m)) return pdf + p.transmission * ggxReflectionPdf(wo, mirrorThroughSurface(wi), pbrAlpha(m));
     vec3 wm;
     if (!refractionHalfVector(wo, wi, eta, wm)) return pdf;
-    return pdf + p.transmission * ggxVisibleNormalPdf(wo, wm, m.alpha) * refractionJacobian(wo, wi, wm, eta);
+    return pdf + p.transmission * ggxVisibleNormalPdf(wo, wm, pbrAlpha(m)) * refractionJacobian(wo, wi, wm, eta);
 }
 
 vec3 pbrEval(GpuMaterial m, vec3 wo, vec3 wi) {
@@ -255,7 +279,7 @@ BsdfSample pbrSample(GpuMaterial m, Frame frame, vec3 wo, float uLobe, vec2 u) {
                 vec3 weight = pbrSpecularFresnel(m, woUp.z, eta) / p.specular;
                 return pbrDeltaSample(m, frame, wo, mirror * vec3(1.0, 1.0, side), weight, p.specular, 1.0);
             }
-            wi = reflectAbout(woUp, ggxSampleVisibleNormal(woUp, m.alpha, u));
+            wi = reflectAbout(woUp, ggxSampleVisibleNormal(woUp, pbrAlpha(m), u));
             if (wi.z <= 0.0) return s;
         } else if (uLobe < p.specular + p.transmission) {
             bool thin = pbrThin(m);
@@ -271,7 +295,7 @@ BsdfSample pbrSample(GpuMaterial m, Frame frame, vec3 wo, float uLobe, vec2 u) {
                 return pbrDeltaSample(
                     m, frame, wo, wi, tint * share / (eta * eta * p.transmission), p.transmission, eta * eta);
             }
-            vec3 wm = ggxSampleVisibleNormal(woUp, m.alpha, u);
+            vec3 wm = ggxSampleVisibleNormal(woUp, pbrAlpha(m), u);
             if (thin) {
                 wi = mirrorThroughSurface(reflectAbout(woUp, wm));
                 if (wi.z >= 0.0) return s;

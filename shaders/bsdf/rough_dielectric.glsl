@@ -26,9 +26,12 @@ float dielectricSide(float ior, inout vec3 wo, inout vec3 wi) {
 
 // G2 / cos(theta_o) D (wo . wm) |d wm / d wi| / eta^2: the GGX BTDF times cos(theta_i) without
 // its Fresnel factor (Walter et al. eq. 21); wo.z > 0 > wi.z, wm from refractionHalfVector.
-float ggxTransmissionNoFresnel(vec3 wo, vec3 wi, vec3 wm, float eta, float alpha) {
+float ggxTransmissionNoFresnel(vec3 wo, vec3 wi, vec3 wm, float eta, vec2 alpha) {
     return ggxD(wm, alpha) * ggxG2OverCosO(wo, wi, alpha) * dot(wo, wm) * refractionJacobian(wo, wi, wm, eta) /
            (eta * eta);
+}
+float ggxTransmissionNoFresnel(vec3 wo, vec3 wi, vec3 wm, float eta, float alpha) {
+    return ggxTransmissionNoFresnel(wo, wi, wm, eta, vec2(alpha));
 }
 
 // f * |cos(theta_i)| and the pdf of sampling wi, at once: they share the half vector, Fresnel and

@@ -37,7 +37,8 @@ vec3 thinFilmSensitivity(float opd, vec3 shift) {
     const vec3 position = vec3(1.6810e+06, 1.7953e+06, 2.2084e+06);
     const vec3 variance = vec3(4.3278e+09, 9.3046e+09, 6.6121e+09);
     vec3 xyz = amplitude * sqrt(TWO_PI * variance) * cos(position * phase + shift) * exp(-phase * phase * variance);
-    xyz.x += 9.7470e-14 * sqrt(TWO_PI * 4.5282e+09) * cos(2.2399e+06 * phase + shift.x) * exp(-4.5282e+09 * phase * phase);
+    xyz.x +=
+        9.7470e-14 * sqrt(TWO_PI * 4.5282e+09) * cos(2.2399e+06 * phase + shift.x) * exp(-4.5282e+09 * phase * phase);
     return XYZ_TO_REC709 * (xyz / 1.0685e-7);
 }
 

@@ -30,7 +30,7 @@ void turnToBackSide(inout SurfaceInteraction si) {
     si.pSmooth = si.p;
 }
 
-bool needsSurfaceCoordinates() { return HAS_TEXTURES || HAS_PROCEDURAL || HAS_NORMAL_MAPS; }
+bool needsSurfaceCoordinates() { return HAS_TEXTURES || HAS_PROCEDURAL || HAS_NORMAL_MAPS || HAS_ANISOTROPY; }
 
 // A tangent basis for surfaces whose uvs are degenerate (absent or collapsed): any frame works
 // for colour lookups, and normal maps then rotate about an arbitrary but consistent axis.
@@ -123,7 +123,7 @@ SurfaceInteraction makeInteraction(Ray ray, Hit hit) {
             si.dpdv = (duv1.x * dp2 - duv2.x * dp1) * inv;
         }
         if (!(abs(det) > 1e-20) || !allFinite(si.dpdu) || !allFinite(si.dpdv)) fallbackTangents(si);
-        if (HAS_NORMAL_MAPS && (tri.flags & TRIANGLE_FLAG_TANGENTS) != 0u) {
+        if ((HAS_NORMAL_MAPS || HAS_ANISOTROPY) && (tri.flags & TRIANGLE_FLAG_TANGENTS) != 0u) {
             // The file's tangent frame (glTF TANGENT): dp/du along the tangent, and dp/dv down
             // the image, i.e. against the bitangent cross(n, t) * w, as normal maps read it.
             GpuTriangleTangents tg = TangentRef(scene.tangents).v[hit.primitive];

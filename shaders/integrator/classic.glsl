@@ -120,7 +120,7 @@ vec3 traceClassic(Ray ray, Rng rng) {
         vec3 wo = -ray.direction;
         // Shaded from whichever side the ray arrived, as the course's tracer did.
         Frame frame = makeFrame(dot(si.ns, wo) < 0.0 ? -si.ns : si.ns);
-        orientClearcoat(mat, frame);
+        orientMaterialFrame(frame, mat);
         if (dot(si.ng, wo) < 0.0) si.ng = -si.ng;
         vec3 woLocal = toLocal(frame, wo);
         L += beta * mat.ambient * scene.ambientLight;

@@ -159,7 +159,7 @@ bool pathStep(inout PathState st) {
         bool transmissive = isTransmissiveSurface(mat);
         if (!transmissive && !si.frontFace && !doubleSided) return false;
         Frame frame = makeFrame(transmissive || si.frontFace ? si.ns : -si.ns);
-        orientClearcoat(mat, frame);
+        orientMaterialFrame(frame, mat);
         if (!transmissive && !si.frontFace) turnToBackSide(si);
         vec3 woLocal = toLocal(frame, wo);
         if (HAS_MIRROR && mat.type == MATERIAL_MIRROR && !isRoughConductor(mat)) {

@@ -11,24 +11,33 @@ bool hasAnyTexture(GpuMaterial m) {
                m.specularWeightTexture & m.transmissionTexture & m.diffuseTransmissionTexture &
                m.diffuseTransmissionColorTexture & m.clearcoatTexture & m.clearcoatRoughnessTexture &
                m.clearcoatNormalTexture & m.sheenColorTexture & m.sheenRoughnessTexture & m.iridescenceTexture &
-               m.iridescenceThicknessTexture) != NO_TEXTURE;
+               m.iridescenceThicknessTexture & m.anisotropyTexture) != NO_TEXTURE;
 }
 
 // Shading normal from a tangent-space normal map: +x along dp/du, +y up the image (towards
 // decreasing v), as glTF and OpenGL-style maps store it, or, with `yDown`, along dp/dv as the
 // course's maps are (their official images match only that way). Following dp/dv rather than
 // a fixed handedness keeps mirrored uv layouts right, as generated tangents do.
-vec3 normalFromMap(SurfaceInteraction si, vec3 texel, float scale, bool yDown) {
+// The tangent frame at a hit: t along dp/du in the shading normal's plane, b up the image (or
+// along dp/dv with `yDown`). False where dp/du has no length there.
+bool tangentFrame(SurfaceInteraction si, bool yDown, out vec3 t, out vec3 b) {
     vec3 n = si.ns;
-    vec3 t = si.dpdu - n * dot(n, si.dpdu);
+    t = si.dpdu - n * dot(n, si.dpdu);
+    b = vec3(0.0);
     float tLen2 = dot(t, t);
-    if (!(tLen2 > 0.0) || isinf(tLen2)) return n;
+    if (!(tLen2 > 0.0) || isinf(tLen2)) return false;
     t *= inversesqrt(tLen2);
     // Bitangent up the image; mirrored uv layouts flip it with dp/dv, as generated tangents do.
-    vec3 b = si.dpdv - n * dot(n, si.dpdv) - t * dot(t, si.dpdv);
+    b = si.dpdv - n * dot(n, si.dpdv) - t * dot(t, si.dpdv);
     float bLen2 = dot(b, b);
     b = (bLen2 > 0.0 && !isinf(bLen2)) ? b * inversesqrt(bLen2) : cross(n, t);
     if (!yDown) b = -b;
+    return true;
+}
+
+vec3 normalFromMap(SurfaceInteraction si, vec3 texel, float scale, bool yDown) {
+    vec3 n = si.ns, t, b;
+    if (!tangentFrame(si, yDown, t, b)) return n;
     vec3 m = texel * 2.0 - 1.0;
     m.xy *= scale;
     vec3 mapped = m.x * t + m.y * b + m.z * n;
@@ -91,7 +100,30 @@ void applyClearcoatTextures(inout GpuMaterial m, SurfaceInteraction si) {
     }
 }
 
+// KHR_materials_anisotropy's direction at a hit, in world space: the tangent (dp/du; glTF
+// tangent space, y up the image) turned by the rotation, or the texture's rg direction turned by
+// it, whose b scales the strength. Set before the base's normal map tilts si.ns; the frame the
+// BSDF works in takes the direction's part in its own tangent plane (orientMaterialFrame).
+void applyAnisotropy(inout GpuMaterial m, SurfaceInteraction si) {
+    vec2 d = vec2(1.0, 0.0);
+    if ((HAS_TEXTURES || HAS_PROCEDURAL) && m.anisotropyTexture != NO_TEXTURE) {
+        vec3 c = evalTexture(m.anisotropyTexture, si.uv, si.p).rgb;
+        vec2 v = c.rg * 2.0 - 1.0;
+        d = dot(v, v) > 0.0 ? normalize(v) : d;
+        m.anisotropy *= c.b;
+    }
+    float cr = cos(m.anisotropyRotation), sr = sin(m.anisotropyRotation);
+    d = vec2(cr * d.x - sr * d.y, sr * d.x + cr * d.y);
+    vec3 t, b;
+    if (!tangentFrame(si, false, t, b)) {
+        t = si.dpdu;
+        b = cross(si.ns, t);
+    }
+    m.anisotropyDirection = d.x * t + d.y * b;
+}
+
 void applyTextures(inout GpuMaterial m, inout SurfaceInteraction si) {
+    if (HAS_ANISOTROPY && m.anisotropy > 0.0) applyAnisotropy(m, si);
     if (!(HAS_TEXTURES || HAS_PROCEDURAL)) return;
     if (!hasAnyTexture(m)) return;
     if (m.baseColorTexture != NO_TEXTURE) {

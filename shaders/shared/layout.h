@@ -286,10 +286,16 @@ struct GpuMaterial {
     float iridescenceThickness;        // nm: the maximum in the buffer; applyTextures sets it at a hit
     uint iridescenceTexture;           // r x iridescence
     uint iridescenceThicknessTexture;  // g: mix(minimum, maximum, g)
-    uint pad6;
-    uint pad7;
+    // KHR_materials_anisotropy: the specular lobes rougher along a direction in the tangent plane.
+    float anisotropy;       // strength (0: isotropic)
+    uint anisotropyTexture; // rg: direction in tangent space ([0, 1] -> [-1, 1]), b x strength
+    // The direction (world space), which applyTextures sets at a hit from the tangents, the
+    // rotation and the texture; (0, 0, 0) in the buffer. alignAnisotropy turns the BSDF's local x
+    // axis to it.
+    vec3 anisotropyDirection;
+    float anisotropyRotation; // radians, counter-clockwise from the tangent
 };
-PT_CHECK_SIZE(GpuMaterial, 304);
+PT_CHECK_SIZE(GpuMaterial, 320);
 
 // A texture: an image in the texel buffer (with filter, wrap, encoding and a uv transform) or
 // a course procedural pattern.

@@ -44,7 +44,7 @@ void main() {
         // The local frame is the canonical one: wo = push.normal, z = shading normal.
         GpuMaterial m = sceneMaterials.v[push.materialIndex];
         Frame frame = makeFrame(vec3(0.0, 0.0, 1.0));
-        orientClearcoat(m, frame); // the coat's normal: the shading normal, as at a hit
+        orientMaterialFrame(frame, m); // the coat's normal: the shading normal, as at a hit
         BsdfSample bs = surfaceSample(m, frame, normalize(push.normal), rng1(rng, 2u), u);
         outputs.v[i] = vec4(bs.wi, bs.valid ? bs.pdf : 0.0);
         outputs.v[push.count + i] = vec4(bs.weight, bs.valid ? 1.0 : 0.0);
@@ -60,7 +60,8 @@ void main() {
         outputs.v[i] = evalTexture(push.materialIndex, at.xy, at.xyz);
     } else if (push.mode == TEST_MODE_BSDF_PDF) {
         GpuMaterial m = sceneMaterials.v[push.materialIndex];
-        orientClearcoat(m, makeFrame(vec3(0.0, 0.0, 1.0)));
+        Frame frame = makeFrame(vec3(0.0, 0.0, 1.0));
+        orientMaterialFrame(frame, m);
         vec3 wo = normalize(push.normal);
         vec3 wi = normalize(Vec4Ref(push.inputs).v[i].xyz);
         // What light sampling uses (the fused routine) in x and w; the separate routines in y, z.

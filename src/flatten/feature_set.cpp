@@ -89,6 +89,12 @@ bool usesIridescence(const FlatScene& scene) {
     return false;
 }
 
+bool usesAnisotropy(const FlatScene& scene) {
+    for (const auto& m : scene.materials)
+        if (m.type == MATERIAL_PBR && m.anisotropy > 0.0f) return true;
+    return false;
+}
+
 bool usesEmission(const FlatScene& scene) {
     for (const auto& m : scene.materials) {
         if (m.emissiveTexture != NO_TEXTURE || (m.flags & MATERIAL_FLAG_UNLIT) != 0u) return true;

@@ -55,6 +55,8 @@ gpu::GpuMaterial toGpu(const Material& m) {
     g.iridescenceIor = m.iridescenceIor;
     g.iridescenceThicknessMinimum = m.iridescenceThicknessMinimum;
     g.iridescenceThickness = m.iridescenceThicknessMaximum;
+    g.anisotropy = m.anisotropy;
+    g.anisotropyRotation = m.anisotropyRotation;
     if (m.type == MaterialType::Pbr && m.thinWalled) g.flags |= MATERIAL_FLAG_THIN_WALLED;
     auto slot = [](const std::optional<uint32_t>& t) { return t ? *t : NO_TEXTURE; };
     g.baseColorTexture = slot(m.baseColorTexture);
@@ -70,6 +72,7 @@ gpu::GpuMaterial toGpu(const Material& m) {
     g.sheenRoughnessTexture = slot(m.sheenRoughnessTexture);
     g.iridescenceTexture = slot(m.iridescenceTexture);
     g.iridescenceThicknessTexture = slot(m.iridescenceThicknessTexture);
+    g.anisotropyTexture = slot(m.anisotropyTexture);
     g.metallicRoughnessTexture = slot(m.metallicRoughnessTexture);
     g.normalTexture = slot(m.normalTexture);
     g.emissiveTexture = slot(m.emissiveTexture);
@@ -313,8 +316,11 @@ FlatScene flattenScene(const Scene& scene, const BvhBuildOptions& bvhOptions) {
     std::vector<gpu::GpuTriangle> triangles;
     std::vector<gpu::GpuTriangleShading> shading;
     std::vector<gpu::GpuTriangleTangents> tangents;
+    // The file's tangents matter to normal maps and to anisotropy's direction.
     const bool anyTangents = std::any_of(scene.meshes.begin(), scene.meshes.end(), [&](const Mesh& m) {
-        return !m.tangents.empty() && m.material < scene.materials.size() && scene.materials[m.material].normalTexture;
+        if (m.tangents.empty() || m.material >= scene.materials.size()) return false;
+        const Material& material = scene.materials[m.material];
+        return material.normalTexture.has_value() || material.anisotropy > 0.0f;
     });
     std::vector<Aabb> bounds;
     triangles.reserve(scene.triangleCount());
@@ -363,8 +369,9 @@ FlatScene flattenScene(const Scene& scene, const BvhBuildOptions& bvhOptions) {
                 if (!mesh.tangents.empty()) {
                     tg = {mesh.tangents[t.x], mesh.tangents[t.y], mesh.tangents[t.z]};
                     // Zero tangents mark invalid input: fall back to the triangle's own frame.
+                    const Material& material = scene.materials[mesh.material];
                     if (tg.t0.w != 0.0f && tg.t1.w != 0.0f && tg.t2.w != 0.0f &&
-                        scene.materials[mesh.material].normalTexture)
+                        (material.normalTexture || material.anisotropy > 0.0f))
                         tri.flags |= TRIANGLE_FLAG_TANGENTS;
                 }
                 tangents.push_back(tg);

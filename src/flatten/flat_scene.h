@@ -14,11 +14,11 @@ namespace pt {
 
 // Every texture slot of a material (NO_TEXTURE where unused), for the passes that look at all
 // of them: which texture kinds a scene uses, which indices must exist.
-inline std::array<uint32_t, 16> materialTextureSlots(const gpu::GpuMaterial& m) {
+inline std::array<uint32_t, 17> materialTextureSlots(const gpu::GpuMaterial& m) {
     return {m.baseColorTexture, m.specularTexture, m.metallicRoughnessTexture, m.normalTexture, m.emissiveTexture,
         m.specularWeightTexture, m.transmissionTexture, m.diffuseTransmissionTexture, m.diffuseTransmissionColorTexture,
         m.clearcoatTexture, m.clearcoatRoughnessTexture, m.clearcoatNormalTexture, m.sheenColorTexture,
-        m.sheenRoughnessTexture, m.iridescenceTexture, m.iridescenceThicknessTexture};
+        m.sheenRoughnessTexture, m.iridescenceTexture, m.iridescenceThicknessTexture, m.anisotropyTexture};
 }
 
 // The environment as the kernel samples it (shaders/lights/environment_light.glsl).

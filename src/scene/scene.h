@@ -62,6 +62,9 @@ struct Material {
     float iridescence = 0.0f;
     float iridescenceIor = 1.3f;
     float iridescenceThicknessMinimum = 100.0f, iridescenceThicknessMaximum = 400.0f;
+    // Pbr: KHR_materials_anisotropy (strength, and the direction's rotation from the tangent).
+    float anisotropy = 0.0f;
+    float anisotropyRotation = 0.0f;
 
     // Textures: indices into Scene::textures. Colour slots multiply the factor above.
     std::optional<uint32_t> baseColorTexture;                // rgb: baseColor, a: opacity
@@ -78,6 +81,7 @@ struct Material {
     std::optional<uint32_t> sheenRoughnessTexture;           // a multiplies sheenRoughness
     std::optional<uint32_t> iridescenceTexture;              // r multiplies iridescence
     std::optional<uint32_t> iridescenceThicknessTexture;     // g: thickness from minimum to maximum
+    std::optional<uint32_t> anisotropyTexture;               // rg: direction, b multiplies anisotropy
     std::optional<uint32_t> metallicRoughnessTexture;
     std::optional<uint32_t> normalTexture; // tangent-space normal map, or heights if bumpMap
     std::optional<uint32_t> emissiveTexture;

@@ -1,6 +1,6 @@
 // glTF materials into the scene model (gltf_importer.h): the metallic-roughness factors, the
 // KHR_materials_* extensions (emissive_strength, ior, specular, transmission, volume,
-// diffuse_transmission, clearcoat, sheen, iridescence, unlit), the
+// diffuse_transmission, clearcoat, sheen, iridescence, anisotropy, unlit), the
 // textures with their samplers and KHR_texture_transform, the images they use, and the glTF
 // default material for primitives without one.
 #include "scene/gltf/gltf_importer.h"
@@ -140,9 +140,15 @@ void GltfImporter::convertFactors(const tinygltf::Material& src, const std::stri
                 m.iridescenceThicknessMinimum < 1e6f && m.iridescenceThicknessMaximum < 1e6f))
             fail(label + ": iridescence thicknesses must be in [0, 1e6) nm");
     }
-    // A coat, a sheen or a film layers over whatever the base is: only the full model has them.
-    const bool layered =
-        m.clearcoat > 0.0f || glm::any(glm::greaterThan(m.sheenColor, glm::vec3(0))) || m.iridescence > 0.0f;
+    if (const auto* e = extension(src, "KHR_materials_anisotropy")) {
+        m.anisotropy = unit(number(*e, "anisotropyStrength", 0.0, label), "anisotropyStrength");
+        m.anisotropyRotation = static_cast<float>(number(*e, "anisotropyRotation", 0.0, label));
+        if (!std::isfinite(m.anisotropyRotation)) fail(label + ": anisotropyRotation must be finite");
+    }
+    // A coat, a sheen, a film or anisotropy changes whatever the base is: only the full model has
+    // them.
+    const bool layered = m.clearcoat > 0.0f || glm::any(glm::greaterThan(m.sheenColor, glm::vec3(0))) ||
+                         m.iridescence > 0.0f || m.anisotropy > 0.0f;
     const bool defaultSpecular = m.specularWeight == 1.0f && m.specular == glm::vec3(1.0f);
     if (layered) {
         m.type = MaterialType::Pbr;
@@ -223,6 +229,9 @@ void GltfImporter::convertTextures(const tinygltf::Material& src, const std::str
         extensionTexture(film, "iridescenceTexture", Texture::Encoding::Linear, label + ": KHR_materials_iridescence");
     m.iridescenceThicknessTexture = extensionTexture(
         film, "iridescenceThicknessTexture", Texture::Encoding::Linear, label + ": KHR_materials_iridescence");
+    // KHR_materials_anisotropy: direction in red and green, strength in blue (linear).
+    m.anisotropyTexture = extensionTexture(extension(src, "KHR_materials_anisotropy"), "anisotropyTexture",
+        Texture::Encoding::Linear, label + ": KHR_materials_anisotropy");
     // A texture can make a "metal" vary in roughness or part-dielectric, and a "glass"
     // part-transmissive or of varying specular: only the full model covers those.
     if (m.metallicRoughnessTexture && m.type == MaterialType::Mirror) m.type = MaterialType::Pbr;

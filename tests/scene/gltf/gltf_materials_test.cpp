@@ -438,3 +438,32 @@ TEST(GltfLoaderMaterials, IridescenceIsRead) {
 
 } // namespace
 } // namespace pt::test::gltf
+
+namespace pt::test::gltf {
+namespace {
+
+// KHR_materials_anisotropy: strength, rotation and the texture (linear); it keeps the full model
+// (the plain-metal shortcut is isotropic); strength outside [0, 1] fails.
+TEST(GltfLoaderMaterials, AnisotropyIsRead) {
+    const std::string images = std::string(R"([{"uri": ")") + kOnePixelPng + R"("}])";
+    const pt::Scene s = loadText(texturedDocument(R"([
+      {"name": "brushed", "pbrMetallicRoughness": {"metallicFactor": 1, "roughnessFactor": 0.3},
+       "extensions": {"KHR_materials_anisotropy": {"anisotropyStrength": 0.6, "anisotropyRotation": 1.25,
+         "anisotropyTexture": {"index": 0}}}}
+    ])",
+        1, R"([{"source": 0}])", images, "[]"));
+    const pt::Material* brushed = findMaterial(s, "brushed");
+    ASSERT_TRUE(brushed);
+    EXPECT_EQ(brushed->type, pt::MaterialType::Pbr);
+    EXPECT_FLOAT_EQ(brushed->anisotropy, 0.6f);
+    EXPECT_FLOAT_EQ(brushed->anisotropyRotation, 1.25f);
+    ASSERT_TRUE(brushed->anisotropyTexture);
+    EXPECT_EQ(s.textures.at(*brushed->anisotropyTexture).encoding, pt::Texture::Encoding::Linear);
+    EXPECT_TRUE(s.unsupported.empty()) << ::testing::PrintToString(s.unsupported);
+    EXPECT_THROW(
+        loadText(materialDocument(R"([{"extensions": {"KHR_materials_anisotropy": {"anisotropyStrength": 1.5}}}])", 1)),
+        pt::SceneError);
+}
+
+} // namespace
+} // namespace pt::test::gltf

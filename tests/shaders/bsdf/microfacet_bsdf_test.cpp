@@ -130,6 +130,12 @@ Material layered(Material base, float clearcoat, float coatRoughness, glm::vec3 
     return base;
 }
 
+// KHR_materials_anisotropy: rougher along the local x axis.
+Material anisotropic(Material m, float strength) {
+    m.anisotropy = strength;
+    return m;
+}
+
 // A KHR_materials_iridescence film (1.4, 350 nm) over the whole Fresnel.
 Material iridescent(Material m) {
     m.iridescence = 1.0f;
@@ -169,6 +175,9 @@ std::vector<Case> cases() {
             layered(pbr(0.7f, 0.5f, 0.4f), 0.6f, 0.3f, glm::vec3(1.0f), 0.15f), {0.7f, 0.15f}},
         {"pbr iridescent half metal under a clearcoat",
             iridescent(layered(pbr(0.7f, 0.5f, 0.4f), 0.5f, 0.3f, {}, 0.0f)), {0.8f, 0.2f}},
+        {"pbr anisotropic half metal (strength 0.7 along x)", anisotropic(pbr(0.6f, 0.5f, 0.4f), 0.7f), {0.8f, 0.2f}},
+        {"pbr anisotropic thin-walled transmission", anisotropic(pbr(0.9f, 0.0f, 0.3f, 1.0f, true), 0.5f),
+            {0.6f, -0.4f}},
         {"pbr clearcoat and sheen over transmission with volume",
             layered(pbr(0.9f, 0.0f, 0.4f, 0.7f, false), 1.0f, 0.4f, glm::vec3(0.5f), 0.6f), {0.7f, -0.8f, -0.3f}, 1.5},
     };
@@ -492,9 +501,9 @@ TEST_F(MicrofacetBsdf, ReflectionLobesAreReciprocal) {
     // Directions above the surface, away from grazing.
     std::vector<glm::vec4> dirs;
     for (int i = 0; i < 12; ++i) dirs.emplace_back(direction(0.15 + 0.8 * ((i * 7) % 12) / 11.0, 0.7 + 2.1 * i), 0.0f);
-    // Rough conductor, rough dielectric (reflection), opaque PBR, half-metal PBR, and the three
-    // opaque layered ones (clearcoat, sheen, both).
-    for (uint32_t index : {0u, 2u, 4u, 5u, 12u, 13u, 14u}) {
+    // Rough conductor, rough dielectric (reflection), opaque PBR, half-metal PBR, the three
+    // opaque layered ones (clearcoat, sheen, both), the iridescent and the anisotropic one.
+    for (uint32_t index : {0u, 2u, 4u, 5u, 12u, 13u, 14u, 15u, 16u}) {
         std::vector<std::vector<glm::vec4>> f;
         for (const glm::vec4& wo : dirs) f.push_back(evaluate(index, glm::vec3(wo), dirs));
         for (size_t a = 0; a < dirs.size(); ++a)

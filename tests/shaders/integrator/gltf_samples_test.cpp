@@ -30,7 +30,7 @@ TEST_P(GltfSamples, LoadsWithoutWarningsAndRendersFinite) {
 
 INSTANTIATE_TEST_SUITE_P(Khronos, GltfSamples,
     ::testing::Values("TextureTransformTest", "TextureCoordinateTest", "TextureSettingsTest", "EmissiveStrengthTest",
-        "SpecularTest", "TransmissionRoughnessTest", "ClearCoatTest", "IridescenceSuzanne"));
+        "SpecularTest", "TransmissionRoughnessTest", "ClearCoatTest", "IridescenceSuzanne", "AnisotropyStrengthTest"));
 
 } // namespace
 } // namespace pt::test
