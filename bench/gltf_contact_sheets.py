@@ -4,7 +4,7 @@ screenshot (the Khronos sample viewer's look: a visual check, not a reference im
 
 Each model is rendered under a studio environment made here (a dim grey gradient with two
 softboxes and a top light, so coats and sheens have something to reflect), at the framing camera
-`pt render` gives a scene without one (at the screenshot's aspect), and placed left of screenshot/screenshot.jpg scaled to the
+`pt render` gives a scene without one (at the screenshot's aspect), and placed left of screenshot/screenshot.jpg (or .png) scaled to the
 same height; the sheet's caption says the model, the spp, the seconds and any loader warning.
 
   /usr/bin/python3 bench/gltf_contact_sheets.py [--model-dir DIR] [--pt build/pt] [--spp 256]
@@ -82,7 +82,10 @@ def caption_bar(width, lines):
 def sheet(model_dir, model, args, work):
     gltf = model_dir / model / "glTF" / f"{model}.gltf"
     out_exr = work / f"{model}.exr"
-    shot = Image.open(model_dir / model / "screenshot" / "screenshot.jpg").convert("RGB")
+    shots = sorted((model_dir / model / "screenshot").glob("screenshot.*"))
+    if not shots:
+        sys.exit(f"{model}: no screenshot/screenshot.* in {model_dir / model}")
+    shot = Image.open(shots[0]).convert("RGB")
     width = max(1, round(args.size * shot.width / shot.height))  # the screenshot's aspect
     cmd = [str(args.pt), "render", str(gltf), "--env", str(work / "studio.exr"), "--spp", str(args.spp),
            "--width", str(width), "--height", str(args.size), "-o", str(out_exr)]
