@@ -56,6 +56,9 @@ const uint DIM_FIRST_BOUNCE = 4u;
 // 1D: the camera sample's time for motion blur. Far above any bounce's dimensions, so adding
 // motion to a scene leaves every other dimension (and a static scene's image) unchanged.
 const uint DIM_TIME = 0x7fffffffu;
+// 1D: the wavelength of a path that meets a dispersive material (shaders/common/spectrum.glsl),
+// likewise apart.
+const uint DIM_WAVELENGTH = 0x7ffffffeu;
 const uint DIM_BSDF_LOBE = 0u;      // 1D, offsets inside one vertex's block
 const uint DIM_BSDF_DIRECTION = 1u; // 2D
 const uint DIM_LIGHT_SELECT = 3u;   // 1D

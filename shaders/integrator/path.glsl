@@ -20,6 +20,7 @@
 #include "integrator/ray_counts.glsl"
 #include "integrator/classic.glsl"
 #include "integrator/caustic_partition.glsl"
+#include "common/spectrum.glsl"
 
 // Dielectrics (smooth or rough, and PBR transmission with a volume) absorb inside, behind
 // their geometric front face.
@@ -69,6 +70,7 @@ struct PathState {
     // tracer can follow back (camera -> receiver -> receivers and delta bounces). Emission found
     // after one or more delta bounces is the light tracer's.
     bool lightTraceable;
+    float wavelength; // nm, from the first dispersive vertex on (common/spectrum.glsl); 0 before
 };
 
 PathState pathStart(Ray ray, Rng rng) {
@@ -83,6 +85,7 @@ PathState pathStart(Ray ray, Rng rng) {
     st.deltaRun = 0u;
     st.prevDelta = true; // the camera ray counts as specular: emitters it sees are added fully
     st.lightTraceable = false;
+    st.wavelength = 0.0;
     return st;
 }
 
@@ -141,6 +144,17 @@ bool pathStep(inout PathState st) {
             st.lightTraceable = lightTracingActive() && receiver;
         else if (!receiver && !isSpecularChainMaterial(mat))
             st.lightTraceable = false;
+    }
+
+    // Dispersive glass: the path takes a wavelength at its first such vertex (weighted by its
+    // RGB, common/spectrum.glsl) and keeps it; the material's index is the one at it. Emission
+    // found at this vertex came before the wavelength and is not weighted.
+    if (HAS_DISPERSION && mat.dispersion > 0.0) {
+        if (st.wavelength == 0.0) {
+            st.wavelength = mix(WAVELENGTH_MIN, WAVELENGTH_MAX, rng1(st.rng, DIM_WAVELENGTH));
+            st.beta *= wavelengthWeight(st.wavelength);
+        }
+        mat.ior = dispersedIor(mat.ior, mat.dispersion, st.wavelength);
     }
 
     uint depth = st.depth;

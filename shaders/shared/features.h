@@ -51,6 +51,8 @@
         v ? "iridescence" : nullptr, "glTF KHR_materials_iridescence (thin-film interference in the Fresnel term)")    \
     PT_FEATURE(anisotropy, flag, HAS_ANISOTROPY, 37, true, true, f.pbr&& usesAnisotropy(scene),                        \
         v ? "anisotropy" : nullptr, "glTF KHR_materials_anisotropy (anisotropic GGX along a tangent direction)")       \
+    PT_FEATURE(dispersion, flag, HAS_DISPERSION, 38, true, true, usesDispersion(scene), v ? "dispersion" : nullptr,    \
+        "glTF KHR_materials_dispersion (a wavelength per path through dispersive glass)")                              \
     PT_FEATURE(microfacet, flag, HAS_MICROFACET, 23, true, true, usesRoughConductorOrDielectric(scene),                \
         v ? "microfacet" : nullptr, "GGX-rough conductors or dielectrics")                                             \
     PT_FEATURE(absorption, flag, HAS_ABSORPTION, 5, true, true, usesMaterialFlag(scene, MATERIAL_FLAG_ABSORBING),      \

@@ -294,8 +294,12 @@ struct GpuMaterial {
     // axis to it.
     vec3 anisotropyDirection;
     float anisotropyRotation; // radians, counter-clockwise from the tangent
+    float dispersion;         // KHR_materials_dispersion: 20 / Abbe number (0: none); shaders/common/spectrum.glsl
+    uint pad8;
+    uint pad9;
+    uint pad10;
 };
-PT_CHECK_SIZE(GpuMaterial, 320);
+PT_CHECK_SIZE(GpuMaterial, 336);
 
 // A texture: an image in the texel buffer (with filter, wrap, encoding and a uv transform) or
 // a course procedural pattern.

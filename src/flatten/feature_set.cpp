@@ -95,6 +95,12 @@ bool usesAnisotropy(const FlatScene& scene) {
     return false;
 }
 
+bool usesDispersion(const FlatScene& scene) {
+    for (const auto& m : scene.materials)
+        if ((m.type == MATERIAL_DIELECTRIC || m.type == MATERIAL_PBR) && m.dispersion > 0.0f) return true;
+    return false;
+}
+
 bool usesEmission(const FlatScene& scene) {
     for (const auto& m : scene.materials) {
         if (m.emissiveTexture != NO_TEXTURE || (m.flags & MATERIAL_FLAG_UNLIT) != 0u) return true;
@@ -146,11 +152,12 @@ bool neeUseful(const FlatScene& scene, const IntegratorSettings& s, const Featur
 
 // Light tracing pays only where caustics can be seen directly: a smooth (delta) mirror, conductor or
 // dielectric (a rough one ends the specular chain, and the path tracer has those paths), a receiver
-// and an area emitter. Left to the path tracer: absorbing interiors, cut-outs and moving
-// objects (the light path does not model them).
+// and an area emitter. Left to the path tracer: absorbing interiors, cut-outs, moving objects and
+// dispersive glass (the light path does not model them).
 bool lightTracingPays(const FlatScene& scene, const IntegratorSettings& s, const FeatureSet& f) {
     return s.lightTracing && !f.classic && hasLightOfType(scene, {LIGHT_TRIANGLE, LIGHT_SPHERE}) &&
-           usesDeltaMaterial(scene) && usesCausticReceiver(scene) && !f.absorption && !f.alpha && !f.motion;
+           usesDeltaMaterial(scene) && usesCausticReceiver(scene) && !f.absorption && !f.alpha && !f.motion &&
+           !f.dispersion;
 }
 
 uint32_t nodeFormatOf(const FlatScene& scene) {

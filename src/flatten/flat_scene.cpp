@@ -57,6 +57,7 @@ gpu::GpuMaterial toGpu(const Material& m) {
     g.iridescenceThickness = m.iridescenceThicknessMaximum;
     g.anisotropy = m.anisotropy;
     g.anisotropyRotation = m.anisotropyRotation;
+    g.dispersion = m.dispersion;
     if (m.type == MaterialType::Pbr && m.thinWalled) g.flags |= MATERIAL_FLAG_THIN_WALLED;
     auto slot = [](const std::optional<uint32_t>& t) { return t ? *t : NO_TEXTURE; };
     g.baseColorTexture = slot(m.baseColorTexture);

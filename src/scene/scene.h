@@ -65,6 +65,8 @@ struct Material {
     // Pbr: KHR_materials_anisotropy (strength, and the direction's rotation from the tangent).
     float anisotropy = 0.0f;
     float anisotropyRotation = 0.0f;
+    // Dielectric and Pbr transmission: KHR_materials_dispersion, 20 / Abbe number (0: none).
+    float dispersion = 0.0f;
 
     // Textures: indices into Scene::textures. Colour slots multiply the factor above.
     std::optional<uint32_t> baseColorTexture;                // rgb: baseColor, a: opacity

@@ -89,6 +89,21 @@ TEST(FeatureTable, ClearcoatSheenAndIridescenceOnlyWhereAPbrMaterialHasThem) {
     EXPECT_TRUE(all.clearcoat && all.sheen && all.iridescence);
 }
 
+// Dispersion is compiled in where a dielectric or a glTF transmission has it, and then light
+// tracing, which does not carry a wavelength, leaves the caustics to the path tracer.
+TEST(FeatureTable, DispersionOnlyWhereGlassHasItAndWithoutLightTracing) {
+    FlatScene box = flattenScene(loadDefaultScene());
+    box.materials[0].type = MATERIAL_DIELECTRIC;
+    box.materials[0].alpha = 0.0f;
+    EXPECT_FALSE(computeFeatures(box, IntegratorSettings{}).dispersion);
+    EXPECT_TRUE(computeFeatures(box, IntegratorSettings{}).lightTracing);
+    box.materials[0].dispersion = 0.5f;
+    EXPECT_TRUE(computeFeatures(box, IntegratorSettings{}).dispersion);
+    EXPECT_FALSE(computeFeatures(box, IntegratorSettings{}).lightTracing);
+    box.materials[0].type = MATERIAL_DIFFUSE;
+    EXPECT_FALSE(computeFeatures(box, IntegratorSettings{}).dispersion);
+}
+
 TEST(FeatureTable, AllCompilesEverySceneFeatureAndKeepsTheSwitches) {
     IntegratorSettings s;
     s.mis = false;

@@ -1,6 +1,6 @@
 // glTF materials into the scene model (gltf_importer.h): the metallic-roughness factors, the
 // KHR_materials_* extensions (emissive_strength, ior, specular, transmission, volume,
-// diffuse_transmission, clearcoat, sheen, iridescence, anisotropy, unlit), the
+// diffuse_transmission, clearcoat, sheen, iridescence, anisotropy, dispersion, unlit), the
 // textures with their samplers and KHR_texture_transform, the images they use, and the glTF
 // default material for primitives without one.
 #include "scene/gltf/gltf_importer.h"
@@ -144,6 +144,14 @@ void GltfImporter::convertFactors(const tinygltf::Material& src, const std::stri
         m.anisotropy = unit(number(*e, "anisotropyStrength", 0.0, label), "anisotropyStrength");
         m.anisotropyRotation = static_cast<float>(number(*e, "anisotropyRotation", 0.0, label));
         if (!std::isfinite(m.anisotropyRotation)) fail(label + ": anisotropyRotation must be finite");
+    }
+    // KHR_materials_dispersion (20 / Abbe number): the dielectric's or the transmission's index
+    // varies with wavelength (shaders/common/spectrum.glsl).
+    if (const auto* e = extension(src, "KHR_materials_dispersion")) {
+        const double dispersion = number(*e, "dispersion", 0.0, label);
+        if (!(dispersion >= 0.0 && dispersion <= 1000.0))
+            fail(label + ": dispersion " + std::to_string(dispersion) + " must be in [0, 1000]");
+        m.dispersion = static_cast<float>(dispersion);
     }
     // A coat, a sheen, a film or anisotropy changes whatever the base is: only the full model has
     // them.

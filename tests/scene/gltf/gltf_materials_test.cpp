@@ -467,3 +467,33 @@ TEST(GltfLoaderMaterials, AnisotropyIsRead) {
 
 } // namespace
 } // namespace pt::test::gltf
+
+namespace pt::test::gltf {
+namespace {
+
+// KHR_materials_dispersion: 20 / Abbe number, kept on the dielectric shortcut (transmission 1
+// with a volume) and on the full model; negative values fail.
+TEST(GltfLoaderMaterials, DispersionIsRead) {
+    const pt::Scene s = loadText(materialDocument(R"([
+      {"name": "flint", "pbrMetallicRoughness": {"metallicFactor": 0},
+       "extensions": {"KHR_materials_transmission": {"transmissionFactor": 1},
+        "KHR_materials_volume": {"thicknessFactor": 1}, "KHR_materials_dispersion": {"dispersion": 0.6}}},
+      {"name": "tinted", "pbrMetallicRoughness": {"metallicFactor": 0, "roughnessFactor": 0.2},
+       "extensions": {"KHR_materials_transmission": {"transmissionFactor": 0.5},
+        "KHR_materials_volume": {"thicknessFactor": 1}, "KHR_materials_dispersion": {"dispersion": 1.5}}}
+    ])",
+        2));
+    const pt::Material* flint = findMaterial(s, "flint");
+    const pt::Material* tinted = findMaterial(s, "tinted");
+    ASSERT_TRUE(flint && tinted);
+    EXPECT_EQ(flint->type, pt::MaterialType::Dielectric);
+    EXPECT_FLOAT_EQ(flint->dispersion, 0.6f);
+    EXPECT_EQ(tinted->type, pt::MaterialType::Pbr);
+    EXPECT_FLOAT_EQ(tinted->dispersion, 1.5f);
+    EXPECT_TRUE(s.unsupported.empty()) << ::testing::PrintToString(s.unsupported);
+    EXPECT_THROW(loadText(materialDocument(R"([{"extensions": {"KHR_materials_dispersion": {"dispersion": -1}}}])", 1)),
+        pt::SceneError);
+}
+
+} // namespace
+} // namespace pt::test::gltf
