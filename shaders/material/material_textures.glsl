@@ -146,10 +146,13 @@ void applyTextures(inout GpuMaterial m, inout SurfaceInteraction si) {
         m.diffuseTransmissionColor *= evalTexture(m.diffuseTransmissionColorTexture, si.uv, si.p).rgb;
     if (m.metallicRoughnessTexture != NO_TEXTURE) {
         vec4 c = evalTexture(m.metallicRoughnessTexture, si.uv, si.p);
-        // alpha = roughness^2, so the roughness channel scales sqrt(alpha).
-        float alpha = m.alpha * c.g * c.g;
+        // alpha = roughness^2, so the roughness channel scales sqrt(alpha); a specular-glossiness
+        // texture's alpha is glossiness instead.
+        float roughness = 1.0 - m.glossiness * c.a;
+        bool glossy = (m.flags & MATERIAL_FLAG_GLOSSINESS) != 0u;
+        float alpha = glossy ? roughness * roughness : m.alpha * c.g * c.g;
         m.alpha = alpha >= MIN_ROUGH_ALPHA ? min(alpha, 1.0) : 0.0;
-        m.metallic *= c.b;
+        if (!glossy) m.metallic *= c.b;
     }
     if (m.emissiveTexture != NO_TEXTURE) m.emission *= evalTexture(m.emissiveTexture, si.uv, si.p).rgb;
     if (HAS_CLEARCOAT) applyClearcoatTextures(m, si);

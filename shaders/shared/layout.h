@@ -57,6 +57,7 @@ using uint64_t = std::uint64_t;
 #define MATERIAL_FLAG_THIN_WALLED 512u    // PBR transmission without KHR_materials_volume: no refraction bend
 #define MATERIAL_FLAG_NORMAL_Y_DOWN 2048u // normal map +y along +v (down the image): the course's maps
 #define MATERIAL_FLAG_CLASSIC_PHONG 1024u // classic integrator: the course's Blinn-Phong with classicDiffuse/Specular
+#define MATERIAL_FLAG_GLOSSINESS 4096u    // metallicRoughnessTexture's alpha is glossiness (glTF specular-glossiness)
 
 // ---- Textures (GpuTexture) ----
 #define NO_TEXTURE 0xffffffffu
@@ -295,7 +296,7 @@ struct GpuMaterial {
     vec3 anisotropyDirection;
     float anisotropyRotation; // radians, counter-clockwise from the tangent
     float dispersion;         // KHR_materials_dispersion: 20 / Abbe number (0: none); shaders/common/spectrum.glsl
-    uint pad8;
+    float glossiness;         // MATERIAL_FLAG_GLOSSINESS: roughness = 1 - glossiness x texture alpha
     uint pad9;
     uint pad10;
 };

@@ -58,6 +58,8 @@ gpu::GpuMaterial toGpu(const Material& m) {
     g.anisotropy = m.anisotropy;
     g.anisotropyRotation = m.anisotropyRotation;
     g.dispersion = m.dispersion;
+    g.glossiness = m.glossiness;
+    if (m.glossinessTexture) g.flags |= MATERIAL_FLAG_GLOSSINESS;
     if (m.type == MaterialType::Pbr && m.thinWalled) g.flags |= MATERIAL_FLAG_THIN_WALLED;
     auto slot = [](const std::optional<uint32_t>& t) { return t ? *t : NO_TEXTURE; };
     g.baseColorTexture = slot(m.baseColorTexture);

@@ -67,6 +67,10 @@ struct Material {
     float anisotropyRotation = 0.0f;
     // Dielectric and Pbr transmission: KHR_materials_dispersion, 20 / Abbe number (0: none).
     float dispersion = 0.0f;
+    // glTF KHR_materials_pbrSpecularGlossiness: metallicRoughnessTexture holds glossiness in its
+    // alpha (roughness = 1 - glossiness x alpha) instead of roughness and metallic.
+    bool glossinessTexture = false;
+    float glossiness = 1.0f;
 
     // Textures: indices into Scene::textures. Colour slots multiply the factor above.
     std::optional<uint32_t> baseColorTexture;                // rgb: baseColor, a: opacity

@@ -192,8 +192,8 @@ void GltfImporter::noteUnsupportedExtensions() {
     static const std::set<std::string> supported = {"KHR_materials_emissive_strength", "KHR_materials_ior",
         "KHR_materials_specular", "KHR_materials_transmission", "KHR_materials_volume", "KHR_materials_variants",
         "KHR_materials_diffuse_transmission", "KHR_materials_clearcoat", "KHR_materials_sheen",
-        "KHR_materials_iridescence", "KHR_materials_anisotropy", "KHR_materials_dispersion", "KHR_materials_unlit",
-        "KHR_lights_punctual", "KHR_texture_transform"};
+        "KHR_materials_iridescence", "KHR_materials_anisotropy", "KHR_materials_dispersion",
+        "KHR_materials_pbrSpecularGlossiness", "KHR_materials_unlit", "KHR_lights_punctual", "KHR_texture_transform"};
     for (const auto& e : model_.extensionsUsed)
         if (!supported.count(e)) unsupported("extension " + e);
 }

@@ -67,6 +67,7 @@ private:
     void convertMaterials();
     void convertFactors(const tinygltf::Material& src, const std::string& label, Material& m);
     void convertTextures(const tinygltf::Material& src, const std::string& label, Material& m);
+    void convertSpecularGlossiness(const tinygltf::Material& src, const std::string& label, Material& m);
     static int wrap(int mode, const std::string& where, const GltfImporter& self);
     std::optional<uint32_t> extensionTexture(
         const tinygltf::Value* ext, const char* key, Texture::Encoding encoding, const std::string& where);

@@ -65,6 +65,7 @@ void GltfImporter::convertMaterials() {
 
         convertFactors(src, label, m);
         convertTextures(src, label, m);
+        if (extension(src, "KHR_materials_pbrSpecularGlossiness")) convertSpecularGlossiness(src, label, m);
         scene_.materials.push_back(m);
     }
 }
@@ -176,6 +177,45 @@ void GltfImporter::convertFactors(const tinygltf::Material& src, const std::stri
         m.unlit = true;
         m.type = MaterialType::Diffuse;
     }
+}
+
+// KHR_materials_pbrSpecularGlossiness (archived by Khronos, still in files people have): it takes
+// the place of the metallic-roughness factors. Its model is a Lambertian diffuse under a GGX
+// specular of F0 = specularFactor, roughness 1 - glossiness, which is the metallic-roughness
+// model's dielectric with metallic 0, ior 1.5 (F0 0.04) and KHR_materials_specular's colour
+// specularFactor / 0.04 (F0 is that product, shaders/bsdf/gltf_pbr.glsl). Its textures: diffuse
+// (sRGB, alpha = opacity) as the base colour; specularGlossiness's sRGB rgb as the specular
+// colour and its alpha as glossiness (MATERIAL_FLAG_GLOSSINESS).
+void GltfImporter::convertSpecularGlossiness(const tinygltf::Material& src, const std::string& label, Material& m) {
+    const tinygltf::Value& e = *extension(src, "KHR_materials_pbrSpecularGlossiness");
+    const std::string where = label + ": KHR_materials_pbrSpecularGlossiness";
+    glm::vec4 diffuse(1.0f);
+    if (e.Has("diffuseFactor") && e.Get("diffuseFactor").IsArray() && e.Get("diffuseFactor").ArrayLen() == 4)
+        for (int c = 0; c < 4; ++c) diffuse[c] = static_cast<float>(e.Get("diffuseFactor").Get(c).GetNumberAsDouble());
+    const glm::vec3 specular = color(e, "specularFactor", glm::vec3(1.0f), where);
+    const double glossiness = number(e, "glossinessFactor", 1.0, where);
+    if (!finite(glm::vec3(diffuse)) || !std::isfinite(diffuse.w) || glm::any(glm::lessThan(diffuse, glm::vec4(0))) ||
+        glm::any(glm::greaterThan(diffuse, glm::vec4(1))))
+        fail(where + ": diffuseFactor must be 4 numbers in [0, 1]");
+    if (!finite(specular) || glm::any(glm::lessThan(specular, glm::vec3(0))) ||
+        glm::any(glm::greaterThan(specular, glm::vec3(1))))
+        fail(where + ": specularFactor must be in [0, 1]");
+    if (!(glossiness >= 0.0 && glossiness <= 1.0)) fail(where + ": glossinessFactor must be in [0, 1]");
+    m.type = MaterialType::Pbr;
+    m.baseColor = glm::vec3(diffuse);
+    m.opacity = diffuse.w;
+    m.metallic = 0.0f;
+    m.transmission = 0.0f;
+    m.ior = 1.5f;
+    m.specularWeight = 1.0f;
+    m.specular = specular / 0.04f;
+    m.glossiness = static_cast<float>(glossiness);
+    m.roughness = 1.0f - m.glossiness;
+    m.baseColorTexture = extensionTexture(&e, "diffuseTexture", Texture::Encoding::Srgb, where);
+    m.specularTexture = extensionTexture(&e, "specularGlossinessTexture", Texture::Encoding::Srgb, where);
+    m.metallicRoughnessTexture = m.specularTexture;
+    m.glossinessTexture = m.specularTexture.has_value();
+    m.specularWeightTexture.reset();
 }
 
 // ---- textures ----

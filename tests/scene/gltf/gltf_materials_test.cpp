@@ -497,3 +497,42 @@ TEST(GltfLoaderMaterials, DispersionIsRead) {
 
 } // namespace
 } // namespace pt::test::gltf
+
+namespace pt::test::gltf {
+namespace {
+
+// KHR_materials_pbrSpecularGlossiness (archived, still in files): the metallic-roughness
+// dielectric with F0 = specularFactor (ior 1.5's 0.04 times the specular colour
+// specularFactor / 0.04), roughness 1 - glossiness, the diffuse as base colour and opacity; its
+// specular-glossiness texture both the specular colour (sRGB rgb) and the glossiness (alpha).
+TEST(GltfLoaderMaterials, SpecularGlossinessBecomesTheDielectricModel) {
+    const std::string images = std::string(R"([{"uri": ")") + kOnePixelPng + R"("}])";
+    const pt::Scene s = loadText(texturedDocument(R"([
+      {"name": "old", "pbrMetallicRoughness": {"metallicFactor": 1},
+       "extensions": {"KHR_materials_pbrSpecularGlossiness": {"diffuseFactor": [0.5, 0.25, 1, 0.75],
+         "specularFactor": [0.1, 0.05, 0.02], "glossinessFactor": 0.7, "diffuseTexture": {"index": 0},
+         "specularGlossinessTexture": {"index": 1}}}}
+    ])",
+        1, R"([{"source": 0}, {"source": 0}])", images, "[]"));
+    const pt::Material* old = findMaterial(s, "old");
+    ASSERT_TRUE(old);
+    EXPECT_EQ(old->type, pt::MaterialType::Pbr);
+    EXPECT_FLOAT_EQ(old->metallic, 0.0f) << "the metallic-roughness fallback is not used";
+    EXPECT_TRUE(near3(old->baseColor, glm::vec3(0.5f, 0.25f, 1.0f), 0.0f));
+    EXPECT_FLOAT_EQ(old->opacity, 0.75f);
+    EXPECT_FLOAT_EQ(old->ior, 1.5f);
+    EXPECT_TRUE(near3(old->specular * 0.04f, glm::vec3(0.1f, 0.05f, 0.02f), 1e-6f)) << "F0 = specularFactor";
+    EXPECT_FLOAT_EQ(old->roughness, 0.3f);
+    EXPECT_FLOAT_EQ(old->glossiness, 0.7f);
+    ASSERT_TRUE(old->baseColorTexture && old->specularTexture && old->metallicRoughnessTexture);
+    EXPECT_EQ(*old->metallicRoughnessTexture, *old->specularTexture);
+    EXPECT_TRUE(old->glossinessTexture);
+    EXPECT_EQ(s.textures.at(*old->specularTexture).encoding, pt::Texture::Encoding::Srgb);
+    EXPECT_TRUE(s.unsupported.empty()) << ::testing::PrintToString(s.unsupported);
+    EXPECT_THROW(loadText(materialDocument(
+                     R"([{"extensions": {"KHR_materials_pbrSpecularGlossiness": {"glossinessFactor": 2}}}])", 1)),
+        pt::SceneError);
+}
+
+} // namespace
+} // namespace pt::test::gltf
