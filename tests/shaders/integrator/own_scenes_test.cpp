@@ -539,3 +539,64 @@ TEST(OwnScenesLayers, PrismBendsBlueMoreThanRed) {
 
 } // namespace
 } // namespace pt::test
+
+namespace pt::test {
+namespace {
+
+// glTF specular-glossiness: its texture's alpha is glossiness, roughness = 1 - glossiness x alpha.
+// A sphere whose texture says glossiness 0.4 renders as one of roughness 0.6 without a texture,
+// and unlike one whose texture says 0.9.
+TEST(OwnScenesLayers, SpecularGlossinessTextureAlphaIsGlossiness) {
+    auto render = [](int alphaByte, float roughness) {
+        Scene scene;
+        Material m;
+        m.type = MaterialType::Pbr;
+        m.baseColor = glm::vec3(0.3f, 0.4f, 0.5f);
+        m.ior = 1.5f;
+        m.specular = glm::vec3(0.08f / 0.04f);
+        m.roughness = roughness;
+        if (alphaByte >= 0) {
+            TextureImage img;
+            img.width = img.height = 1;
+            img.rgba8 = {0x00ffffffu | (uint32_t(alphaByte) << 24)};
+            scene.textureImages.push_back(img);
+            Texture t;
+            t.image = 0;
+            t.encoding = Texture::Encoding::Srgb;
+            scene.textures.push_back(t);
+            m.specularTexture = m.metallicRoughnessTexture = 0u;
+            m.glossinessTexture = true;
+            m.glossiness = 1.0f;
+        }
+        scene.materials.push_back(m);
+        Material lamp;
+        lamp.baseColor = glm::vec3(0.0f);
+        lamp.emission = glm::vec3(10.0f);
+        scene.materials.push_back(lamp);
+        Mesh ball = makeIcosphere(3, {0, 0, 0}, 1.0f, 0);
+        scene.meshes.push_back(ball);
+        scene.meshes.push_back(makeQuad({-0.3f, 2.0f, 1.0f}, {0.6f, 0, 0}, {0, 0, 0.6f}, 1)); // faces down
+        Camera camera;
+        camera.position = glm::vec3(0, 0, 3.5f);
+        camera.yfov = 0.7f;
+        IntegratorSettings s = independentSettings();
+        s.maxDepth = 3;
+        return renderScene(scene, s, camera, 32, 32, 64);
+    };
+    const Renderer::Readback textured = render(102, 0.0f), plain = render(-1, 0.6f), glossier = render(230, 0.0f);
+    double same = 0, other = 0, total = 0;
+    for (size_t i = 0; i < plain.mean.rgba.size(); ++i) {
+        same += std::abs(textured.mean.rgba[i] - plain.mean.rgba[i]);
+        other += std::abs(glossier.mean.rgba[i] - plain.mean.rgba[i]);
+        total += std::abs(plain.mean.rgba[i]);
+    }
+    std::printf("[          ] specular-glossiness: |glossiness 0.4 texture - roughness 0.6| / |image| %.2e, "
+                "|glossiness 0.9 texture - roughness 0.6| / |image| %.3f\n",
+        same / total, other / total);
+    ASSERT_GT(total, 0.0);
+    EXPECT_LT(same / total, 1e-3);
+    EXPECT_GT(other / total, 0.01); // measured 0.020: the highlight is a small part of the image
+}
+
+} // namespace
+} // namespace pt::test
