@@ -20,6 +20,7 @@
 #ifndef PT_BSDF_PBR_LAYERS_GLSL
 #define PT_BSDF_PBR_LAYERS_GLSL
 #include "bsdf/ggx.glsl"
+#include "bsdf/fresnel.glsl"
 #include "bsdf/sheen.glsl"
 #include "shared/features.glsl"
 
@@ -30,11 +31,7 @@ bool pbrHasSheen(GpuMaterial m) { return HAS_SHEEN && maxComponent(m.sheenColor)
 bool pbrLayered(GpuMaterial m) { return pbrHasCoat(m) || pbrHasSheen(m); }
 bool pbrSmoothCoat(GpuMaterial m) { return m.clearcoatAlpha <= 0.0; }
 
-float clearcoatFresnel(float cosTheta) {
-    float c = 1.0 - clamp(cosTheta, 0.0, 1.0);
-    float c2 = c * c;
-    return CLEARCOAT_F0 + (1.0 - CLEARCOAT_F0) * c2 * c2 * c;
-}
+float clearcoatFresnel(float cosTheta) { return fresnelSchlick(vec3(CLEARCOAT_F0), cosTheta).x; }
 
 // Moves the coat's normal (world space, from applyTextures) into the BSDF's local frame, on the
 // frame's side. The buffer's (0, 0, 0) -- no hit has set it, as in the test kernels -- is the

@@ -13,6 +13,7 @@
 #ifndef PT_BSDF_THIN_FILM_GLSL
 #define PT_BSDF_THIN_FILM_GLSL
 #include "common/math.glsl"
+#include "bsdf/fresnel.glsl"
 
 // Linear Rec. 709 from CIE XYZ (columns).
 const mat3 XYZ_TO_REC709 =
@@ -21,12 +22,6 @@ const mat3 XYZ_TO_REC709 =
 float thinFilmF0(float transmittedIor, float incidentIor) {
     float r = (transmittedIor - incidentIor) / (transmittedIor + incidentIor);
     return r * r;
-}
-
-vec3 thinFilmSchlick(vec3 f0, float cosTheta) {
-    float c = 1.0 - clamp(cosTheta, 0.0, 1.0);
-    float c2 = c * c;
-    return f0 + (1.0 - f0) * (c2 * c2 * c);
 }
 
 // The CIE sensitivities' Fourier transforms at optical path difference `opd` (nm) with phase
@@ -52,12 +47,12 @@ vec3 thinFilmFresnel(float outsideIor, float filmIor, float thickness, vec3 base
     float cos2 = sqrt(1.0 - sin2Sq);
 
     // First interface (outside / film) and second (film / base).
-    float R12 = thinFilmSchlick(vec3(thinFilmF0(filmIor, outsideIor)), cos1).x;
+    float R12 = fresnelSchlick(vec3(thinFilmF0(filmIor, outsideIor)), cos1).x;
     float T121 = 1.0 - R12;
     vec3 sqrtF0 = sqrt(clamp(baseF0, 0.0, 0.9999));
     vec3 baseIor = (1.0 + sqrtF0) / (1.0 - sqrtF0);
     vec3 R1 = vec3(thinFilmF0(baseIor.x, filmIor), thinFilmF0(baseIor.y, filmIor), thinFilmF0(baseIor.z, filmIor));
-    vec3 R23 = thinFilmSchlick(R1, cos2);
+    vec3 R23 = fresnelSchlick(R1, cos2);
 
     // Phase shifts: pi where light reflects off a lower index.
     float phi12 = filmIor < outsideIor ? PI : 0.0;

@@ -81,6 +81,10 @@ vec3 normalFromBump(SurfaceInteraction si, uint index, float factor) {
     return (len2 > 0.0 && !isinf(len2)) ? bumped * inversesqrt(len2) : n;
 }
 
+// A GGX alpha a roughness texture has scaled: below MIN_ROUGH_ALPHA a smooth (delta) surface, as
+// the flattener maps the factors (src/flatten/flat_scene.cpp).
+float texturedAlpha(float alpha) { return alpha >= MIN_ROUGH_ALPHA ? min(alpha, 1.0) : 0.0; }
+
 // KHR_materials_clearcoat's textures: the factor in red, the roughness in green (alpha scales by
 // its square), and the coat's normal, which is the surface's own (not the base's normal map)
 // unless the coat has a map of its own; called before the base's normal map changes si.ns.
@@ -88,8 +92,7 @@ void applyClearcoatTextures(inout GpuMaterial m, SurfaceInteraction si) {
     if (m.clearcoatTexture != NO_TEXTURE) m.clearcoat *= evalTexture(m.clearcoatTexture, si.uv, si.p).r;
     if (m.clearcoatRoughnessTexture != NO_TEXTURE) {
         float g = evalTexture(m.clearcoatRoughnessTexture, si.uv, si.p).g;
-        float alpha = m.clearcoatAlpha * g * g;
-        m.clearcoatAlpha = alpha >= MIN_ROUGH_ALPHA ? min(alpha, 1.0) : 0.0;
+        m.clearcoatAlpha = texturedAlpha(m.clearcoatAlpha * g * g);
     }
     if (m.clearcoatNormalTexture != NO_TEXTURE) {
         vec3 n =
@@ -151,7 +154,7 @@ void applyTextures(inout GpuMaterial m, inout SurfaceInteraction si) {
         float roughness = 1.0 - m.glossiness * c.a;
         bool glossy = (m.flags & MATERIAL_FLAG_GLOSSINESS) != 0u;
         float alpha = glossy ? roughness * roughness : m.alpha * c.g * c.g;
-        m.alpha = alpha >= MIN_ROUGH_ALPHA ? min(alpha, 1.0) : 0.0;
+        m.alpha = texturedAlpha(alpha);
         if (!glossy) m.metallic *= c.b;
     }
     if (m.emissiveTexture != NO_TEXTURE) m.emission *= evalTexture(m.emissiveTexture, si.uv, si.p).rgb;

@@ -78,8 +78,7 @@ bool usesClearcoat(const FlatScene& scene) {
 
 bool usesSheen(const FlatScene& scene) {
     for (const auto& m : scene.materials)
-        if (m.type == MATERIAL_PBR && (m.sheenColor.x > 0.0f || m.sheenColor.y > 0.0f || m.sheenColor.z > 0.0f))
-            return true;
+        if (hasSheen(m)) return true;
     return false;
 }
 

@@ -21,6 +21,13 @@ static_assert(static_cast<uint32_t>(GlossyModel::OriginalPhong) == GLOSSY_ORIGIN
                   static_cast<uint32_t>(GlossyModel::TorranceSparrow) == GLOSSY_TORRANCE_SPARROW,
     "GlossyModel must list the models in the order of GLOSSY_*");
 
+// Microfacet: alpha = roughness^2 (the glTF / Disney perceptual mapping); below MIN_ROUGH_ALPHA
+// the surface stays a smooth delta one so nothing overflows.
+float ggxAlpha(float roughness) {
+    const float alpha = roughness * roughness;
+    return alpha >= float(MIN_ROUGH_ALPHA) ? std::min(alpha, 1.0f) : 0.0f;
+}
+
 gpu::GpuMaterial toGpu(const Material& m) {
     gpu::GpuMaterial g{};
     g.baseColor = m.baseColor;
@@ -35,19 +42,14 @@ gpu::GpuMaterial toGpu(const Material& m) {
     case MaterialType::Glossy: g.type = MATERIAL_GLOSSY; break;
     case MaterialType::Pbr: g.type = MATERIAL_PBR; break;
     }
-    // Microfacet: alpha = roughness^2 (the glTF / Disney perceptual mapping); below
-    // MIN_ROUGH_ALPHA the surface stays a smooth delta one so nothing overflows.
-    g.alpha = m.roughness * m.roughness;
-    if (!(g.alpha >= float(MIN_ROUGH_ALPHA))) g.alpha = 0.0f;
-    g.alpha = std::min(g.alpha, 1.0f);
+    g.alpha = ggxAlpha(m.roughness);
     g.metallic = m.metallic;
     g.transmission = m.transmission;
     g.diffuseTransmission = m.diffuseTransmission;
     g.diffuseTransmissionColor = m.diffuseTransmissionColor;
     g.specularWeight = m.specularWeight;
     g.clearcoat = m.clearcoat;
-    g.clearcoatAlpha = m.clearcoatRoughness * m.clearcoatRoughness;
-    if (!(g.clearcoatAlpha >= float(MIN_ROUGH_ALPHA))) g.clearcoatAlpha = 0.0f;
+    g.clearcoatAlpha = ggxAlpha(m.clearcoatRoughness);
     g.clearcoatNormalScale = m.clearcoatNormalScale;
     g.sheenColor = m.sheenColor;
     g.sheenRoughness = m.sheenRoughness;

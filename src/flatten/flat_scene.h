@@ -21,6 +21,11 @@ inline std::array<uint32_t, 17> materialTextureSlots(const gpu::GpuMaterial& m) 
         m.sheenRoughnessTexture, m.iridescenceTexture, m.iridescenceThicknessTexture, m.anisotropyTexture};
 }
 
+// A metallic-roughness material with a KHR_materials_sheen layer (its colour multiplies any texture).
+inline bool hasSheen(const gpu::GpuMaterial& m) {
+    return m.type == MATERIAL_PBR && (m.sheenColor.x > 0.0f || m.sheenColor.y > 0.0f || m.sheenColor.z > 0.0f);
+}
+
 // The environment as the kernel samples it (shaders/lights/environment_light.glsl).
 struct FlatEnvironment {
     uint32_t width = 0, height = 0; // 0: none

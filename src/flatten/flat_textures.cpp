@@ -4,6 +4,7 @@
 #include "flatten/flat_scene.h"
 #include "flatten/sheen_tables.h"
 
+#include <algorithm>
 #include <bit>
 #include <cstring>
 #include <stdexcept>
@@ -76,13 +77,11 @@ void flattenTextures(const Scene& scene, FlatScene& flat) {
     }
     if (scene.backgroundTexture) flat.backgroundTexture = *scene.backgroundTexture;
     // The sheen lobe's tables, where a material has a sheen.
-    for (const gpu::GpuMaterial& m : flat.materials)
-        if (m.type == MATERIAL_PBR && (m.sheenColor.x > 0.0f || m.sheenColor.y > 0.0f || m.sheenColor.z > 0.0f)) {
-            flat.sheenTables = static_cast<uint32_t>(flat.texels.size());
-            for (const auto* table : {&kSheenProjectedArea, &kSheenAlbedo})
-                for (float v : *table) flat.texels.push_back(std::bit_cast<uint32_t>(v));
-            break;
-        }
+    if (std::any_of(flat.materials.begin(), flat.materials.end(), hasSheen)) {
+        flat.sheenTables = static_cast<uint32_t>(flat.texels.size());
+        for (const auto* table : {&kSheenProjectedArea, &kSheenAlbedo})
+            for (float v : *table) flat.texels.push_back(std::bit_cast<uint32_t>(v));
+    }
     for (const gpu::GpuMaterial& m : flat.materials)
         for (uint32_t slot : materialTextureSlots(m))
             if (slot != NO_TEXTURE && slot >= flat.textures.size())

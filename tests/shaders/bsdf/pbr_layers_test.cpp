@@ -104,7 +104,8 @@ double coatFCos(glm::dvec3 wo, glm::dvec3 wi, double roughness, double weight) {
     return weight * F * D * V * nl;
 }
 
-double schlick004(double c) { return 0.04 + 0.96 * std::pow(1.0 - c, 5.0); }
+// Schlick's Fresnel (the coat's F0 is 0.04).
+double schlick(double f0, double c) { return f0 + (1.0 - f0) * std::pow(1.0 - c, 5.0); }
 
 // The sheen albedo table at a grid point (cos theta i / 31, roughness j / 31).
 double tableAlbedo(int i, int j) { return kSheenAlbedo[size_t(j) * SHEEN_TABLE_SIZE + i]; }
@@ -214,7 +215,7 @@ TEST_F(PbrLayers, ClearcoatIsTheSpecificationsGgxLayer) {
         for (size_t k = 0; k < dirs.size(); ++k) {
             const glm::dvec3 wi(dirs[k]);
             const double coat = coatFCos(wo, wi, 0.4, 0.7);
-            const double base = (1 - 0.7 * schlick004(wo.z)) * (1 - 0.7 * schlick004(wi.z)) * wi.z / M_PI;
+            const double base = (1 - 0.7 * schlick(0.04, wo.z)) * (1 - 0.7 * schlick(0.04, wi.z)) * wi.z / M_PI;
             EXPECT_NEAR(alone[k].x, coat, 1e-4 * std::max(1.0, coat)) << "cos_o " << cosO << ", k " << k;
             EXPECT_NEAR(layered[k].x, coat + base, 1e-4 * std::max(1.0, coat + base)) << "cos_o " << cosO;
         }
@@ -237,7 +238,7 @@ TEST_F(PbrLayers, SmoothCoatIsADeltaLobeWithItsFresnelWeight) {
             if (s[kSamples + i].w == 0.0f || glm::length(glm::vec3(s[i]) - mirror) > 2e-6f) continue;
             mirrored += 1;
             probability = s[i].w;
-            EXPECT_NEAR(s[kSamples + i].x * s[i].w, schlick004(cosO), 1e-4) << "cos_o " << cosO;
+            EXPECT_NEAR(s[kSamples + i].x * s[i].w, schlick(0.04, cosO), 1e-4) << "cos_o " << cosO;
         }
         ASSERT_GT(probability, 0.0) << "cos_o " << cosO;
         EXPECT_NEAR(mirrored / kSamples, probability, 5 * std::sqrt(probability * (1 - probability) / kSamples) + 1e-4);
@@ -249,7 +250,6 @@ TEST_F(PbrLayers, SmoothCoatIsADeltaLobeWithItsFresnelWeight) {
 
 // ---- KHR_materials_iridescence: the extension's thin-film Fresnel, written again here ----
 
-double schlick(double f0, double c) { return f0 + (1.0 - f0) * std::pow(1.0 - c, 5.0); }
 double iorToF0(double nt, double ni) { return std::pow((nt - ni) / (nt + ni), 2.0); }
 
 // The CIE sensitivities' Fourier transforms (Gaussian fits) at optical path difference opd nm,

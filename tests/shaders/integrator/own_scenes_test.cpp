@@ -136,6 +136,26 @@ Renderer::Readback render(const Scene& scene, bool nee, uint32_t spp) {
     return renderScene(scene, s, stageCamera(), kSize, kSize, spp);
 }
 
+// Light sampling with MIS (seed 1, sppOn samples) against BSDF sampling alone (seed 2, sppOff),
+// compared in blocks of 8x8 pixels.
+struct EstimatorAgreement {
+    Renderer::Readback on, off;
+    AgreementResult blocks;
+};
+
+EstimatorAgreement lightSamplingAgainstBsdfSampling(const Scene& scene, IntegratorSettings s, const Camera& camera,
+    int width, int height, uint32_t sppOn, uint32_t sppOff) {
+    EstimatorAgreement r;
+    s.seed = 1;
+    r.on = renderScene(scene, s, camera, width, height, sppOn);
+    s.nee = s.mis = false;
+    s.seed = 2;
+    r.off = renderScene(scene, s, camera, width, height, sppOff);
+    r.blocks =
+        compareBlocks(blockStats(r.on.mean, &r.on.varianceOfMean, 8), blockStats(r.off.mean, &r.off.varianceOfMean, 8));
+    return r;
+}
+
 std::filesystem::path referencePath(const std::string& name) {
     return testDataDir() / "references" / "own" / (name + ".exr");
 }
@@ -214,13 +234,7 @@ TEST_F(OwnScenes, PatchyEmitterWhoseBlackTrianglesLeaveTheTableAgreesAcrossEstim
 
     IntegratorSettings s = independentSettings();
     s.maxDepth = 12;
-    s.seed = 1;
-    const Renderer::Readback on = renderScene(scene, s, stageCamera(), kSize, kSize, 256);
-    s.nee = s.mis = false;
-    s.seed = 2;
-    const Renderer::Readback off = renderScene(scene, s, stageCamera(), kSize, kSize, 1024);
-    const AgreementResult a =
-        compareBlocks(blockStats(on.mean, &on.varianceOfMean, 8), blockStats(off.mean, &off.varianceOfMean, 8));
+    const auto [on, off, a] = lightSamplingAgainstBsdfSampling(scene, s, stageCamera(), kSize, kSize, 256, 1024);
     std::printf("[          ] patchy panel: NEE on vs off chi2/dof %.2f (mean z %.2f)\n", a.chi2PerDof, a.meanZ);
     EXPECT_LT(a.chi2PerDof, 2.0);
     EXPECT_LT(std::abs(a.meanZ), 0.35);
@@ -254,13 +268,7 @@ TEST_F(OwnScenes, LeafLitFromBehindAgreesAcrossEstimators) {
     IntegratorSettings s = independentSettings();
     s.maxDepth = 8;
     EXPECT_NE(computeFeatures(flat, s).describe().find("diffuse-transmission"), std::string::npos);
-    s.seed = 1;
-    const Renderer::Readback on = renderScene(scene, s, camera, 32, 32, 256);
-    s.nee = s.mis = false;
-    s.seed = 2;
-    const Renderer::Readback off = renderScene(scene, s, camera, 32, 32, 2048);
-    const AgreementResult a =
-        compareBlocks(blockStats(on.mean, &on.varianceOfMean, 8), blockStats(off.mean, &off.varianceOfMean, 8));
+    const auto [on, off, a] = lightSamplingAgainstBsdfSampling(scene, s, camera, 32, 32, 256, 2048);
     double mean = 0;
     for (size_t i = 1; i < on.mean.rgba.size(); i += 4) mean += on.mean.rgba[i] / (on.mean.rgba.size() / 4);
     std::printf("[          ] leaf lit from behind: NEE on vs off chi2/dof %.2f (mean z %.2f), mean green %.4f\n",
@@ -281,12 +289,6 @@ TEST_F(OwnScenes, DISABLED_MakeReferences) {
             {{"spp", "32768"}, {"made-by", "tests/shaders/integrator/own_scenes_test.cpp DISABLED_MakeReferences"}});
     }
 }
-
-} // namespace
-} // namespace pt::test
-
-namespace pt::test {
-namespace {
 
 // Two spheres under a lamp: a velvet (sheen over a red base) under a rough clearcoat, and a blue
 // brushed (anisotropic) half metal under a sheen and a smooth (delta) coat. Light sampling (MIS with the layered pdf)
@@ -336,13 +338,7 @@ TEST(OwnScenesLayers, ClearcoatAndSheenAgreeAcrossEstimators) {
     const std::string features = computeFeatures(flat, s).describe();
     EXPECT_NE(features.find("clearcoat"), std::string::npos) << features;
     EXPECT_NE(features.find("sheen"), std::string::npos) << features;
-    s.seed = 1;
-    const Renderer::Readback on = renderScene(scene, s, camera, 32, 32, 512);
-    s.nee = s.mis = false;
-    s.seed = 2;
-    const Renderer::Readback off = renderScene(scene, s, camera, 32, 32, 4096);
-    const AgreementResult a =
-        compareBlocks(blockStats(on.mean, &on.varianceOfMean, 8), blockStats(off.mean, &off.varianceOfMean, 8));
+    const auto [on, off, a] = lightSamplingAgainstBsdfSampling(scene, s, camera, 32, 32, 512, 4096);
     double left = 0, right = 0; // mean red of the velvet's half, blue of the paint's
     for (int y = 0; y < 32; ++y)
         for (int x = 0; x < 16; ++x) {
@@ -358,12 +354,6 @@ TEST(OwnScenesLayers, ClearcoatAndSheenAgreeAcrossEstimators) {
     EXPECT_LT(std::abs(a.meanZ), 0.35);
     EXPECT_EQ(on.droppedSamples + off.droppedSamples, 0u);
 }
-
-} // namespace
-} // namespace pt::test
-
-namespace pt::test {
-namespace {
 
 // A brushed metal floor seen from above, lit by a small lamp: the highlight stretches along the
 // anisotropy direction, the tangent (+x here, the uv's u) at rotation 0 and the bitangent (z in
@@ -422,12 +412,6 @@ TEST(OwnScenesLayers, AnisotropicHighlightStretchesAlongTheRotatedTangent) {
     EXPECT_GT(along, 2.0) << "stretched along the tangent (image x)";
     EXPECT_LT(across, 0.5) << "stretched along the bitangent (image y)";
 }
-
-} // namespace
-} // namespace pt::test
-
-namespace pt::test {
-namespace {
 
 // A closed triangular prism, its edges along x, cross-section (y, z) corners a, b, c
 // (counter-clockwise seen from +x, so the faces point outwards).
@@ -536,12 +520,6 @@ TEST(OwnScenesLayers, PrismBendsBlueMoreThanRed) {
     EXPECT_LT(with.y, with.x - 3) << "blue bent more than red";
     EXPECT_NEAR(without.x, without.y, 1.0) << "no dispersion: one edge";
 }
-
-} // namespace
-} // namespace pt::test
-
-namespace pt::test {
-namespace {
 
 // glTF specular-glossiness: its texture's alpha is glossiness, roughness = 1 - glossiness x alpha.
 // A sphere whose texture says glossiness 0.4 renders as one of roughness 0.6 without a texture,
