@@ -16,6 +16,7 @@ layout(buffer_reference, std430, buffer_reference_align = 16) buffer Vec4Ref { v
 layout(buffer_reference, std430, buffer_reference_align = 16) buffer UVec4Ref { uvec4 v[]; };
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer TestRayRef { GpuTestRay v[]; };
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer SphereRef { GpuSphere v[]; };
+layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer InstanceRef { GpuInstance v[]; };
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer TextureRef { GpuTexture v[]; };
 layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer UintRef { uint v[]; };
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer TangentRef { GpuTriangleTangents v[]; };
@@ -24,7 +25,6 @@ layout(buffer_reference, std430, buffer_reference_align = 8) readonly buffer Uin
 // The scene of the current dispatch; set once at the top of main().
 GpuSceneParams scene;
 ShadingRef sceneShading;
-Bvh4Ref sceneNodes;
 MaterialRef sceneMaterials;
 LightRef sceneLights;
 FloatRef sceneLightCdf;
@@ -96,7 +96,6 @@ GpuTriangle loadTriangle(uint index) {
 void bindScene(uint64_t paramsAddress) {
     scene = SceneParamsRef(paramsAddress).p;
     sceneShading = ShadingRef(scene.shading);
-    sceneNodes = Bvh4Ref(scene.nodes);
     sceneMaterials = MaterialRef(scene.materials);
     sceneLights = LightRef(scene.lights);
     sceneLightCdf = FloatRef(scene.lightCdf);

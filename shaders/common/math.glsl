@@ -8,6 +8,54 @@ const float TWO_PI = 6.28318530717958647692;
 const float FLOAT_MAX = 3.402823466e+38;
 
 float maxComponent(vec3 v) { return max(v.x, max(v.y, v.z)); }
+
+// Affine maps stored as the rows of a 3x4 matrix (spheres' and instances' transforms).
+vec3 transformPoint(vec4 rows[3], vec3 p) {
+    return vec3(dot(rows[0].xyz, p) + rows[0].w, dot(rows[1].xyz, p) + rows[1].w, dot(rows[2].xyz, p) + rows[2].w);
+}
+vec3 transformVector(vec4 rows[3], vec3 v) {
+    return vec3(dot(rows[0].xyz, v), dot(rows[1].xyz, v), dot(rows[2].xyz, v));
+}
+// A normal under the map whose inverse is `inverseRows`: the inverse transpose, i.e. the
+// columns of the inverse's linear part (not renormalised).
+vec3 transformNormal(vec4 inverseRows[3], vec3 n) {
+    return inverseRows[0].xyz * n.x + inverseRows[1].xyz * n.y + inverseRows[2].xyz * n.z;
+}
+
+// a * b - c * d with a single rounding error (Kahan's algorithm with fused multiply-adds, as
+// pbrt-v4's DifferenceOfProducts).
+float differenceOfProducts(float a, float b, float c, float d) {
+    precise float cd = c * d;
+    precise float err = fma(-c, d, cd);
+    precise float dop = fma(a, b, -cd);
+    return dop + err;
+}
+
+// a * b as p + e exactly (Dekker's product with Veltkamp's splitting): plain multiplies and
+// adds, where fma() may not help (lavapipe computes it with two roundings). |a|, |b| < 1e34.
+void twoProduct(float a, float b, out float p, out float e) {
+    precise float product = a * b;
+    precise float sa = 4097.0 * a;
+    precise float ah = sa - (sa - a);
+    precise float al = a - ah;
+    precise float sb = 4097.0 * b;
+    precise float bh = sb - (sb - b);
+    precise float bl = b - bh;
+    precise float error = ((ah * bh - product) + ah * bl + al * bh) + al * bl;
+    p = product;
+    e = error;
+}
+
+// a * b - c * d with its sign exact wherever the two products are close (where they cancel,
+// their difference is exact), and zero only when it is.
+float exactSignDifferenceOfProducts(float a, float b, float c, float d) {
+    float p1, e1, p2, e2;
+    twoProduct(a, b, p1, e1);
+    twoProduct(c, d, p2, e2);
+    precise float r = (p1 - p2) + (e1 - e2);
+    return r;
+}
+
 float luminance(vec3 c) { return dot(c, vec3(0.2126, 0.7152, 0.0722)); }
 bool allFinite(vec3 v) { return !any(isnan(v)) && !any(isinf(v)); }
 

@@ -77,8 +77,9 @@ SurfaceInteraction makeSphereInteraction(Ray ray, Hit hit) {
     return si;
 }
 
-SurfaceInteraction makeInteraction(Ray ray, Hit hit) {
-    if (HAS_SPHERES && (hit.primitive & SPHERE_BIT) != 0u) return makeSphereInteraction(ray, hit);
+// A triangle hit, in the space its vertices are in (world space, or an instance's object space
+// with the ray taken there).
+SurfaceInteraction makeTriangleInteraction(Ray ray, Hit hit) {
     SurfaceInteraction si;
     si.uv = vec2(0.0);
     si.dpdu = si.dpdv = vec3(0.0);
@@ -135,6 +136,34 @@ SurfaceInteraction makeInteraction(Ray ray, Hit hit) {
         }
     }
     return si;
+}
+
+// An interaction found in an instance's object space, brought to world space: points and
+// tangents by the map, normals by its inverse transpose. The front side stays the object's
+// (dot products of mapped directions with mapped normals keep their sign), so a mirroring
+// placement keeps its front faces.
+void placeInWorld(inout SurfaceInteraction si, GpuInstance instance) {
+    si.p = transformPoint(instance.objectToWorld, si.p);
+    si.pSmooth = transformPoint(instance.objectToWorld, si.pSmooth);
+    si.ng = normalize(transformNormal(instance.worldToObject, si.ng));
+    si.ns = normalize(transformNormal(instance.worldToObject, si.ns));
+    si.nSurface = normalize(transformNormal(instance.worldToObject, si.nSurface));
+    si.magnitude = instanceMagnitude(instance, si.magnitude);
+    if (needsSurfaceCoordinates()) {
+        si.dpdu = transformVector(instance.objectToWorld, si.dpdu);
+        si.dpdv = transformVector(instance.objectToWorld, si.dpdv);
+    }
+}
+
+SurfaceInteraction makeInteraction(Ray ray, Hit hit) {
+    if (HAS_SPHERES && (hit.primitive & SPHERE_BIT) != 0u) return makeSphereInteraction(ray, hit);
+    if (HAS_INSTANCES && hit.instance != NO_INSTANCE) {
+        GpuInstance instance = loadInstance(hit.instance);
+        SurfaceInteraction si = makeTriangleInteraction(toInstanceSpace(instance, ray), hit);
+        placeInWorld(si, instance);
+        return si;
+    }
+    return makeTriangleInteraction(ray, hit);
 }
 
 #endif

@@ -8,13 +8,6 @@
 #include "common/math.glsl"
 #include "common/ray.glsl"
 
-vec3 transformPoint(vec4 rows[3], vec3 p) {
-    return vec3(dot(rows[0].xyz, p) + rows[0].w, dot(rows[1].xyz, p) + rows[1].w, dot(rows[2].xyz, p) + rows[2].w);
-}
-vec3 transformVector(vec4 rows[3], vec3 v) {
-    return vec3(dot(rows[0].xyz, v), dot(rows[1].xyz, v), dot(rows[2].xyz, v));
-}
-
 vec3 sphereCentre(GpuSphere sphere) {
     return vec3(sphere.objectToWorld[0].w, sphere.objectToWorld[1].w, sphere.objectToWorld[2].w);
 }
@@ -35,14 +28,6 @@ vec3 toSphereObject(GpuSphere sphere, vec3 p) {
     return transformVector(sphere.worldToObject, p - sphereCentre(sphere));
 }
 
-// a * b - c * d with a single rounding error (Kahan's algorithm with fused multiply-adds, as
-// pbrt-v4's DifferenceOfProducts).
-float differenceOfProducts(float a, float b, float c, float d) {
-    precise float cd = c * d;
-    precise float err = fma(-c, d, cd);
-    precise float dop = fma(a, b, -cd);
-    return dop + err;
-}
 vec3 accurateCross(vec3 u, vec3 v) {
     return vec3(differenceOfProducts(u.y, v.z, u.z, v.y), differenceOfProducts(u.z, v.x, u.x, v.z),
         differenceOfProducts(u.x, v.y, u.y, v.x));

@@ -1,6 +1,9 @@
-// Stack-based traversal of the four-wide BVH (GpuBvh4Node, src/accel/wide_bvh.cpp): closest
+// Stack-based traversal of the four-wide BVHs (GpuBvh4Node, src/accel/wide_bvh.cpp): closest
 // hit for path segments, any hit for shadow rays. A node's four child boxes are tested
-// together, the children hit are visited nearest first and the others pushed.
+// together, the children hit are visited nearest first and the others pushed. Triangles are in
+// the world tree or in instanced meshes' trees, reached through the tree over the instances
+// (two levels: the ray goes into each instance's object space at its leaf); spheres have a tree
+// of their own.
 #ifndef PT_GEOMETRY_TRAVERSE_GLSL
 #define PT_GEOMETRY_TRAVERSE_GLSL
 #include "common/buffers.glsl"
@@ -10,6 +13,7 @@
 #include "shared/features.glsl"
 #include "textures/alpha.glsl"
 #include "geometry/motion.glsl"
+#include "geometry/instance.glsl"
 
 // Slab tests round in both directions; growing the far distance by 1 + 2 gamma(3) makes them
 // conservative (Ize, "Robust BVH Ray Traversal", JCGT 2013), so a triangle lying on a box face
@@ -22,6 +26,7 @@ struct Hit {
     float t;
     uint primitive; // triangle index, or sphere index | SPHERE_BIT; valid only when t < tMax of the query
     vec2 bary;      // triangles: barycentrics of vertices 1 and 2
+    uint instance;  // the instance whose mesh the triangle is in (object space), or NO_INSTANCE
 };
 
 // What the slab test needs of a ray, computed once per traversal.
@@ -91,6 +96,20 @@ void orderPair(inout float da, inout uint ca, inout float db, inout uint cb) {
     cb = swap ? c : cb;
 }
 
+// The node's children the ray enters within (0, tMax), nearest first: entry distances in d,
+// child words in c, misses last (at FLOAT_MAX). Nearest first, so that the hits a child yields
+// shorten the rest; shadow rays find occluders sooner this way too (measured: unordered was
+// slower for them). A network of five compare-exchanges orders the four slots.
+void orderedChildren(GpuBvh4Node node, BoxRay boxRay, float tMax, out vec4 d, out uvec4 c) {
+    d = childEntries(node, boxRay, tMax);
+    c = node.child;
+    orderPair(d.x, c.x, d.y, c.y);
+    orderPair(d.z, c.z, d.w, c.w);
+    orderPair(d.x, c.x, d.z, c.z);
+    orderPair(d.y, c.y, d.w, c.w);
+    orderPair(d.y, c.y, d.z, c.z);
+}
+
 // Nodes visited by this invocation's traversals, counted only for the viewer's BVH-cost view
 // (the increment is removed by specialization otherwise). debug_view.glsl resets and reads it.
 uint traversalNodeVisits = 0u;
@@ -112,17 +131,18 @@ uint traversalNodeVisits = 0u;
         current = stack[stackSize];                                                                                    \
     }
 
-// One traversal loop for both trees (triangles, spheres): `sphereTree` is a literal at every
-// call, so the compiler keeps only one kind of leaf test in each inlined copy. `anyHit` stops
-// at the first hit (shadow rays).
-bool traverseTree(bool sphereTree, bool anyHit, Ray ray, WatertightRay wray, BoxRay boxRay, inout Hit hit) {
+// One traversal loop for the triangle trees and the sphere tree: `sphereTree` is a literal at
+// every call, so the compiler keeps only one kind of leaf test in each inlined copy. `anyHit`
+// stops at the first hit (shadow rays). A triangle tree starts at node `root` (0: the world
+// tree); `instance` is what a hit records (NO_INSTANCE for world space).
+bool traverseTree(
+    bool sphereTree, bool anyHit, Ray ray, WatertightRay wray, BoxRay boxRay, inout Hit hit, uint root, uint instance) {
     uint64_t nodes = sphereTree ? scene.sphereNodes : scene.nodes;
-    uint numNodes = sphereTree ? scene.numSphereNodes : scene.numNodes;
-    if (numNodes == 0u) return false;
+    if (sphereTree ? scene.numSphereNodes == 0u : (instance == NO_INSTANCE && scene.numNodes == 0u)) return false;
     uint stack[TRAVERSAL_STACK_SIZE];   // child words
     float stackT[TRAVERSAL_STACK_SIZE]; // their entry distances
     int stackSize = 0;
-    uint current = 0u; // a child word: the root node
+    uint current = root; // a child word: the root node
     bool found = false;
     while (true) {
         // Inner nodes first, down to a leaf: the lanes of a SIMD group then test their leaves
@@ -131,16 +151,9 @@ bool traverseTree(bool sphereTree, bool anyHit, Ray ray, WatertightRay wray, Box
         while ((current & BVH4_LEAF_BIT) == 0u) {
             if (DEBUG_VIEW == DEBUG_VIEW_BVH_COST) ++traversalNodeVisits;
             GpuBvh4Node node = sphereTree ? loadBvh4Node(nodes, current) : loadTriangleTreeNode(nodes, current);
-            // Nearest child first, so that the hits it yields shorten the rest; shadow rays
-            // find occluders sooner this way too (measured: unordered was slower for them).
-            // A network of five compare-exchanges orders the four slots, misses last.
-            vec4 d = childEntries(node, boxRay, hit.t);
-            uvec4 c = node.child;
-            orderPair(d.x, c.x, d.y, c.y);
-            orderPair(d.z, c.z, d.w, c.w);
-            orderPair(d.x, c.x, d.z, c.z);
-            orderPair(d.y, c.y, d.w, c.w);
-            orderPair(d.y, c.y, d.z, c.z);
+            vec4 d;
+            uvec4 c;
+            orderedChildren(node, boxRay, hit.t, d, c);
             // The others wait on the stack, farthest deepest, with their entry distances.
             if (d.w != FLOAT_MAX) PUSH_CHILD(c.w, d.w);
             if (d.z != FLOAT_MAX) PUSH_CHILD(c.z, d.z);
@@ -172,6 +185,46 @@ bool traverseTree(bool sphereTree, bool anyHit, Ray ray, WatertightRay wray, Box
                 hit.t = t;
                 hit.primitive = sphereTree ? (i | SPHERE_BIT) : i;
                 hit.bary = bary;
+                hit.instance = instance;
+                found = true;
+                if (anyHit) return true;
+            }
+        }
+        POP_CHILD();
+    }
+    return found;
+}
+
+// The tree over the instances: at each leaf the ray goes into the instance's object space and
+// through its mesh's tree. The hit's t needs no conversion (toInstanceSpace keeps t).
+bool traverseInstances(bool anyHit, Ray ray, BoxRay boxRay, inout Hit hit) {
+    if (scene.numInstanceNodes == 0u) return false;
+    uint stack[TRAVERSAL_STACK_SIZE];
+    float stackT[TRAVERSAL_STACK_SIZE];
+    int stackSize = 0;
+    uint current = 0u;
+    bool found = false;
+    while (true) {
+        while ((current & BVH4_LEAF_BIT) == 0u) {
+            if (DEBUG_VIEW == DEBUG_VIEW_BVH_COST) ++traversalNodeVisits;
+            vec4 d;
+            uvec4 c;
+            orderedChildren(loadBvh4Node(scene.instanceNodes, current), boxRay, hit.t, d, c);
+            if (d.w != FLOAT_MAX) PUSH_CHILD(c.w, d.w);
+            if (d.z != FLOAT_MAX) PUSH_CHILD(c.z, d.z);
+            if (d.y != FLOAT_MAX) PUSH_CHILD(c.y, d.y);
+            if (d.x != FLOAT_MAX)
+                current = c.x;
+            else
+                POP_CHILD();
+        }
+        uint first = current & BVH4_FIRST_MASK;
+        uint end = first + ((current >> BVH4_COUNT_SHIFT) & 15u) + 1u;
+        for (uint i = first; i < end; ++i) {
+            GpuInstance instance = loadInstance(i);
+            Ray local = toInstanceSpace(instance, ray);
+            if (traverseTree(
+                    false, anyHit, local, makeWatertightRay(local), makeBoxRay(local), hit, instance.root, i)) {
                 found = true;
                 if (anyHit) return true;
             }
@@ -186,11 +239,13 @@ bool traceClosest(Ray ray, float tMax, out Hit hit) {
     hit.t = tMax;
     hit.primitive = 0u;
     hit.bary = vec2(0.0);
+    hit.instance = NO_INSTANCE;
     WatertightRay wray = makeWatertightRay(ray);
     BoxRay boxRay = makeBoxRay(ray);
     bool found = false;
-    if (HAS_TRIANGLES) found = traverseTree(false, false, ray, wray, boxRay, hit);
-    if (HAS_SPHERES) found = traverseTree(true, false, ray, wray, boxRay, hit) || found;
+    if (HAS_TRIANGLES) found = traverseTree(false, false, ray, wray, boxRay, hit, 0u, NO_INSTANCE);
+    if (HAS_INSTANCES) found = traverseInstances(false, ray, boxRay, hit) || found;
+    if (HAS_SPHERES) found = traverseTree(true, false, ray, wray, boxRay, hit, 0u, NO_INSTANCE) || found;
     return found;
 }
 
@@ -200,10 +255,12 @@ bool traceAny(Ray ray, float tMax) {
     hit.t = tMax;
     hit.primitive = 0u;
     hit.bary = vec2(0.0);
+    hit.instance = NO_INSTANCE;
     WatertightRay wray = makeWatertightRay(ray);
     BoxRay boxRay = makeBoxRay(ray);
-    if (HAS_TRIANGLES && traverseTree(false, true, ray, wray, boxRay, hit)) return true;
-    return HAS_SPHERES && traverseTree(true, true, ray, wray, boxRay, hit);
+    if (HAS_TRIANGLES && traverseTree(false, true, ray, wray, boxRay, hit, 0u, NO_INSTANCE)) return true;
+    if (HAS_INSTANCES && traverseInstances(true, ray, boxRay, hit)) return true;
+    return HAS_SPHERES && traverseTree(true, true, ray, wray, boxRay, hit, 0u, NO_INSTANCE);
 }
 
 #endif

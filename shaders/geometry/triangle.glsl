@@ -1,11 +1,22 @@
 // Watertight ray/triangle intersection: Woop, Benthin and Wald, "Watertight Ray/Triangle
 // Intersection", JCGT 2013. The ray is sheared so it runs along +z; edge functions are then
 // evaluated in 2D, and a point on a shared edge is accepted by both triangles, never by neither.
-// The paper's double-precision re-evaluation of exactly-zero edge functions is left out: with
-// it only one of two neighbours reports such a hit, without it both do, and neither leaves a gap.
+// Each edge function is a difference of two products; for a triangle far off the ray's line
+// (1e4 times its own size away, as instances placed far away see) they cancel to rounding noise,
+// and three noises of one sign made false hits, far from any surface. So a candidate hit whose
+// edge functions are not clear of their rounding error is evaluated again with exact products
+// (Dekker's), whose signs are exact. A true hit lies near the
+// triangle, where the functions are clear of it, and exact zeros (a ray through an edge or a
+// vertex) stay zero, so shared edges still agree. The paper re-evaluates only zeros, in double
+// precision, which lavapipe has but some GPUs do not.
 #ifndef PT_GEOMETRY_TRIANGLE_GLSL
 #define PT_GEOMETRY_TRIANGLE_GLSL
+#include "common/math.glsl"
 #include "common/ray.glsl"
+
+// An edge function within this fraction of its products' magnitudes may be rounding error (two
+// products and a difference, each rounded by at most 2^-24 of its magnitude).
+const float EDGE_ROUNDING = 2.384185791e-7; // 2^-22
 
 // Per-ray constants of the shear transform, computed once per traversal.
 struct WatertightRay {
@@ -56,6 +67,14 @@ bool intersectTriangle(WatertightRay r, vec3 p0, vec3 p1, vec3 p2, float tMax, o
     t = 0.0;
     bary = vec2(0.0);
     if ((U < 0.0 || V < 0.0 || W < 0.0) && (U > 0.0 || V > 0.0 || W > 0.0)) return false;
+    if (abs(U) <= EDGE_ROUNDING * (abs(cx * by) + abs(cy * bx)) ||
+        abs(V) <= EDGE_ROUNDING * (abs(ax * cy) + abs(ay * cx)) ||
+        abs(W) <= EDGE_ROUNDING * (abs(bx * ay) + abs(by * ax))) {
+        U = exactSignDifferenceOfProducts(cx, by, cy, bx);
+        V = exactSignDifferenceOfProducts(ax, cy, ay, cx);
+        W = exactSignDifferenceOfProducts(bx, ay, by, ax);
+        if ((U < 0.0 || V < 0.0 || W < 0.0) && (U > 0.0 || V > 0.0 || W > 0.0)) return false;
+    }
     float det = U + V + W;
     if (det == 0.0) return false;
     float az = r.shear.z * a.z;

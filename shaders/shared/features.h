@@ -26,6 +26,8 @@
         "the CENG795 course's classic (Whitted / direct lighting) ray tracer instead of path tracing")                 \
     PT_FEATURE(triangles, flag, HAS_TRIANGLES, 13, true, true, !scene.triangles.empty(), v ? "triangles" : nullptr,    \
         "triangle meshes")                                                                                             \
+    PT_FEATURE(instances, flag, HAS_INSTANCES, 39, true, true, !scene.instances.empty(), v ? "instances" : nullptr,    \
+        "meshes placed several times, kept as instances under a tree of their own (two-level BVH)")                    \
     PT_FEATURE(spheres, flag, HAS_SPHERES, 12, true, true, !scene.spheres.empty(), v ? "spheres" : nullptr,            \
         "analytic spheres and ellipsoids")                                                                             \
     PT_FEATURE(diffuse, flag, HAS_DIFFUSE, 2, true, true, usesMaterialType(scene, MATERIAL_DIFFUSE),                   \

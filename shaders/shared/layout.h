@@ -102,6 +102,8 @@ using uint64_t = std::uint64_t;
 #define NO_LIGHT 0xffffffffu
 // Hit::primitive: triangles are plain indices, spheres carry this bit.
 #define SPHERE_BIT 0x80000000u
+// Hit::instance of a triangle of the world tree (or a sphere): no instance transform applies.
+#define NO_INSTANCE 0xffffffffu
 
 // ---- Specialization constants ----
 // The workgroup size; every other constant is a kernel feature, one row of shared/features.h.
@@ -335,6 +337,22 @@ struct GpuSphere {
 };
 PT_CHECK_SIZE(GpuSphere, 112);
 
+// A placement of a shared mesh (two-level BVH; src/flatten/flat_instances.cpp): the mesh's own
+// tree in GpuSceneParams::nodes from node `root`, its triangles in object space, and the affine
+// map both ways (rows of 3x4 matrices). Rays go to object space with worldToObject, where the
+// watertight test runs unchanged (t is the same: the direction is not renormalised); hits come
+// back with objectToWorld. The instances are the leaves of a tree of their own
+// (GpuSceneParams::instanceNodes), in its order.
+struct GpuInstance {
+    vec4 worldToObject[3];
+    vec4 objectToWorld[3];
+    uint root;          // node index of the mesh's tree (a child word: never a leaf)
+    uint firstTriangle; // the mesh's triangles: [firstTriangle, firstTriangle + triangleCount)
+    uint triangleCount;
+    uint pad0;
+};
+PT_CHECK_SIZE(GpuInstance, 112);
+
 // ---- Light types (GpuLight::type) ----
 #define LIGHT_TRIANGLE 0u
 #define LIGHT_SPHERE 1u
@@ -400,7 +418,7 @@ struct GpuSceneParams {
     uint rrStartDepth; // Russian roulette starts after this many segments
     uint seed;
     uint numTriangles;
-    uint numNodes;
+    uint numNodes; // the world tree's nodes: the first of `nodes` (instanced meshes' trees follow)
     uint numSpheres;
     uint numSphereNodes;
     uint envWidth; // 0: no environment (escaping rays see `background`)
@@ -414,12 +432,14 @@ struct GpuSceneParams {
     float rrThreshold;      // Russian roulette: throughput at or above this always continues
     uint64_t motions;       // vec4[]: xyz = an object's translation over the shutter interval
     uint64_t tangents;      // GpuTriangleTangents[] (one per triangle), or none
-    uint nodeFormat;        // BVH_NODES_*: how `nodes` stores the triangle tree (the sphere tree is always float)
-    uint sheenTables;       // texel-buffer offset of the sheen lobe's tables (SHEEN_TABLE_SIZE), if any
-    uint pad3;
-    uint pad4;
+    uint nodeFormat;  // BVH_NODES_*: how `nodes` stores the triangle trees (the sphere and instance trees are float)
+    uint sheenTables; // texel-buffer offset of the sheen lobe's tables (SHEEN_TABLE_SIZE), if any
+    uint numInstances;
+    uint numInstanceNodes;
+    uint64_t instances;     // GpuInstance[], in the order of the instance tree's leaves
+    uint64_t instanceNodes; // GpuBvh4Node[]: the top-level tree, over the instances
 };
-PT_CHECK_SIZE(GpuSceneParams, 112 + 80 + 80 + 16 + 16 + 16);
+PT_CHECK_SIZE(GpuSceneParams, 112 + 80 + 80 + 16 + 16 + 16 + 16);
 
 // Push constants of the render kernel: which pixels and which sample indices this dispatch adds.
 struct GpuRenderPush {
@@ -443,6 +463,9 @@ PT_CHECK_SIZE(GpuRenderPush, 48);
 #define TEST_MODE_LIGHT_PDF 3u
 #define TEST_MODE_TRACE_BVH 4u
 #define TEST_MODE_TRACE_BRUTE_FORCE 5u
+// The trace modes' outputs[i] = (t, primitive, bary): a hit in an instance carries this bit on
+// the primitive and the instance's index in place of the second barycentric.
+#define TEST_HIT_INSTANCE_BIT 0x40000000u
 #define TEST_MODE_BSDF_SAMPLE 6u // outputs[i] = (wi local, pdf), outputs[count + i] = (weight, valid)
 #define TEST_MODE_BSDF_PDF 7u    // inputs: local wi; outputs[i] = (f cos, pdf)
 #define TEST_MODE_TEXTURE 8u     // texture materialIndex at inputs[i] = (u, v, _, _) or point (xyz); outputs[i] = value

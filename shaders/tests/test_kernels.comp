@@ -85,7 +85,14 @@ void main() {
             hit.t = tr.tMax;
             hit.primitive = 0u;
             hit.bary = vec2(0.0);
-            for (uint k = 0u; k < scene.numTriangles; ++k) {
+            hit.instance = NO_INSTANCE;
+            // The world triangles, then each instance's in its object space (the same
+            // transformed ray the traversal makes), so any difference is the trees' fault.
+            uint worldTriangles =
+                scene.numInstances > 0u ? InstanceRef(scene.instances).v[0].firstTriangle : scene.numTriangles;
+            for (uint j = 0u; j < scene.numInstances; ++j)
+                worldTriangles = min(worldTriangles, InstanceRef(scene.instances).v[j].firstTriangle);
+            for (uint k = 0u; k < worldTriangles; ++k) {
                 GpuTriangle tri = loadTriangle(k);
                 float t;
                 vec2 bary;
@@ -94,6 +101,22 @@ void main() {
                     hit.primitive = k;
                     hit.bary = bary;
                     found = true;
+                }
+            }
+            for (uint j = 0u; j < scene.numInstances; ++j) {
+                GpuInstance instance = InstanceRef(scene.instances).v[j];
+                WatertightRay local = makeWatertightRay(toInstanceSpace(instance, ray));
+                for (uint k = instance.firstTriangle; k < instance.firstTriangle + instance.triangleCount; ++k) {
+                    GpuTriangle tri = loadTriangle(k);
+                    float t;
+                    vec2 bary;
+                    if (intersectTriangle(local, tri.p0, tri.p1, tri.p2, hit.t, t, bary)) {
+                        hit.t = t;
+                        hit.primitive = k;
+                        hit.bary = bary;
+                        hit.instance = j;
+                        found = true;
+                    }
                 }
             }
             for (uint k = 0u; k < scene.numSpheres; ++k) {
@@ -106,7 +129,13 @@ void main() {
                 }
             }
         }
-        outputs.v[i] = found ? vec4(hit.t, uintBitsToFloat(hit.primitive), hit.bary)
-                             : vec4(hit.t == -2.0 ? -2.0 : -1.0, 0.0, 0.0, 0.0);
+        // A hit in an instance: its index in place of the second barycentric, and
+        // TEST_HIT_INSTANCE_BIT on the primitive.
+        bool inInstance = found && hit.instance != NO_INSTANCE;
+        vec4 instanced = vec4(
+            hit.t, uintBitsToFloat(hit.primitive | TEST_HIT_INSTANCE_BIT), hit.bary.x, uintBitsToFloat(hit.instance));
+        outputs.v[i] = inInstance ? instanced
+                       : found    ? vec4(hit.t, uintBitsToFloat(hit.primitive), hit.bary)
+                                  : vec4(hit.t == -2.0 ? -2.0 : -1.0, 0.0, 0.0, 0.0);
     }
 }

@@ -38,6 +38,10 @@ static_assert(sizeof(BvhNode) == 32, "BvhNode is two vec3+uint pairs");
 // Default-initialising (no zero fill) and on huge pages from 2 MiB: huge_page_allocator.h.
 using BvhNodeArray = std::vector<BvhNode, DefaultInitAllocator<BvhNode>>;
 
+// Meshes placed several times (Scene::instances): kept once each under a tree over their
+// placements (two levels), or copied into world space into the one tree (src/flatten/flat_instances.h).
+enum class Instancing { Auto, Keep, Expand };
+
 struct BvhBuildOptions {
     int bins = 16;       // clamped to [2, 128]
     int maxLeafSize = 4; // clamped to >= 1; never exceeded
@@ -48,6 +52,11 @@ struct BvhBuildOptions {
     // nodes would take more than this: about the size of a core's L2 cache, below which the
     // decoding costs more than the halved loads save (bench/RESULTS.md, "Quantised nodes").
     size_t quantizeOverBytes = size_t(1) << 20;
+    Instancing instancing = Instancing::Auto;
+    // Auto copies the instances into world space when that adds at most this many triangles:
+    // one tree is faster to trace than two levels of overlapping boxes, and below this the
+    // copies cost little memory (bench/RESULTS.md, "Instances").
+    uint64_t expandInstancesUpTo = uint64_t(1) << 20;
 };
 
 struct Bvh {

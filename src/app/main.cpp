@@ -37,7 +37,7 @@ bool onOff(const std::string& v) { return v == "on"; }
 
 // Switches given as words on the command line, converted after parsing.
 struct SwitchWords {
-    std::string nee, mis, rr, sampling, integrator, sampler, lightTracing;
+    std::string nee, mis, rr, sampling, integrator, sampler, lightTracing, instances;
     std::vector<float> envColour;
 };
 
@@ -78,6 +78,11 @@ void addSceneOptions(CLI::App* cmd, pt::RenderOptions& o, SwitchWords& w) {
            "Caustics seen directly (camera, diffuse surface, mirrors or glass, area light) by light tracing, "
            "splatted, where the scene has them: on|off (default on; off leaves them to BSDF sampling)")
         ->check(CLI::IsMember({"on", "off"}));
+    cmd->add_option("--instances", w.instances,
+           "Meshes placed several times (glTF nodes sharing a mesh, the course's MeshInstances): keep (one copy "
+           "each, under a tree over their placements), expand (copied into world space, one tree; faster to trace, "
+           "more memory) or auto (expand when the copies add at most 2^20 triangles); default auto")
+        ->check(CLI::IsMember({"auto", "keep", "expand"}));
     cmd->add_option("--variant", o.variant,
         "glTF KHR_materials_variants: render this variant's materials (default: the default materials; see "
         "--list-variants)");
@@ -111,6 +116,10 @@ void applySwitchWords(const SwitchWords& w, pt::RenderOptions& o) {
     if (!w.lightTracing.empty()) o.integrator.lightTracing = onOff(w.lightTracing);
     if (!w.sampler.empty())
         o.integrator.sampler = w.sampler == "sobol" ? pt::SamplerKind::Sobol : pt::SamplerKind::Independent;
+    if (!w.instances.empty())
+        o.instancing = w.instances == "keep"     ? pt::Instancing::Keep
+                       : w.instances == "expand" ? pt::Instancing::Expand
+                                                 : pt::Instancing::Auto;
     if (!w.sampling.empty())
         o.sampling = w.sampling == "uniform" ? pt::DirectionSampling::Uniform : pt::DirectionSampling::Cosine;
 }

@@ -1,5 +1,6 @@
 #pragma once
 // Parsed command lines of `pt render` and `pt view`.
+#include "accel/bvh.h"
 #include "flatten/integrator_settings.h"
 
 #include <glm/glm.hpp>
@@ -31,8 +32,9 @@ struct RenderOptions {
     uint32_t tileSize = 0; // 0: whole image per dispatch
     uint32_t passSpp = 0;  // 0: choose passes of about two seconds
     bool validation = false;
-    bool noPipelineCache = false; // --no-pipeline-cache: nothing read from or written to the disk cache
-    bool allFeatures = false;     // compile every feature into the kernel (benchmarking specialisation)
+    bool noPipelineCache = false;             // --no-pipeline-cache: nothing read from or written to the disk cache
+    bool allFeatures = false;                 // compile every feature into the kernel (benchmarking specialisation)
+    Instancing instancing = Instancing::Auto; // --instances: meshes placed several times kept or copied
     bool quiet = false;
     bool varianceAov = false; // --variance: variance-of-the-mean channels in the EXR
     float exposure = 0.0f;

@@ -170,7 +170,7 @@ int runRender(const RenderOptions& o) {
     }
 
     const uint64_t loadedBytes = residentBytes();
-    FlatScene flat = flattenWithNotes(scene);
+    FlatScene flat = flattenWithNotes(scene, o);
     const uint64_t flattenedBytes = residentBytes();
     // The kernel reads the flattened copies only: the scene model's geometry and texture images
     // need not live on beside them.

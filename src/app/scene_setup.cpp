@@ -6,6 +6,7 @@
 #include "image/texture_image.h"
 
 #include <algorithm>
+#include <limits>
 #include <cmath>
 #include <cstdio>
 
@@ -65,14 +66,21 @@ Scene loadSceneWithOptions(const RenderOptions& o) {
     return scene;
 }
 
-FlatScene flattenWithNotes(const Scene& scene) {
-    FlatScene flat = flattenScene(scene);
+FlatScene flattenWithNotes(const Scene& scene, const RenderOptions& o) {
+    BvhBuildOptions bvh;
+    bvh.instancing = o.instancing;
+    FlatScene flat = flattenScene(scene, bvh);
+    if (!flat.instancing.empty() && !o.quiet)
+        std::fprintf(stderr, "pt: %s: %s\n", scene.source.c_str(), flat.instancing.c_str());
     if (flat.degenerateTriangles > 0)
         std::fprintf(stderr, "pt: note: %s: dropped %zu degenerate (zero-area) triangles\n", scene.source.c_str(),
             flat.degenerateTriangles);
     if (flat.degenerateSpheres > 0)
         std::fprintf(stderr, "pt: note: %s: dropped %zu spheres with a singular transform\n", scene.source.c_str(),
             flat.degenerateSpheres);
+    if (flat.degenerateInstances > 0)
+        std::fprintf(stderr, "pt: note: %s: dropped %zu instances with a singular or non-finite transform\n",
+            scene.source.c_str(), flat.degenerateInstances);
     // Unlit surfaces (glTF KHR_materials_unlit, the course's replace_all) show their colour
     // without light, outside the light table.
     const bool anyUnlit =
@@ -87,6 +95,7 @@ FlatScene flattenWithNotes(const Scene& scene) {
 
 void releaseFlattenedParts(Scene& scene) {
     std::vector<Mesh>().swap(scene.meshes);
+    std::vector<SharedMesh>().swap(scene.sharedMeshes);
     std::vector<TextureImage>().swap(scene.textureImages);
 }
 
@@ -114,6 +123,20 @@ void forEachFramingPoint(const Scene& scene, F&& f) {
             f(p);
             if (m.motion != glm::vec3(0.0f)) f(p + m.motion);
         }
+    // An instance: the corners of its mesh's box, placed (a box around the placed mesh).
+    for (const MeshInstance& instance : scene.instances) {
+        if (instance.mesh >= scene.sharedMeshes.size()) continue;
+        glm::vec3 lo(std::numeric_limits<float>::infinity()), hi(-std::numeric_limits<float>::infinity());
+        for (const Mesh& part : scene.sharedMeshes[instance.mesh].parts)
+            for (const glm::vec3& p : part.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
+        if (!(lo.x <= hi.x)) continue;
+        for (int corner = 0; corner < 8; ++corner) {
+            const glm::vec3 c((corner & 1) ? hi.x : lo.x, (corner & 2) ? hi.y : lo.y, (corner & 4) ? hi.z : lo.z);
+            const glm::vec3 p(instance.objectToWorld * glm::vec4(c, 1.0f));
+            f(p);
+            if (instance.motion != glm::vec3(0.0f)) f(p + instance.motion);
+        }
+    }
     for (const Sphere& s : scene.spheres)
         for (int x = -1; x <= 1; ++x)
             for (int y = -1; y <= 1; ++y)

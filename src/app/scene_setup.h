@@ -25,7 +25,7 @@ bool isCourseScene(const std::string& scene);
 // scale and rotation, and warns once about anything rendered approximately.
 Scene loadSceneWithOptions(const RenderOptions& o);
 // flattenScene plus the notes about dropped primitives and the warning for a scene without light.
-FlatScene flattenWithNotes(const Scene& scene);
+FlatScene flattenWithNotes(const Scene& scene, const RenderOptions& o);
 // Frees what flattening copied (meshes, texture images), keeping what the render still reads
 // (source, cameras, background, environment, hints).
 void releaseFlattenedParts(Scene& scene);

@@ -37,7 +37,7 @@ int runView(const ViewOptions& v) {
     if (course && !pick.camera && !scene.cameras.empty()) pick.camera = scene.cameras.front().id;
     const Camera camera = chooseCameras(scene, pick, course).front();
     config.job = makeJob(scene, camera, o, false, course);
-    const FlatScene flat = flattenWithNotes(scene);
+    const FlatScene flat = flattenWithNotes(scene, o);
 
     config.sceneSource = scene.source;
     config.sceneStem = sceneStem(o.scene);

@@ -1,5 +1,7 @@
 #include "flatten/flat_scene.h"
 
+#include "flatten/flat_instances.h"
+
 #include "lights/texture_emission.h"
 
 #include "accel/quantized_bvh.h"
@@ -114,25 +116,6 @@ gpu::GpuMaterial toGpu(const Material& m) {
     return g;
 }
 
-// Whether any-hit traversal must test this material's alpha (glTF MASK and BLEND).
-bool cutsOut(const Material& m) {
-    if (m.alphaMode == Material::AlphaMode::Opaque) return false;
-    if (m.baseColorTexture) return true;
-    return m.alphaMode == Material::AlphaMode::Mask ? m.opacity < m.alphaCutoff : m.opacity < 1.0f;
-}
-
-bool finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
-
-// The tree as the kernel reads it, four-wide; `what` names it if the traversal stack cannot
-// hold it.
-WideBvh gpuNodes(const Bvh& bvh, const std::string& what) {
-    WideBvh wide = collapseToWide(bvh);
-    if (wide.stackNeed > TRAVERSAL_STACK_SIZE)
-        throw std::runtime_error(what + " needs " + std::to_string(wide.stackNeed) +
-                                 " traversal stack entries; the kernel has " + std::to_string(TRAVERSAL_STACK_SIZE));
-    return wide;
-}
-
 // World-space box of the unit sphere under the affine map m: the half-extent along each axis
 // is the length of that row of m's linear part.
 Aabb sphereBounds(const glm::mat4& m) {
@@ -157,16 +140,6 @@ Aabb translated(const Aabb& box, const glm::vec3& by) {
     return moved;
 }
 
-// The motion-table entry of an object that moves by `motion` over the shutter, or NO_MOTION.
-// Emitters stay where they are: light sampling picks points on them without a time.
-uint32_t motionIndex(const glm::vec3& motion, const Material& material, FlatScene& flat) {
-    if (motion == glm::vec3(0.0f) || material.emissive() || !finite(motion)) return NO_MOTION;
-    if (flat.motions.size() >= (1u << (32 - TRIANGLE_MOTION_SHIFT)))
-        throw std::runtime_error("more moving objects than the motion table holds");
-    flat.motions.emplace_back(motion, 0.0f);
-    return static_cast<uint32_t>(flat.motions.size() - 1);
-}
-
 void flattenSpheres(const Scene& scene, const BvhBuildOptions& bvhOptions, FlatScene& flat) {
     std::vector<gpu::GpuSphere> spheres;
     std::vector<Aabb> bounds;
@@ -176,7 +149,8 @@ void flattenSpheres(const Scene& scene, const BvhBuildOptions& bvhOptions, FlatS
         const glm::mat4 inverse = glm::inverse(s.objectToWorld);
         const float det = glm::determinant(glm::mat3(s.objectToWorld));
         bool ok = std::isfinite(det) && det != 0.0f;
-        for (int c = 0; c < 4 && ok; ++c) ok = finite(glm::vec3(inverse[c])) && finite(glm::vec3(s.objectToWorld[c]));
+        for (int c = 0; c < 4 && ok; ++c)
+            ok = isFinite(glm::vec3(inverse[c])) && isFinite(glm::vec3(s.objectToWorld[c]));
         if (!ok) {
             flat.degenerateSpheres++;
             continue;
@@ -213,7 +187,7 @@ FlatEnvironment flattenEnvironment(const Environment& env, const std::string& so
         for (uint32_t x = 0; x < out.width; ++x) {
             glm::vec3 c = constant ? env.colour : glm::vec3(glm::make_vec3(env.image.at(int(x), int(y))));
             c *= env.scale;
-            if (!finite(c) || c.x < 0 || c.y < 0 || c.z < 0)
+            if (!isFinite(c) || c.x < 0 || c.y < 0 || c.z < 0)
                 throw std::runtime_error(source + ": environment texel (" + std::to_string(x) + ", " +
                                          std::to_string(y) + ") is negative or not finite");
             out.texels[size_t(y) * out.width + x] = glm::vec4(c, 0.0f);
@@ -266,8 +240,10 @@ float sceneRadius(const FlatScene& flat) {
 
 Aabb sceneBounds(const FlatScene& flat) {
     Aabb box;
-    if (!flat.nodes.empty()) box.grow(wideNodeBounds(flat.nodes[0]));
-    if (!flat.quantizedNodes.empty()) box.grow(wideNodeBounds(decodeWideNode(flat.quantizedNodes[0])));
+    if (flat.worldNodes > 0 && !flat.nodes.empty()) box.grow(wideNodeBounds(flat.nodes[0]));
+    if (flat.worldNodes > 0 && !flat.quantizedNodes.empty())
+        box.grow(wideNodeBounds(decodeWideNode(flat.quantizedNodes[0])));
+    if (!flat.instanceNodes.empty()) box.grow(wideNodeBounds(flat.instanceNodes[0]));
     if (!flat.sphereNodes.empty()) box.grow(wideNodeBounds(flat.sphereNodes[0]));
     return box;
 }
@@ -279,34 +255,6 @@ void releaseVector(std::vector<T>& v) {
     std::vector<T>().swap(v);
 }
 
-// a[i] = a_before[order[i]] for each array (tangents may be empty), in place: each cycle of the
-// permutation is followed once, with one bit per element to mark what is placed, so no second
-// copy of the arrays is made.
-void applyOrderInPlace(const std::vector<uint32_t>& order, std::vector<gpu::GpuTriangle>& triangles,
-    std::vector<gpu::GpuTriangleShading>& shading, std::vector<gpu::GpuTriangleTangents>& tangents) {
-    const bool withTangents = !tangents.empty();
-    std::vector<bool> placed(order.size(), false);
-    for (size_t start = 0; start < order.size(); ++start) {
-        if (placed[start]) continue;
-        const gpu::GpuTriangle firstTriangle = triangles[start];
-        const gpu::GpuTriangleShading firstShading = shading[start];
-        const gpu::GpuTriangleTangents firstTangents = withTangents ? tangents[start] : gpu::GpuTriangleTangents{};
-        size_t to = start;
-        for (;;) {
-            placed[to] = true;
-            const size_t from = order[to];
-            if (from == start) break;
-            triangles[to] = triangles[from];
-            shading[to] = shading[from];
-            if (withTangents) tangents[to] = tangents[from];
-            to = from;
-        }
-        triangles[to] = firstTriangle;
-        shading[to] = firstShading;
-        if (withTangents) tangents[to] = firstTangents;
-    }
-}
-
 } // namespace
 
 FlatScene flattenScene(const Scene& scene, const BvhBuildOptions& bvhOptions) {
@@ -316,98 +264,28 @@ FlatScene flattenScene(const Scene& scene, const BvhBuildOptions& bvhOptions) {
     flattenTextures(scene, flat);
     flat.ambientLight = scene.ambientLight;
 
-    // Gather valid triangles in scene order; zero-area ones can never be hit and would only
-    // cost traversal time (and break light sampling if emissive).
-    std::vector<gpu::GpuTriangle> triangles;
-    std::vector<gpu::GpuTriangleShading> shading;
-    std::vector<gpu::GpuTriangleTangents> tangents;
-    // The file's tangents matter to normal maps and to anisotropy's direction.
-    const bool anyTangents = std::any_of(scene.meshes.begin(), scene.meshes.end(), [&](const Mesh& m) {
-        if (m.tangents.empty() || m.material >= scene.materials.size()) return false;
-        const Material& material = scene.materials[m.material];
-        return material.normalTexture.has_value() || material.anisotropy > 0.0f;
-    });
-    std::vector<Aabb> bounds;
-    triangles.reserve(scene.triangleCount());
-    for (const Mesh& mesh : scene.meshes) {
-        if (mesh.material >= scene.materials.size())
-            throw std::runtime_error(scene.source + ": mesh '" + mesh.name + "' uses a material that does not exist");
-        const uint32_t motion = motionIndex(mesh.motion, scene.materials[mesh.material], flat);
-        for (const glm::uvec3& t : mesh.triangles) {
-            gpu::GpuTriangle tri{};
-            tri.p0 = mesh.positions.at(t.x);
-            tri.p1 = mesh.positions.at(t.y);
-            tri.p2 = mesh.positions.at(t.z);
-            const glm::vec3 n = glm::cross(tri.p1 - tri.p0, tri.p2 - tri.p0);
-            if (!finite(n) || glm::dot(n, n) == 0.0f || !finite(tri.p0) || !finite(tri.p1) || !finite(tri.p2)) {
-                flat.degenerateTriangles++;
-                continue;
-            }
-            tri.materialIndex = mesh.material;
-            tri.lightIndex = NO_LIGHT;
-            if (cutsOut(scene.materials[mesh.material])) tri.flags |= TRIANGLE_FLAG_ALPHA_TESTED;
-            gpu::GpuTriangleShading sh{};
-            if (!mesh.normals.empty()) {
-                sh.n0 = mesh.normals[t.x];
-                sh.n1 = mesh.normals[t.y];
-                sh.n2 = mesh.normals[t.z];
-                // Zero normals mark invalid input (see the loaders): use the geometric normal.
-                if (sh.n0 != glm::vec3(0.0f) && sh.n1 != glm::vec3(0.0f) && sh.n2 != glm::vec3(0.0f))
-                    tri.flags |= TRIANGLE_FLAG_SHADING_NORMALS;
-            }
-            if (!mesh.uvs.empty()) {
-                sh.u0 = mesh.uvs[t.x].x;
-                sh.u1 = mesh.uvs[t.y].x;
-                sh.u2 = mesh.uvs[t.z].x;
-                sh.v = glm::vec3(mesh.uvs[t.x].y, mesh.uvs[t.y].y, mesh.uvs[t.z].y);
-            }
-            Aabb box;
-            box.grow(tri.p0);
-            box.grow(tri.p1);
-            box.grow(tri.p2);
-            if (motion != NO_MOTION) {
-                tri.flags |= TRIANGLE_FLAG_MOVING | (motion << TRIANGLE_MOTION_SHIFT);
-                box.grow(translated(box, mesh.motion));
-            }
-            if (anyTangents) {
-                gpu::GpuTriangleTangents tg{};
-                if (!mesh.tangents.empty()) {
-                    tg = {mesh.tangents[t.x], mesh.tangents[t.y], mesh.tangents[t.z]};
-                    // Zero tangents mark invalid input: fall back to the triangle's own frame.
-                    const Material& material = scene.materials[mesh.material];
-                    if (tg.t0.w != 0.0f && tg.t1.w != 0.0f && tg.t2.w != 0.0f &&
-                        (material.normalTexture || material.anisotropy > 0.0f))
-                        tri.flags |= TRIANGLE_FLAG_TANGENTS;
-                }
-                tangents.push_back(tg);
-            }
-            triangles.push_back(tri);
-            shading.push_back(sh);
-            bounds.push_back(box);
-        }
-    }
-
-    // The peak of a big scene's memory is here (bench/RESULTS.md, "Memory per triangle"): each
-    // temporary goes as soon as it has served, and the arrays are put in BVH order in place.
-    Bvh bvh = buildBvh(bounds, bvhOptions);
-    releaseVector(bounds);
-    flat.bvhSeconds = bvh.buildSeconds;
-    flat.sahCost = bvh.sahCost;
-    flat.bvhDepth = bvh.maxDepth;
+    // The world tree (root 0): world-space meshes and the placements copied into world space.
+    // The kept instances' meshes follow with trees of their own, and a tree over the placements.
+    const bool keepTangents = sceneKeepsTangents(scene);
+    const std::vector<bool> kept = chooseKeptInstances(scene, bvhOptions, flat);
     {
-        WideBvh wide = gpuNodes(bvh, scene.source + ": BVH");
-        flat.wideBvhDepth = wide.depth;
-        if (wide.nodes.size() * sizeof(gpu::GpuBvh4Node) > bvhOptions.quantizeOverBytes)
-            flat.quantizedNodes = quantizeWideNodes(wide.nodes);
-        else
-            flat.nodes = std::move(wide.nodes);
+        TriangleSet world;
+        world.triangles.reserve(scene.triangleCount());
+        for (const Mesh& mesh : scene.meshes)
+            gatherTriangles(scene, mesh, mesh.material, mesh.motion, keepTangents, flat, world);
+        gatherExpandedInstances(scene, kept, keepTangents, flat, world);
+        const AppendedTree tree = appendTriangleTree(world, bvhOptions, scene.source + ": BVH", flat);
+        flat.worldNodes = static_cast<uint32_t>(flat.nodes.size());
+        flat.bvhSeconds = tree.buildSeconds;
+        flat.sahCost = tree.sahCost;
+        flat.bvhDepth = tree.binaryDepth;
+        flat.wideBvhDepth = tree.wideDepth;
     }
-    std::vector<uint32_t> order = std::move(bvh.primOrder);
-    bvh = Bvh{};
-    applyOrderInPlace(order, triangles, shading, tangents);
-    flat.triangles = std::move(triangles);
-    flat.shading = std::move(shading);
-    flat.tangents = std::move(tangents);
+    flattenKeptInstances(scene, kept, bvhOptions, keepTangents, flat);
+    if (flat.nodes.size() * sizeof(gpu::GpuBvh4Node) > bvhOptions.quantizeOverBytes) {
+        flat.quantizedNodes = quantizeWideNodes(flat.nodes);
+        releaseVector(flat.nodes);
+    }
     flattenSpheres(scene, bvhOptions, flat);
     if (scene.environment) flat.environment = flattenEnvironment(*scene.environment, scene.source);
     // Emitters are weighed by their emission texture's light (lights/texture_emission.h).

@@ -41,10 +41,17 @@ struct FlatScene {
     std::vector<gpu::GpuTriangle> triangles;
     std::vector<gpu::GpuTriangleShading> shading;
     std::vector<gpu::GpuTriangleTangents> tangents; // per triangle when any mesh has tangents, else empty
-    // The triangles' four-wide tree (accel/wide_bvh.h): float nodes, or quantised ones
-    // (accel/quantized_bvh.h) when it is big (BvhBuildOptions::quantizeOverBytes); one is empty.
+    // The triangles' four-wide trees (accel/wide_bvh.h): the world tree's nodes first (root 0),
+    // then each instanced mesh's (src/flatten/flat_instances.h). Float nodes, or quantised ones
+    // (accel/quantized_bvh.h) when they are big (BvhBuildOptions::quantizeOverBytes); one is empty.
     std::vector<gpu::GpuBvh4Node> nodes;
     std::vector<gpu::GpuBvh4QNode> quantizedNodes;
+    uint32_t worldNodes = 0; // the world tree's nodes (0: no world-space triangles)
+    // Placements of instanced meshes, in the order of the leaves of the tree over them.
+    std::vector<gpu::GpuInstance> instances;
+    std::vector<gpu::GpuBvh4Node> instanceNodes;
+    std::string instancing;                    // what became of the scene's instances, for the log ("" without any)
+    size_t degenerateInstances = 0;            // placements with a singular or non-finite transform dropped
     std::vector<gpu::GpuSphere> spheres;       // BVH-ordered
     std::vector<gpu::GpuBvh4Node> sphereNodes; // a second BVH, over the spheres
     std::vector<gpu::GpuMaterial> materials;
@@ -58,6 +65,7 @@ struct FlatScene {
     LightTable lights;
     size_t degenerateTriangles = 0; // zero-area or non-finite triangles dropped
     size_t degenerateSpheres = 0;   // singular or non-finite sphere transforms dropped
+    // The world tree's build.
     double bvhSeconds = 0;
     double sahCost = 0;
     int bvhDepth = 0;     // binary tree's depth (edges)

@@ -27,7 +27,8 @@ uint64_t bytesOf(const std::vector<T>& data) {
 void requireDeviceMemory(VulkanContext& context, const FlatScene& scene, VkDeviceSize accumulationBytes) {
     const uint64_t geometry = bytesOf(scene.triangles) + bytesOf(scene.shading) + bytesOf(scene.tangents) +
                               bytesOf(scene.spheres) + bytesOf(scene.motions);
-    const uint64_t bvh = bytesOf(scene.nodes) + bytesOf(scene.quantizedNodes) + bytesOf(scene.sphereNodes);
+    const uint64_t bvh = bytesOf(scene.nodes) + bytesOf(scene.quantizedNodes) + bytesOf(scene.sphereNodes) +
+                         bytesOf(scene.instances) + bytesOf(scene.instanceNodes);
     const uint64_t textures = bytesOf(scene.texels) + bytesOf(scene.textures) + bytesOf(scene.environment.texels) +
                               bytesOf(scene.environment.marginal) + bytesOf(scene.environment.conditional);
     const uint64_t other = bytesOf(scene.materials) + bytesOf(scene.lights.lights) + bytesOf(scene.lights.cdf);
@@ -73,7 +74,7 @@ void GpuScene::build(VulkanContext& context, const FlatScene& scene, FlatScene* 
     requireDeviceMemory(context, scene, accumulationBytes);
     const bool quantized = !scene.quantizedNodes.empty();
     params.numTriangles = static_cast<uint32_t>(scene.triangles.size());
-    params.numNodes = static_cast<uint32_t>(quantized ? scene.quantizedNodes.size() : scene.nodes.size());
+    params.numNodes = scene.worldNodes;
     params.nodeFormat = quantized ? BVH_NODES_QUANTIZED : BVH_NODES_FLOAT;
     // The big arrays, each freed (when `release` is the scene) once it is on the device.
     auto upload = [&](auto FlatScene::*array, const char* name) {
@@ -88,6 +89,8 @@ void GpuScene::build(VulkanContext& context, const FlatScene& scene, FlatScene* 
     texels_ = upload(&FlatScene::texels, "texels");
     spheres_ = makeBuffer(context, scene.spheres, "spheres");
     sphereNodes_ = makeBuffer(context, scene.sphereNodes, "sphere bvh nodes");
+    instances_ = makeBuffer(context, scene.instances, "instances");
+    instanceNodes_ = makeBuffer(context, scene.instanceNodes, "instance bvh nodes");
     materials_ = makeBuffer(context, scene.materials, "materials");
     lights_ = makeBuffer(context, scene.lights.lights, "lights");
     lightCdf_ = makeBuffer(context, scene.lights.cdf, "light cdf");
@@ -104,6 +107,10 @@ void GpuScene::build(VulkanContext& context, const FlatScene& scene, FlatScene* 
     params.nodes = nodes_.address();
     params.spheres = spheres_.address();
     params.sphereNodes = sphereNodes_.address();
+    params.instances = instances_.address();
+    params.instanceNodes = instanceNodes_.address();
+    params.numInstances = static_cast<uint32_t>(scene.instances.size());
+    params.numInstanceNodes = static_cast<uint32_t>(scene.instanceNodes.size());
     params.materials = materials_.address();
     params.lights = lights_.address();
     params.lightCdf = lightCdf_.address();

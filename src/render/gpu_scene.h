@@ -27,8 +27,9 @@ private:
     void build(VulkanContext& context, const FlatScene& scene, FlatScene* release, gpu::GpuSceneParams params,
         VkDeviceSize accumulationBytes);
 
-    GpuBuffer triangles_, shading_, nodes_, spheres_, sphereNodes_, materials_, lights_, lightCdf_, envTexels_,
-        envMarginal_, envConditional_, textures_, texels_, motions_, tangents_, accumulation_, params_;
+    GpuBuffer triangles_, shading_, nodes_, spheres_, sphereNodes_, instances_, instanceNodes_, materials_, lights_,
+        lightCdf_, envTexels_, envMarginal_, envConditional_, textures_, texels_, motions_, tangents_, accumulation_,
+        params_;
 };
 
 } // namespace pt

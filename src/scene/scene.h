@@ -1,6 +1,7 @@
 #pragma once
 // The renderer's scene model: what every loader (glTF, course XML) produces and everything
-// downstream (BVH, light table, GPU upload) consumes. World space, no hierarchy left.
+// downstream (BVH, light table, GPU upload) consumes. World space, except meshes placed more than
+// once: those are kept once with a transform per placement (SharedMesh, MeshInstance).
 #include "image/image.h"
 #include "image/texture_image.h"
 
@@ -146,6 +147,28 @@ struct Mesh {
     glm::vec3 motion{0.0f}; // motion blur: translation over the shutter interval (world space)
 };
 
+// A mesh placed more than once (glTF nodes sharing a mesh, the course's Meshes that
+// MeshInstances build on): its parts once, in object space, and a MeshInstance per placement.
+// The flattener keeps it as one tree under an instance tree (two-level BVH), or copies it into
+// world space where that pays or is needed (src/flatten/flat_instances.h).
+struct SharedMesh {
+    std::string name;
+    std::vector<Mesh> parts; // object space; each part's material unless an instance replaces it
+    size_t triangleCount() const {
+        size_t n = 0;
+        for (const Mesh& m : parts) n += m.triangles.size();
+        return n;
+    }
+};
+
+struct MeshInstance {
+    std::string name;
+    uint32_t mesh = 0; // index into Scene::sharedMeshes
+    glm::mat4 objectToWorld{1.0f};
+    std::optional<uint32_t> material; // replaces every part's material (the course's instances)
+    glm::vec3 motion{0.0f};           // motion blur: translation over the shutter interval (world space)
+};
+
 // Tone mapping for the PNG (the EXR stays linear): the CENG795 course's operators.
 struct TonemapSettings {
     enum class Operator { Clamp, Photographic };
@@ -234,7 +257,9 @@ struct Scene {
     std::vector<Texture> textures;
     std::vector<TextureImage> textureImages;
     std::optional<uint32_t> backgroundTexture; // the course's replace_background (camera rays)
-    std::vector<Mesh> meshes;
+    std::vector<Mesh> meshes;                  // world space
+    std::vector<SharedMesh> sharedMeshes;
+    std::vector<MeshInstance> instances;
     std::vector<Sphere> spheres;
     std::vector<PunctualLight> punctualLights;
     std::optional<Environment> environment; // replaces `background` for rays that escape
@@ -249,9 +274,19 @@ struct Scene {
     std::vector<std::string> materialVariants;
     std::string variant;
 
+    // Distinct triangles: the world-space meshes' and each shared mesh's once.
     size_t triangleCount() const {
         size_t n = 0;
         for (const auto& m : meshes) n += m.triangles.size();
+        for (const auto& m : sharedMeshes) n += m.triangleCount();
+        return n;
+    }
+    // Triangles once every instance is placed: what a single-level scene would hold.
+    uint64_t expandedTriangleCount() const {
+        uint64_t n = 0;
+        for (const auto& m : meshes) n += m.triangles.size();
+        for (const auto& i : instances)
+            if (i.mesh < sharedMeshes.size()) n += sharedMeshes[i.mesh].triangleCount();
         return n;
     }
 };

@@ -137,7 +137,7 @@ int runBench(const BenchOptions& b) {
                                      "x" + std::to_string(job.height));
     }
 
-    FlatScene flat = flattenWithNotes(scene);
+    FlatScene flat = flattenWithNotes(scene, o);
     VulkanContext context(contextOptionsFor(o));
     const std::string device = context.info().name + " (" + context.info().driver + ")";
     const Image reference =

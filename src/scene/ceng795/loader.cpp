@@ -195,7 +195,7 @@ Scene importScene(Context& ctx, pugi::xml_node root) {
     const VertexPool pool = readVertexPool(ctx, root);
     readObjects(ctx, root, pool, transforms, materials, textures, s);
     materials.noteUsed(ctx);
-    if (s.meshes.empty() && s.spheres.empty()) ctx.fail("no objects to render");
+    if (s.meshes.empty() && s.instances.empty() && s.spheres.empty()) ctx.fail("no objects to render");
     s.cameras = readCameras(ctx, root, s.hints.maxDepth);
     s.unsupported = ctx.notes();
     // The classic integrator models the diffuse and specular layers of mirrors, conductors and

@@ -7,7 +7,9 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <iterator>
 #include <map>
+#include <set>
 
 namespace pt::ceng795 {
 namespace {
@@ -23,9 +25,9 @@ public:
 
     void read(pugi::xml_node scene) {
         for (pugi::xml_node objects : scene.children("Objects")) collectDefinitions(objects);
-        // Every MeshInstance is copied into world space: refuse a scene whose copies cannot fit
-        // before making them.
-        requireMemoryForTriangles(ctx_.file(), expandedTriangleCount(scene), "every MeshInstance expanded");
+        // A Mesh that MeshInstances build on is kept once, each placement an instance of it:
+        // refuse a scene whose meshes cannot fit before reading them.
+        requireMemoryForTriangles(ctx_.file(), distinctTriangleCount(scene), "each Mesh once");
         for (pugi::xml_node objects : scene.children("Objects"))
             for (pugi::xml_node e : objects.children())
                 if (e.type() == pugi::node_element) readObject(e);
@@ -43,6 +45,7 @@ private:
     };
     // Where an instance chain ends up: the root mesh's geometry, placed and shaded.
     struct Placement {
+        long long rootId;
         const MeshDefinition* root;
         glm::mat4 transform;
         uint32_t material;
@@ -129,7 +132,43 @@ private:
     }
 
     void emitMesh(pugi::xml_node e, const MeshDefinition& m) {
+        const long long id = idOf(ctx_, e);
+        if (instanceBases_.count(id)) {
+            const Placement own{id, &m, m.transform, m.material, m.smooth, m.textures, m.motion};
+            emitPlacement(e, own);
+            return;
+        }
         emit(e, *m.geometry, m.transform, textured(m.textures, m.material), m.smooth, m.motion);
+    }
+
+    // A placement of a Mesh that instances share: an instance of the mesh kept once (per
+    // shading mode) in object space.
+    void emitPlacement(pugi::xml_node e, const Placement& p) {
+        const std::pair<long long, bool> key(p.rootId, p.smooth);
+        auto shared = sharedMeshes_.find(key);
+        if (shared == sharedMeshes_.end()) {
+            SharedMesh mesh;
+            mesh.name = "Mesh " + std::to_string(p.rootId);
+            Mesh part = toWorld(ctx_, e, *p.root->geometry, glm::mat4(1.0f), p.smooth);
+            part.name = mesh.name;
+            part.material = p.material;
+            if (p.root->geometry->triangles.size() > kMaxSceneTriangles - triangles_)
+                ctx_.fail(e, "the scene holds more than " + std::to_string(kMaxSceneTriangles) + " triangles");
+            triangles_ += part.triangles.size();
+            if (!part.triangles.empty()) mesh.parts.push_back(std::move(part));
+            shared = sharedMeshes_.emplace(key, static_cast<uint32_t>(out_.sharedMeshes.size())).first;
+            out_.sharedMeshes.push_back(std::move(mesh));
+        }
+        const uint32_t material = textured(p.textures, p.material);
+        if (p.root->geometry->uvs.empty() && hasUvTextures(material))
+            ctx_.note("image textures on meshes without TexCoordData (drawn with uv 0)");
+        MeshInstance instance;
+        instance.name = printable(e.name()) + " " + idText(e, "?");
+        instance.mesh = shared->second;
+        instance.objectToWorld = p.transform;
+        instance.material = material;
+        instance.motion = p.motion;
+        out_.instances.push_back(std::move(instance));
     }
 
     uint32_t textured(pugi::xml_node texturesNode, uint32_t material) {
@@ -161,10 +200,7 @@ private:
             motionBlur(e).value_or(glm::vec3(0.0f)));
     }
 
-    void emitInstance(pugi::xml_node e) {
-        const Placement p = resolve(idOf(ctx_, e));
-        emit(e, *p.root->geometry, p.transform, textured(p.textures, p.material), p.smooth, p.motion);
-    }
+    void emitInstance(pugi::xml_node e) { emitPlacement(e, resolve(idOf(ctx_, e))); }
 
     // An instance on top of what its base resolved to. resetTransform="true" places the raw base
     // geometry with the instance's own transform only; otherwise the own transform is applied
@@ -204,7 +240,7 @@ private:
             chain.push_back(inst);
             const long long baseId = baseMeshId(inst);
             if (auto m = meshes_.find(baseId); m != meshes_.end()) {
-                base = Placement{&m->second, m->second.transform, m->second.material, m->second.smooth,
+                base = Placement{m->first, &m->second, m->second.transform, m->second.material, m->second.smooth,
                     m->second.textures, m->second.motion};
                 break;
             }
@@ -219,47 +255,30 @@ private:
         return base;
     }
 
-    // The triangles the objects will add, instances expanded, before any is placed (LightMeshes,
-    // small and not parsed yet, left out). An instance
-    // chain that does not end at a Mesh (a cycle, a missing id) counts nothing here; resolve()
-    // reports it.
-    uint64_t expandedTriangleCount(pugi::xml_node scene) {
-        std::map<long long, uint64_t> instanceTriangles;
-        auto instanceCount = [&](long long id) -> uint64_t {
-            std::vector<long long> chain;
-            uint64_t triangles = 0;
-            for (long long cur = id; chain.size() <= instances_.size();) {
-                if (auto known = instanceTriangles.find(cur); known != instanceTriangles.end()) {
-                    triangles = known->second;
-                    break;
-                }
-                auto inst = instances_.find(cur);
-                if (inst == instances_.end()) break;
-                chain.push_back(cur);
-                pugi::xml_attribute b = inst->second.attribute("baseMeshId");
+    // The triangles the objects will add, each Mesh once (LightMeshes, small and not parsed yet,
+    // left out), and which Meshes instances build on: the end of each MeshInstance's chain. A
+    // chain that does not end at a Mesh (a cycle, a missing id) marks nothing; resolve() reports it.
+    uint64_t distinctTriangleCount(pugi::xml_node scene) {
+        for (const auto& [id, inst] : instances_) {
+            long long cur = id;
+            for (size_t steps = 0; steps <= instances_.size(); ++steps) {
+                auto at = instances_.find(cur);
+                if (at == instances_.end()) break;
+                pugi::xml_attribute b = at->second.attribute("baseMeshId");
                 const std::vector<std::string_view> t = tokens(b ? b.value() : "");
                 if (t.size() != 1) break;
-                const long long baseId = toInteger(ctx_, inst->second, t[0]);
-                if (auto m = meshes_.find(baseId); m != meshes_.end()) {
-                    triangles = m->second.geometry->triangles.size();
+                const long long baseId = toInteger(ctx_, at->second, t[0]);
+                if (meshes_.count(baseId)) {
+                    instanceBases_.insert(baseId);
                     break;
                 }
                 cur = baseId;
             }
-            for (long long c : chain) instanceTriangles[c] = triangles;
-            return triangles;
-        };
+        }
         uint64_t total = 0;
+        for (const auto& [id, mesh] : meshes_) total += mesh.geometry->triangles.size();
         for (pugi::xml_node objects : scene.children("Objects"))
-            for (pugi::xml_node e : objects.children()) {
-                const std::string type = e.name();
-                if (type == "Mesh")
-                    total += meshes_.at(idOf(ctx_, e)).geometry->triangles.size();
-                else if (type == "MeshInstance")
-                    total += instanceCount(idOf(ctx_, e));
-                else if (type == "Triangle")
-                    total += 1;
-            }
+            total += std::distance(objects.children("Triangle").begin(), objects.children("Triangle").end());
         return total;
     }
 
@@ -318,6 +337,8 @@ private:
     std::map<long long, MeshDefinition> meshes_;
     std::map<long long, pugi::xml_node> instances_;
     std::map<long long, Placement> resolved_;
+    std::set<long long> instanceBases_;                           // Meshes that MeshInstances build on
+    std::map<std::pair<long long, bool>, uint32_t> sharedMeshes_; // (Mesh id, smooth) -> Scene::sharedMeshes
     size_t triangles_ = 0;
 };
 

@@ -20,9 +20,13 @@ Scene GltfImporter::run() {
     convertMaterials();
     readMaterialVariants();
     std::vector<int> roots = rootNodes();
-    // Every node's mesh is copied into world space: refuse a scene whose copies cannot fit
-    // before making them.
-    requireMemoryForTriangles(file_, expandedTriangleCount(roots), "every node instance of a mesh expanded");
+    // A mesh one node places is copied into world space, one several nodes place is kept once:
+    // refuse a scene whose triangles cannot fit before reading them.
+    placements_ = placementsPerMesh(roots);
+    uint64_t triangles = 0;
+    for (size_t m = 0; m < placements_.size(); ++m)
+        if (placements_[m] > 0) triangles += meshTriangleCount(static_cast<int>(m));
+    requireMemoryForTriangles(file_, triangles, "each mesh once");
     std::vector<bool> onPath(model_.nodes.size(), false);
     for (int root : roots) visitNode(root, glm::mat4(1.0f), onPath, 0);
     if (scene_.triangleCount() == 0) fail("no renderable geometry (the scene has no triangle primitives)");
@@ -122,7 +126,7 @@ void GltfImporter::visitNode(int index, const glm::mat4& parent, std::vector<boo
     if (node.mesh >= 0) {
         if (node.mesh >= static_cast<int>(model_.meshes.size()))
             fail("node " + std::to_string(index) + ": mesh index out of range");
-        addMesh(model_.meshes[node.mesh], node.mesh, world);
+        placeMesh(node.mesh, world, index);
     }
     if (node.camera >= 0) addCamera(node.camera, world);
     if (auto it = node.extensions.find("KHR_lights_punctual"); it != node.extensions.end())

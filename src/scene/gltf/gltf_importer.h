@@ -28,7 +28,7 @@ constexpr int kMaxNodeDepth = 1024;
 // A node may be the child of several parents (glTF forbids it, files do it anyway), so a small
 // file can describe an exponential number of instances: 40 nodes that each list the next one
 // twice make 2^40. A tree visits each node once, whatever its size; repeat visits are bounded,
-// and so are the vertices and triangles all instances add up to.
+// and so are the vertices and triangles of the meshes read.
 constexpr size_t kMaxRepeatedNodeVisits = size_t(1) << 12;
 constexpr size_t kMaxInstanced = size_t(1) << 27; // vertices, and triangles
 
@@ -82,9 +82,13 @@ private:
     template <int N>
     std::vector<glm::vec<N, float>> readVectors(int accessorIndex, const std::string& what, bool allowNormalizedInts);
     std::vector<uint32_t> readIndices(int accessorIndex, const std::string& what);
-    void addMesh(const tinygltf::Mesh& mesh, int meshIndex, const glm::mat4& world);
+    // The mesh's triangle primitives, each a Mesh, mapped by `transform` (identity: object space).
+    std::vector<Mesh> readMesh(const tinygltf::Mesh& mesh, int meshIndex, const glm::mat4& transform);
+    // A node's mesh: copied into world space if no other node places it, else an instance of
+    // the mesh kept once (Scene::sharedMeshes).
+    void placeMesh(int meshIndex, const glm::mat4& world, int nodeIndex);
     uint64_t meshTriangleCount(int meshIndex) const;
-    uint64_t expandedTriangleCount(const std::vector<int>& roots) const;
+    std::vector<uint64_t> placementsPerMesh(const std::vector<int>& roots) const;
 
     // ---- gltf_lights_cameras.cpp ----
     void addCamera(int cameraIndex, const glm::mat4& world);
@@ -100,6 +104,8 @@ private:
     Scene scene_;
     int defaultMaterial_ = -1;
     std::vector<bool> visited_;
+    std::vector<uint64_t> placements_;          // per mesh: the nodes that place it
+    std::map<int, uint32_t> sharedMeshIndices_; // mesh -> its entry in Scene::sharedMeshes
     size_t repeatedVisits_ = 0, instancedVertices_ = 0, instancedTriangles_ = 0;
     std::map<std::string, int> unsupportedCounts_;
 };

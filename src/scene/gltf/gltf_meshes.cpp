@@ -1,6 +1,7 @@
 // glTF meshes into the scene model (gltf_importer.h): accessors read with every bound checked
 // against their buffer view and buffer, and each triangle primitive (list, strip or fan) with
-// its positions, normals, tangents and TEXCOORD_0 transformed to world space.
+// its positions, normals, tangents and TEXCOORD_0, in world space for a mesh one node places and
+// in object space, kept once, for a mesh several nodes place.
 #include "scene/gltf/gltf_importer.h"
 
 #include <glm/gtc/matrix_inverse.hpp>
@@ -100,7 +101,8 @@ std::vector<uint32_t> GltfImporter::readIndices(int accessorIndex, const std::st
 }
 
 // ---- meshes ----
-void GltfImporter::addMesh(const tinygltf::Mesh& mesh, int meshIndex, const glm::mat4& world) {
+std::vector<Mesh> GltfImporter::readMesh(const tinygltf::Mesh& mesh, int meshIndex, const glm::mat4& world) {
+    std::vector<Mesh> parts;
     const glm::mat3 normalMatrix = glm::inverseTranspose(glm::mat3(world));
     // A mirroring transform turns counter-clockwise into clockwise: swap to keep front faces.
     const bool mirrored = glm::determinant(glm::mat3(world)) < 0.0f;
@@ -193,10 +195,32 @@ void GltfImporter::addMesh(const tinygltf::Mesh& mesh, int meshIndex, const glm:
         instancedVertices_ += out.positions.size();
         instancedTriangles_ += out.triangles.size();
         if (instancedTriangles_ > kMaxInstanced || instancedVertices_ > kMaxInstanced)
-            fail("more than " + std::to_string(kMaxInstanced) +
-                 " vertices or triangles once every node instance is expanded");
-        if (!out.triangles.empty()) scene_.meshes.push_back(std::move(out));
+            fail("more than " + std::to_string(kMaxInstanced) + " vertices or triangles in its meshes");
+        if (!out.triangles.empty()) parts.push_back(std::move(out));
     }
+    return parts;
+}
+
+void GltfImporter::placeMesh(int meshIndex, const glm::mat4& world, int nodeIndex) {
+    const tinygltf::Mesh& mesh = model_.meshes[meshIndex];
+    if (placements_.at(meshIndex) < 2) {
+        for (Mesh& part : readMesh(mesh, meshIndex, world)) scene_.meshes.push_back(std::move(part));
+        return;
+    }
+    auto shared = sharedMeshIndices_.find(meshIndex);
+    if (shared == sharedMeshIndices_.end()) {
+        SharedMesh s;
+        s.name = mesh.name.empty() ? "mesh " + std::to_string(meshIndex) : mesh.name;
+        s.parts = readMesh(mesh, meshIndex, glm::mat4(1.0f));
+        shared = sharedMeshIndices_.emplace(meshIndex, static_cast<uint32_t>(scene_.sharedMeshes.size())).first;
+        scene_.sharedMeshes.push_back(std::move(s));
+    }
+    MeshInstance instance;
+    instance.name = "node " + std::to_string(nodeIndex) +
+                    (model_.nodes[nodeIndex].name.empty() ? "" : " '" + model_.nodes[nodeIndex].name + "'");
+    instance.mesh = shared->second;
+    instance.objectToWorld = world;
+    scene_.instances.push_back(std::move(instance));
 }
 
 // The triangles a mesh's primitives claim (index or POSITION counts, each bounded by what its
@@ -229,14 +253,13 @@ uint64_t GltfImporter::meshTriangleCount(int meshIndex) const {
     return triangles;
 }
 
-// The triangles of every node instance of every mesh, walking the hierarchy as visitNode will;
-// a cycle or too many repeated visits stops the count (visitNode then reports them).
-uint64_t GltfImporter::expandedTriangleCount(const std::vector<int>& roots) const {
+// How many nodes place each mesh, walking the hierarchy as visitNode will; a cycle or too many
+// repeated visits stops the count (visitNode then reports them).
+std::vector<uint64_t> GltfImporter::placementsPerMesh(const std::vector<int>& roots) const {
     const size_t nodes = model_.nodes.size();
-    std::vector<uint64_t> perMesh(model_.meshes.size(), UINT64_MAX);
+    std::vector<uint64_t> placements(model_.meshes.size(), 0);
     std::vector<bool> seen(nodes, false);
     size_t repeats = 0;
-    uint64_t total = 0;
     std::vector<std::pair<int, int>> stack; // (node, depth)
     for (int root : roots) stack.emplace_back(root, 0);
     while (!stack.empty()) {
@@ -246,13 +269,10 @@ uint64_t GltfImporter::expandedTriangleCount(const std::vector<int>& roots) cons
         if (seen[index] && ++repeats > kMaxRepeatedNodeVisits) break;
         seen[index] = true;
         const tinygltf::Node& node = model_.nodes[index];
-        if (node.mesh >= 0 && node.mesh < static_cast<int>(perMesh.size())) {
-            if (perMesh[node.mesh] == UINT64_MAX) perMesh[node.mesh] = meshTriangleCount(node.mesh);
-            total += perMesh[node.mesh];
-        }
+        if (node.mesh >= 0 && node.mesh < static_cast<int>(placements.size())) placements[node.mesh]++;
         for (int child : node.children) stack.emplace_back(child, depth + 1);
     }
-    return total;
+    return placements;
 }
 
 } // namespace pt::gltf

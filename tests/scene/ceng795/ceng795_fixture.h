@@ -4,6 +4,7 @@
 // comparisons, lookups in a loaded scene, pieces of small scenes, and the fixture that writes a
 // scene into a fresh directory, loads it, and checks the one-line error of a bad one.
 #include "scene/ceng795/loader.h"
+#include "scene/mesh_placement.h"
 #include "scene/scene_error.h"
 #include "support/test_directory.h"
 
@@ -93,6 +94,13 @@ protected:
     }
 
     pt::Scene load(const std::string& xml) const { return pt::loadCeng795File(write("scene.xml", xml)); }
+    // The scene with its instances copied into world space (pt::expandInstances), in file order
+    // where every mesh is an instance.
+    pt::Scene loadExpanded(const std::string& xml) const {
+        pt::Scene s = load(xml);
+        pt::expandInstances(s);
+        return s;
+    }
 
     // Loading must fail with one line "<file>: <label>: ...<problem>...".
     void expectError(const std::string& xml, const std::string& label, const std::string& problem) const {

@@ -93,7 +93,9 @@ TEST(Ceng795Official, CornellPathGlass) {
 }
 
 TEST(Ceng795Official, MetalGlassPlatesTransformsAndInstance) {
-    const pt::Scene s = pt::loadCeng795File(kData / "metal_glass_plates.xml");
+    pt::Scene s = pt::loadCeng795File(kData / "metal_glass_plates.xml");
+    EXPECT_EQ(s.instances.size(), 2u); // Mesh 3 and MeshInstance 4 place one mesh
+    pt::expandInstances(s);
     ASSERT_EQ(s.meshes.size(), 4u);
     ASSERT_EQ(s.spheres.size(), 1u);
     // Vertex 5 (-0.5, -0.5, 0.5) through "s2 s3 r2 t2" (Mesh 3), by hand:

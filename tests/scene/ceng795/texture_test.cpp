@@ -85,11 +85,12 @@ TEST_F(Ceng795, ObjectsWithTheSameTexturesShareOneMaterialVariant) {
                  "<Mesh id=\"2\"><Material>1</Material><Textures>1</Textures><Faces>1 3 4</Faces></Mesh>"
                  "<MeshInstance id=\"3\" baseMeshId=\"1\"><Textures>3</Textures></MeshInstance>"
                  "<MeshInstance id=\"4\" baseMeshId=\"1\"></MeshInstance></Objects>");
-    const pt::Scene s = load(xml);
+    const pt::Scene s = loadExpanded(xml);
     ASSERT_EQ(s.meshes.size(), 4u);
-    EXPECT_EQ(s.meshes[0].material, s.meshes[1].material);
-    EXPECT_NE(s.meshes[2].material, s.meshes[0].material); // its own Textures
-    EXPECT_EQ(s.meshes[3].material, s.meshes[0].material); // inherits the base's
+    const uint32_t base = findMesh(s, "Mesh 1")->material;
+    EXPECT_EQ(findMesh(s, "Mesh 2")->material, base);
+    EXPECT_NE(findMesh(s, "MeshInstance 3")->material, base); // its own Textures
+    EXPECT_EQ(findMesh(s, "MeshInstance 4")->material, base); // inherits the base's
     EXPECT_EQ(s.materials.size(), 3u);
 }
 

@@ -79,22 +79,30 @@ const std::string kTwoMaterials =
     "<Material id=\"2\"><DiffuseReflectance>0.1 0.2 0.3</DiffuseReflectance></Material></Materials>";
 
 TEST_F(Ceng795, InstancesComposeOrResetTheBaseTransform) {
-    const pt::Scene s = load(
-        sceneXml(kTwoMaterials + kSquare + kInstanceTransforms +
-                 "<Objects>"
-                 "<Mesh id=\"1\"><Material>1</Material><Transformations>t1</Transformations><Faces>2 3 4</Faces></Mesh>"
-                 // on top of the base: (1,0,0) -> t1 -> (2,0,0) -> t2 -> (2,10,0)
-                 "<MeshInstance id=\"2\" baseMeshId=\"1\"><Transformations>t2</Transformations></MeshInstance>"
-                 // raw base geometry: (1,0,0) -> s1 -> (2,0,0)
-                 "<MeshInstance id=\"3\" baseMeshId=\"1\" "
-                 "resetTransform=\"true\"><Material>2</Material><Transformations>s1</Transformations></MeshInstance>"
-                 // a chain: on top of instance 2: (2,10,0) -> s1 -> (4,20,0)
-                 "<MeshInstance id=\"4\" baseMeshId=\"2\" "
-                 "resetTransform=\"false\"><Transformations>s1</Transformations></MeshInstance>"
-                 // reset in a chain still starts from the root mesh's raw geometry: (1,0,0) -> t2
-                 "<MeshInstance id=\"5\" baseMeshId=\"4\" "
-                 "resetTransform=\"true\"><Transformations>t2</Transformations></MeshInstance>"
-                 "</Objects>"));
+    const std::string xml = (sceneXml(
+        kTwoMaterials + kSquare + kInstanceTransforms +
+        "<Objects>"
+        "<Mesh id=\"1\"><Material>1</Material><Transformations>t1</Transformations><Faces>2 3 4</Faces></Mesh>"
+        // on top of the base: (1,0,0) -> t1 -> (2,0,0) -> t2 -> (2,10,0)
+        "<MeshInstance id=\"2\" baseMeshId=\"1\"><Transformations>t2</Transformations></MeshInstance>"
+        // raw base geometry: (1,0,0) -> s1 -> (2,0,0)
+        "<MeshInstance id=\"3\" baseMeshId=\"1\" "
+        "resetTransform=\"true\"><Material>2</Material><Transformations>s1</Transformations></MeshInstance>"
+        // a chain: on top of instance 2: (2,10,0) -> s1 -> (4,20,0)
+        "<MeshInstance id=\"4\" baseMeshId=\"2\" "
+        "resetTransform=\"false\"><Transformations>s1</Transformations></MeshInstance>"
+        // reset in a chain still starts from the root mesh's raw geometry: (1,0,0) -> t2
+        "<MeshInstance id=\"5\" baseMeshId=\"4\" "
+        "resetTransform=\"true\"><Transformations>t2</Transformations></MeshInstance>"
+        "</Objects>"));
+    // The Mesh and its instances are one mesh kept once, in object space, and five placements;
+    // Material 2 needs nothing of its own there (an instance names its material).
+    const pt::Scene kept = load(xml);
+    EXPECT_TRUE(kept.meshes.empty());
+    ASSERT_EQ(kept.sharedMeshes.size(), 1u);
+    EXPECT_EQ(kept.instances.size(), 5u);
+    EXPECT_TRUE(near3(corner(kept.sharedMeshes[0].parts[0], 0, 0), glm::vec3(1, 0, 0))); // the raw geometry
+    const pt::Scene s = loadExpanded(xml);
     ASSERT_EQ(s.meshes.size(), 5u);
     EXPECT_TRUE(near3(corner(*findMesh(s, "Mesh 1"), 0, 0), glm::vec3(2, 0, 0)));
     EXPECT_TRUE(near3(corner(*findMesh(s, "MeshInstance 2"), 0, 0), glm::vec3(2, 10, 0)));
@@ -107,7 +115,7 @@ TEST_F(Ceng795, InstancesComposeOrResetTheBaseTransform) {
 }
 
 TEST_F(Ceng795, InstanceMayPrecedeItsBaseAndInheritsShading) {
-    const pt::Scene s = load(
+    const pt::Scene s = loadExpanded(
         sceneXml(kOneMaterial + kSquare + kInstanceTransforms +
                  "<Objects>"
                  "<MeshInstance id=\"2\" baseMeshId=\"1\"><Transformations>t2</Transformations></MeshInstance>"
@@ -121,7 +129,7 @@ TEST_F(Ceng795, InstanceMayPrecedeItsBaseAndInheritsShading) {
 
 TEST_F(Ceng795, BaseMeshIdPrefersMeshesOverInstancesWithTheSameId) {
     // veach-ajar: MeshInstance 1 coexists with Mesh 1; baseMeshId="1" is the Mesh, not itself.
-    const pt::Scene s = load(sceneXml(
+    const pt::Scene s = loadExpanded(sceneXml(
         kOneMaterial + kSquare + kInstanceTransforms +
         "<Objects>"
         "<Mesh id=\"1\"><Material>1</Material><Faces>2 3 4</Faces></Mesh>"
@@ -138,7 +146,7 @@ TEST_F(Ceng795, LongInstanceChainsResolve) {
         objects += "<MeshInstance id=\"" + std::to_string(i) + "\" baseMeshId=\"" + std::to_string(i - 1) +
                    "\"><Transformations>t1</Transformations></MeshInstance>";
     const pt::Scene s =
-        load(sceneXml(kOneMaterial + kSquare + kInstanceTransforms + "<Objects>" + objects + "</Objects>"));
+        loadExpanded(sceneXml(kOneMaterial + kSquare + kInstanceTransforms + "<Objects>" + objects + "</Objects>"));
     ASSERT_EQ(s.meshes.size(), 3000u);
     EXPECT_TRUE(near3(corner(s.meshes.back(), 0, 0), glm::vec3(2999, 0, 0), 1e-2f));
 }
@@ -161,15 +169,15 @@ TEST_F(Ceng795, CyclicOrDanglingInstancesAreErrors) {
 // Motion blur
 
 TEST_F(Ceng795, MotionBlurIsEachObjectsTranslation) {
-    const pt::Scene s =
-        load(sceneXml(kOneMaterial + kSquare +
-                      "<Objects><Mesh id=\"1\"><Material>1</Material>"
-                      "<MotionBlur>0 0 1</MotionBlur><Faces>1 2 3</Faces></Mesh>"
-                      "<MeshInstance id=\"2\" baseMeshId=\"1\"></MeshInstance>"
-                      "<MeshInstance id=\"3\" baseMeshId=\"1\"><MotionBlur>2 0 0</MotionBlur></MeshInstance>"
-                      "<Sphere id=\"1\"><Material>1</Material><Center>1</Center><Radius>1</Radius><MotionBlur>0 3 "
-                      "0</MotionBlur></Sphere>"
-                      "</Objects>"));
+    const pt::Scene s = loadExpanded(
+        sceneXml(kOneMaterial + kSquare +
+                 "<Objects><Mesh id=\"1\"><Material>1</Material>"
+                 "<MotionBlur>0 0 1</MotionBlur><Faces>1 2 3</Faces></Mesh>"
+                 "<MeshInstance id=\"2\" baseMeshId=\"1\"></MeshInstance>"
+                 "<MeshInstance id=\"3\" baseMeshId=\"1\"><MotionBlur>2 0 0</MotionBlur></MeshInstance>"
+                 "<Sphere id=\"1\"><Material>1</Material><Center>1</Center><Radius>1</Radius><MotionBlur>0 3 "
+                 "0</MotionBlur></Sphere>"
+                 "</Objects>"));
     ASSERT_EQ(s.meshes.size(), 3u);
     EXPECT_TRUE(near3(s.meshes[0].motion, glm::vec3(0, 0, 1)));
     EXPECT_TRUE(near3(s.meshes[1].motion, glm::vec3(0, 0, 1))); // the base's

@@ -1,6 +1,7 @@
 // The glTF node hierarchy: transforms (TRS, matrices, parents), mirroring transforms that keep
 // front faces and shading normals, and nodes used twice instanced twice.
 #include "gltf_test_documents.h"
+#include "scene/mesh_placement.h"
 
 #include <cmath>
 #include <sstream>
@@ -160,9 +161,15 @@ TEST(GltfLoader, NodeMatrixIsColumnMajor) {
 
 TEST(GltfLoader, NodeUsedTwiceIsInstancedTwice) {
     // Two parents share one child: the mesh appears twice, once under each parent's transform.
-    const pt::Scene s = loadText(triangleDocument(
+    // The mesh is read once, in object space, and placed by two instances.
+    pt::Scene s = loadText(triangleDocument(
         R"([{"translation": [10, 0, 0], "children": [2]}, {"translation": [-10, 0, 0], "children": [2]}, {"mesh": 0}])",
         "[0, 1]"));
+    EXPECT_TRUE(s.meshes.empty());
+    ASSERT_EQ(s.sharedMeshes.size(), 1u);
+    ASSERT_EQ(s.instances.size(), 2u);
+    EXPECT_TRUE(near3(s.sharedMeshes[0].parts[0].positions[0], glm::vec3(0, 0, 0), 0.0f));
+    pt::expandInstances(s);
     ASSERT_EQ(s.meshes.size(), 2u);
     EXPECT_TRUE(near3(s.meshes[0].positions[0], glm::vec3(10, 0, 0), 0.0f));
     EXPECT_TRUE(near3(s.meshes[1].positions[0], glm::vec3(-10, 0, 0), 0.0f));
