@@ -56,8 +56,8 @@ Aabb placedBounds(const std::vector<gpu::GpuBvh4Node>& nodes, uint32_t root, con
     Aabb world;
     for (const Aabb& b : boxes)
         for (int corner = 0; corner < 8; ++corner) {
-            const glm::vec3 p((corner & 1) ? b.hi.x : b.lo.x, (corner & 2) ? b.hi.y : b.lo.y,
-                (corner & 4) ? b.hi.z : b.lo.z);
+            const glm::vec3 p(
+                (corner & 1) ? b.hi.x : b.lo.x, (corner & 2) ? b.hi.y : b.lo.y, (corner & 4) ? b.hi.z : b.lo.z);
             world.grow(glm::vec3(m * glm::vec4(p, 1.0f)));
         }
     // Mapping a corner rounds: grow the box by a few ulps of the terms summed (as the kernel's
@@ -65,8 +65,8 @@ Aabb placedBounds(const std::vector<gpu::GpuBvh4Node>& nodes, uint32_t root, con
     const glm::mat3 linear(m);
     glm::vec3 terms(0.0f);
     for (const Aabb& b : boxes) terms = glm::max(terms, glm::max(glm::abs(b.lo), glm::abs(b.hi)));
-    const glm::vec3 reach = glm::abs(linear[0]) * terms.x + glm::abs(linear[1]) * terms.y + glm::abs(linear[2]) * terms.z +
-                            glm::abs(glm::vec3(m[3]));
+    const glm::vec3 reach = glm::abs(linear[0]) * terms.x + glm::abs(linear[1]) * terms.y +
+                            glm::abs(linear[2]) * terms.z + glm::abs(glm::vec3(m[3]));
     const glm::vec3 pad = reach * (8.0f * std::numeric_limits<float>::epsilon());
     world.lo -= pad;
     world.hi += pad;
@@ -89,7 +89,8 @@ std::vector<bool> chooseKeptInstances(const Scene& scene, const BvhBuildOptions&
     for (size_t i = 0; i < scene.instances.size(); ++i) {
         const MeshInstance& instance = scene.instances[i];
         if (instance.mesh >= scene.sharedMeshes.size())
-            throw std::runtime_error(scene.source + ": instance '" + instance.name + "' places a mesh that does not exist");
+            throw std::runtime_error(
+                scene.source + ": instance '" + instance.name + "' places a mesh that does not exist");
         const uint64_t triangles = scene.sharedMeshes[instance.mesh].triangleCount();
         if (mustExpand(scene, instance))
             forced += 1;
@@ -118,20 +119,20 @@ std::vector<bool> chooseKeptInstances(const Scene& scene, const BvhBuildOptions&
     uint64_t copied = 0;
     for (size_t i = 0; i < kept.size(); ++i)
         if (!kept[i]) copied += scene.sharedMeshes[scene.instances[i].mesh].triangleCount();
-    if (copied > 0) requireMemoryForTriangles(scene.source, scene.triangleCount() + copied, "instances copied into world space");
+    if (copied > 0)
+        requireMemoryForTriangles(scene.source, scene.triangleCount() + copied, "instances copied into world space");
     const uint64_t keptCount = std::count(kept.begin(), kept.end(), true);
     if (keptCount > 0)
         flat.instancing = countText(keptCount, "instances") + " of " + countText(scene.sharedMeshes.size(), "meshes") +
                           " kept as instances (" + why + ")";
     else
         flat.instancing = countText(placements, "instances") + " copied into world space (" + why + ")";
-    if (forced > 0 && keptCount > 0)
-        flat.instancing += "; " + countText(forced, "emitting or moving ones copied");
+    if (forced > 0 && keptCount > 0) flat.instancing += "; " + countText(forced, "emitting or moving ones copied");
     return kept;
 }
 
-void gatherExpandedInstances(const Scene& scene, const std::vector<bool>& kept, bool keepTangents, FlatScene& flat,
-    TriangleSet& world) {
+void gatherExpandedInstances(
+    const Scene& scene, const std::vector<bool>& kept, bool keepTangents, FlatScene& flat, TriangleSet& world) {
     for (size_t i = 0; i < scene.instances.size(); ++i) {
         if (kept[i]) continue;
         if (!isPlaceable(scene.instances[i].objectToWorld)) {
@@ -163,9 +164,11 @@ void flattenKeptInstances(const Scene& scene, const std::vector<bool>& kept, con
             const SharedMesh& shared = scene.sharedMeshes[instance.mesh];
             TriangleSet set;
             for (const Mesh& part : shared.parts)
-                gatherTriangles(scene, part, instance.material.value_or(part.material), glm::vec3(0.0f), keepTangents,
-                    flat, set);
-            found = trees.emplace(key, appendTriangleTree(set, options, scene.source + ": BVH of mesh '" + shared.name + "'", flat))
+                gatherTriangles(
+                    scene, part, instance.material.value_or(part.material), glm::vec3(0.0f), keepTangents, flat, set);
+            found = trees
+                        .emplace(key, appendTriangleTree(
+                                          set, options, scene.source + ": BVH of mesh '" + shared.name + "'", flat))
                         .first;
         }
         const AppendedTree& tree = found->second;

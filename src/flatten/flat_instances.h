@@ -14,8 +14,8 @@ namespace pt {
 std::vector<bool> chooseKeptInstances(const Scene& scene, const BvhBuildOptions& options, FlatScene& flat);
 
 // Gathers the copied placements' triangles into the world set.
-void gatherExpandedInstances(const Scene& scene, const std::vector<bool>& kept, bool keepTangents, FlatScene& flat,
-    TriangleSet& world);
+void gatherExpandedInstances(
+    const Scene& scene, const std::vector<bool>& kept, bool keepTangents, FlatScene& flat, TriangleSet& world);
 
 // Builds a tree per kept mesh (and material) after the world tree in flat.nodes, the instance
 // records and the tree over them (flat.instances, flat.instanceNodes).

@@ -47,8 +47,8 @@ struct AppendedTree {
 // Builds the set's tree and appends its nodes to flat.nodes (child words offset to their place)
 // and its triangles, in the tree's order, to flat's arrays; the set is emptied as it goes.
 // `what` names the tree in errors. An empty set appends nothing.
-AppendedTree appendTriangleTree(TriangleSet& set, const BvhBuildOptions& options, const std::string& what,
-    FlatScene& flat);
+AppendedTree appendTriangleTree(
+    TriangleSet& set, const BvhBuildOptions& options, const std::string& what, FlatScene& flat);
 
 // The tree as the kernel reads it, four-wide; `what` names it if the traversal stack cannot hold it.
 WideBvh gpuNodes(const Bvh& bvh, const std::string& what);

@@ -113,8 +113,8 @@ IntegratorSettings independentSettings() {
 }
 
 Renderer::Readback renderScene(const Scene& scene, const IntegratorSettings& settings, const Camera& camera, int width,
-    int height, uint32_t spp, uint32_t passSpp, uint32_t tileSize) {
-    FlatScene flat = flattenScene(scene);
+    int height, uint32_t spp, uint32_t passSpp, uint32_t tileSize, const BvhBuildOptions& bvh) {
+    FlatScene flat = flattenScene(scene, bvh);
     Renderer renderer(sharedContext(), flat, computeFeatures(flat, settings), settings, camera,
         FilmSettings{width, height, scene.background});
     const uint32_t pass = passSpp ? passSpp : spp;

@@ -49,8 +49,9 @@ Mesh makeQuad(glm::vec3 corner, glm::vec3 edgeU, glm::vec3 edgeV, uint32_t mater
 IntegratorSettings independentSettings();
 
 // Renders `scene` from `camera` with the kernel specialised for it and returns the sums read back.
+// `bvh` says how it is flattened (instances kept or copied, node format).
 Renderer::Readback renderScene(const Scene& scene, const IntegratorSettings& settings, const Camera& camera, int width,
-    int height, uint32_t spp, uint32_t passSpp = 0, uint32_t tileSize = 0);
+    int height, uint32_t spp, uint32_t passSpp = 0, uint32_t tileSize = 0, const BvhBuildOptions& bvh = {});
 
 // Directory of test data (tests/), set by CMake.
 std::filesystem::path testDataDir();

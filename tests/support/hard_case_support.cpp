@@ -71,6 +71,42 @@ Scene scaledScene(Scene scene, float scale, glm::vec3 offset) {
     return scene;
 }
 
+Scene placedAsInstances(Scene scene, const glm::mat4& map) {
+    const glm::mat3 linear(map);
+    const float scale = std::cbrt(std::abs(glm::determinant(linear)));
+    auto point = [&](glm::vec3 p) { return glm::vec3(map * glm::vec4(p, 1.0f)); };
+    auto direction = [&](glm::vec3 d) { return glm::normalize(linear * d); };
+    for (Mesh& m : scene.meshes) {
+        scene.instances.push_back(
+            MeshInstance{m.name, uint32_t(scene.sharedMeshes.size()), map, std::nullopt, m.motion});
+        m.motion = glm::vec3(0.0f);
+        scene.sharedMeshes.push_back(SharedMesh{m.name, {std::move(m)}});
+    }
+    scene.meshes.clear();
+    for (Sphere& s : scene.spheres) s.objectToWorld = map * s.objectToWorld;
+    for (PunctualLight& l : scene.punctualLights) {
+        l.position = point(l.position);
+        l.direction = direction(l.direction);
+        l.size *= scale;
+        // Point and spot intensities fall off with distance squared: keep their irradiance.
+        if (l.type == PunctualLight::Type::Point || l.type == PunctualLight::Type::Spot) l.intensity *= scale * scale;
+    }
+    for (Camera& c : scene.cameras) {
+        c.position = point(c.position);
+        c.forward = direction(c.forward);
+        c.up = direction(c.up);
+        c.focusDistance *= scale;
+        c.apertureSize *= scale;
+    }
+    return scene;
+}
+
+BvhBuildOptions keepInstances() {
+    BvhBuildOptions options;
+    options.instancing = Instancing::Keep;
+    return options;
+}
+
 Camera lookAt(glm::vec3 from, glm::vec3 to, float yfov, glm::vec3 up) {
     Camera c;
     c.position = from;

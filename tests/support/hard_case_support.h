@@ -38,6 +38,14 @@ ImageStats imageStats(const Renderer::Readback& r, int channel = 0, const std::f
 // The scene and its cameras mapped by x -> scale * x + offset (radiance is unchanged by it).
 Scene scaledScene(Scene scene, float scale, glm::vec3 offset);
 
+// The scene with every mesh kept once, where it is, and placed by `map` (an instance each), so
+// that the world holds map(scene): spheres, lights and cameras are mapped too. `map` is a
+// rotation, a uniform scale (mirrored or not) and a translation.
+Scene placedAsInstances(Scene scene, const glm::mat4& map);
+
+// Flattening that keeps every instance an instance (never copied into world space).
+BvhBuildOptions keepInstances();
+
 // A camera at `from` looking at `to`.
 Camera lookAt(glm::vec3 from, glm::vec3 to, float yfov, glm::vec3 up = glm::vec3(0, 1, 0));
 

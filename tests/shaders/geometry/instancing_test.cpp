@@ -93,7 +93,8 @@ Mesh soup(size_t count, uint32_t seed) {
     for (size_t i = 0; i < count; ++i) {
         const glm::vec3 centre = randomIn(rng, glm::vec3(-1.0f), glm::vec3(1.0f));
         const uint32_t base = static_cast<uint32_t>(m.positions.size());
-        for (int k = 0; k < 3; ++k) m.positions.push_back(centre + 0.3f * randomIn(rng, glm::vec3(-1.0f), glm::vec3(1.0f)));
+        for (int k = 0; k < 3; ++k)
+            m.positions.push_back(centre + 0.3f * randomIn(rng, glm::vec3(-1.0f), glm::vec3(1.0f)));
         m.triangles.push_back({base, base + 1, base + 2});
     }
     return m;
@@ -177,8 +178,8 @@ void expectTreesMatchBruteForce(const Uploaded& u, const std::vector<GpuTestRay>
     EXPECT_EQ(failures, 0u) << what << ": " << failures << " of " << rays.size() << " rays disagree";
     EXPECT_GT(instanced, hits / 4) << what << ": too few hits in instances for the test to mean much";
     EXPECT_LE(double(ties), tieShare * double(hits)) << what;
-    std::printf("[          ] %s: %zu rays, %zu hits (%zu in instances), %zu ties\n", what, rays.size(), hits,
-        instanced, ties);
+    std::printf(
+        "[          ] %s: %zu rays, %zu hits (%zu in instances), %zu ties\n", what, rays.size(), hits, instanced, ties);
 }
 
 class InstancingTest : public GpuTest, public ::testing::WithParamInterface<bool> {};
