@@ -4,19 +4,20 @@
 // Each edge function is a difference of two products; for a triangle far off the ray's line
 // (1e4 times its own size away, as instances placed far away see) they cancel to rounding noise,
 // and three noises of one sign made false hits, far from any surface. So a candidate hit whose
-// edge functions are not clear of their rounding error is evaluated again with exact products
-// (Dekker's), whose signs are exact. A true hit lies near the
-// triangle, where the functions are clear of it, and exact zeros (a ray through an edge or a
-// vertex) stay zero, so shared edges still agree. The paper re-evaluates only zeros, in double
+// determinant (their sum) is not clear of its rounding error is evaluated again with exact
+// products (Dekker's), whose signs are exact. A true hit lies near the triangle, where the
+// determinant is clear of it; rays through edges and vertices keep their exact zeros, so shared
+// edges still agree. The paper re-evaluates only zeros, in double
 // precision, which lavapipe has but some GPUs do not.
 #ifndef PT_GEOMETRY_TRIANGLE_GLSL
 #define PT_GEOMETRY_TRIANGLE_GLSL
 #include "common/math.glsl"
 #include "common/ray.glsl"
 
-// An edge function within this fraction of its products' magnitudes may be rounding error (two
-// products and a difference, each rounded by at most 2^-24 of its magnitude).
-const float EDGE_ROUNDING = 2.384185791e-7; // 2^-22
+// A determinant (the sum of the three edge functions) within this fraction of the largest
+// product may be all rounding error: each edge function is two products and a difference, each
+// rounded by at most 2^-24 of the largest product, so three of them err by at most 6 x 2^-24.
+const float DETERMINANT_ROUNDING = 9.536743164e-7; // 2^-20
 
 // Per-ray constants of the shear transform, computed once per traversal.
 struct WatertightRay {
@@ -67,14 +68,6 @@ bool intersectTriangle(WatertightRay r, vec3 p0, vec3 p1, vec3 p2, float tMax, o
     t = 0.0;
     bary = vec2(0.0);
     if ((U < 0.0 || V < 0.0 || W < 0.0) && (U > 0.0 || V > 0.0 || W > 0.0)) return false;
-    if (abs(U) <= EDGE_ROUNDING * (abs(cx * by) + abs(cy * bx)) ||
-        abs(V) <= EDGE_ROUNDING * (abs(ax * cy) + abs(ay * cx)) ||
-        abs(W) <= EDGE_ROUNDING * (abs(bx * ay) + abs(by * ax))) {
-        U = exactSignDifferenceOfProducts(cx, by, cy, bx);
-        V = exactSignDifferenceOfProducts(ax, cy, ay, cx);
-        W = exactSignDifferenceOfProducts(bx, ay, by, ax);
-        if ((U < 0.0 || V < 0.0 || W < 0.0) && (U > 0.0 || V > 0.0 || W > 0.0)) return false;
-    }
     float det = U + V + W;
     if (det == 0.0) return false;
     float az = r.shear.z * a.z;
@@ -83,6 +76,18 @@ bool intersectTriangle(WatertightRay r, vec3 p0, vec3 p1, vec3 p2, float tMax, o
     float T = U * az + V * bz + W * cz;
     // Compare T against the range scaled by det without dividing (sign-aware).
     if (det < 0.0 ? (T >= 0.0 || T < tMax * det) : (T <= 0.0 || T > tMax * det)) return false;
+    // Checked only here, for a hit within range: most candidates in a dense mesh lie beyond the
+    // closest hit found so far.
+    if (abs(det) <= DETERMINANT_ROUNDING * maxComponent(abs(vec3(ax, bx, cx))) * maxComponent(abs(vec3(ay, by, cy)))) {
+        U = exactSignDifferenceOfProducts(cx, by, cy, bx);
+        V = exactSignDifferenceOfProducts(ax, cy, ay, cx);
+        W = exactSignDifferenceOfProducts(bx, ay, by, ax);
+        if ((U < 0.0 || V < 0.0 || W < 0.0) && (U > 0.0 || V > 0.0 || W > 0.0)) return false;
+        det = U + V + W;
+        if (det == 0.0) return false;
+        T = U * az + V * bz + W * cz;
+        if (det < 0.0 ? (T >= 0.0 || T < tMax * det) : (T <= 0.0 || T > tMax * det)) return false;
+    }
     float invDet = 1.0 / det;
     t = T * invDet;
     bary = vec2(V * invDet, W * invDet);

@@ -54,9 +54,10 @@ struct BvhBuildOptions {
     size_t quantizeOverBytes = size_t(1) << 20;
     Instancing instancing = Instancing::Auto;
     // Auto copies the instances into world space when that adds at most this many triangles:
-    // one tree is faster to trace than two levels of overlapping boxes, and below this the
-    // copies cost little memory (bench/RESULTS.md, "Instances").
-    uint64_t expandInstancesUpTo = uint64_t(1) << 20;
+    // below it one tree traced faster than two levels (no ray to map into each instance), above
+    // it the copies' tree outgrew the caches and the meshes kept once traced faster, in less
+    // memory (bench/RESULTS.md, "Instances").
+    uint64_t expandInstancesUpTo = uint64_t(1) << 15;
 };
 
 struct Bvh {

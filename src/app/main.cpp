@@ -80,8 +80,8 @@ void addSceneOptions(CLI::App* cmd, pt::RenderOptions& o, SwitchWords& w) {
         ->check(CLI::IsMember({"on", "off"}));
     cmd->add_option("--instances", w.instances,
            "Meshes placed several times (glTF nodes sharing a mesh, the course's MeshInstances): keep (one copy "
-           "each, under a tree over their placements), expand (copied into world space, one tree; faster to trace, "
-           "more memory) or auto (expand when the copies add at most 2^20 triangles); default auto")
+           "each, under a tree over their placements), expand (copied into world space into one tree: more memory, "
+           "faster for small meshes) or auto (expand when the copies add at most 32768 triangles); default auto")
         ->check(CLI::IsMember({"auto", "keep", "expand"}));
     cmd->add_option("--variant", o.variant,
         "glTF KHR_materials_variants: render this variant's materials (default: the default materials; see "

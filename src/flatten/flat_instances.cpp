@@ -115,12 +115,21 @@ std::vector<bool> chooseKeptInstances(const Scene& scene, const BvhBuildOptions&
         break;
     }
     if (expandAll) std::fill(kept.begin(), kept.end(), false);
-    // Copies are memory: refuse before making them what the machine cannot hold.
-    uint64_t copied = 0;
-    for (size_t i = 0; i < kept.size(); ++i)
-        if (!kept[i]) copied += scene.sharedMeshes[scene.instances[i].mesh].triangleCount();
-    if (copied > 0)
-        requireMemoryForTriangles(scene.source, scene.triangleCount() + copied, "instances copied into world space");
+    // Copies are memory: refuse before making them what the machine cannot hold (the world's
+    // triangles, the copies, and each mesh still kept once).
+    uint64_t copied = 0, world = 0;
+    std::vector<bool> meshKept(scene.sharedMeshes.size(), false);
+    for (size_t i = 0; i < kept.size(); ++i) {
+        const uint32_t mesh = scene.instances[i].mesh;
+        if (kept[i])
+            meshKept[mesh] = true;
+        else
+            copied += scene.sharedMeshes[mesh].triangleCount();
+    }
+    for (const Mesh& m : scene.meshes) world += m.triangles.size();
+    for (size_t m = 0; m < meshKept.size(); ++m)
+        if (meshKept[m]) world += scene.sharedMeshes[m].triangleCount();
+    if (copied > 0) requireMemoryForTriangles(scene.source, world + copied, "instances copied into world space");
     const uint64_t keptCount = std::count(kept.begin(), kept.end(), true);
     if (keptCount > 0)
         flat.instancing = countText(keptCount, "instances") + " of " + countText(scene.sharedMeshes.size(), "meshes") +

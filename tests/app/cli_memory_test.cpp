@@ -80,26 +80,39 @@ void expectRefusedForMemory(const PtRun& r, const std::string& file, const std::
     EXPECT_NE(line.find(triangles + " triangles"), std::string::npos) << line;
     EXPECT_NE(line.find("ulimit -v"), std::string::npos) << "should name the limit: " << line;
     EXPECT_EQ(line.find("bad_alloc"), std::string::npos) << line;
-    EXPECT_LT(r.seconds, 20.0) << "refused before expanding the instances: " << r;
+    EXPECT_LT(r.seconds, 20.0) << "refused before copying the instances: " << r;
     std::printf("[          ] %s\n", line.c_str());
 }
 
-TEST_F(CliTest, InstancedGltfTooBigForTheMemoryIsRefusedBeforeLoading) {
-    // 20,000 triangles x 5,000 nodes = 100 M triangles: about 30 GB expanded.
+// 20,000 triangles placed by 5,000 nodes: 100 M triangles, about 30 GB copied into world space.
+// Kept as instances, the mesh is stored once and the scene renders under a 4 GiB limit; asked to
+// copy them, pt refuses before copying.
+TEST_F(CliTest, HundredMillionTrianglesOfInstancesRenderAndTheirCopiesAreRefused) {
     const fs::path scene = dir_ / "forest.gltf";
     writeInstancedGltf(scene, 20000, 5000);
-    const PtRun r = runLimited(dir_, captureDir_, {"render", scene.string(), "--spp", "1", "-o", "x.exr"});
-    expectRefusedForMemory(r, scene.string(), "100000000");
-    EXPECT_NE(r.errorLine().find("every node instance"), std::string::npos) << r.errorLine();
-    EXPECT_FALSE(fs::exists(dir_ / "x.exr"));
+    const PtRun kept =
+        runLimited(dir_, captureDir_, {"render", scene.string(), "--spp", "1", "--width", "64", "-o", "x.exr"});
+    EXPECT_EXIT_STATUS(kept, 0);
+    EXPECT_NE(kept.err.find("5000 instances of 1 meshes kept as instances"), std::string::npos) << kept.err;
+    EXPECT_TRUE(fs::exists(dir_ / "x.exr"));
+    const PtRun copied =
+        runLimited(dir_, captureDir_, {"render", scene.string(), "--spp", "1", "--instances", "expand", "-o", "y.exr"});
+    expectRefusedForMemory(copied, scene.string(), "100000000");
+    EXPECT_NE(copied.errorLine().find("instances copied into world space"), std::string::npos) << copied.errorLine();
+    EXPECT_FALSE(fs::exists(dir_ / "y.exr"));
 }
 
-TEST_F(CliTest, CourseSceneWhoseInstancesCannotFitIsRefusedBeforeLoading) {
+TEST_F(CliTest, CourseMeshInstancesRenderAsInstancesAndTheirCopiesAreRefused) {
     const fs::path scene = dir_ / "crowd.xml";
     writeInstancedCourseScene(scene, 20000, 5000); // 20,000 x 5,001 triangles
-    const PtRun r = runLimited(dir_, captureDir_, {"render", scene.string(), "--spp", "1", "-o", "x.exr"});
-    expectRefusedForMemory(r, scene.string(), "100020000");
-    EXPECT_NE(r.errorLine().find("MeshInstance"), std::string::npos) << r.errorLine();
+    const PtRun kept =
+        runLimited(dir_, captureDir_, {"render", scene.string(), "--spp", "1", "--width", "64", "-o", "x.exr"});
+    EXPECT_EXIT_STATUS(kept, 0);
+    EXPECT_NE(kept.err.find("5001 instances of 1 meshes kept as instances"), std::string::npos) << kept.err;
+    const PtRun copied =
+        runLimited(dir_, captureDir_, {"render", scene.string(), "--spp", "1", "--instances", "expand", "-o", "y.exr"});
+    expectRefusedForMemory(copied, scene.string(), "100020000");
+    EXPECT_NE(copied.errorLine().find("instances copied into world space"), std::string::npos) << copied.errorLine();
 }
 
 // The same scene, small enough, renders under the same limit: the estimate does not refuse

@@ -65,16 +65,16 @@ Scene instancedStudio() {
         SharedMesh{"lamp", {makeIcosphere(1, glm::vec3(0.0f), 0.3f, 3)}}};
     for (int i = 0; i < 9; ++i) {
         const float x = -4.0f + float(i);
-        const glm::mat4 stretched = glm::scale(placement(0.45f, i % 3 == 0, glm::vec3(x, 0.6f, -1.5f)),
-            glm::vec3(0.6f, 1.0f + 0.5f * float(i % 4), 1.0f));
-        scene.instances.push_back(MeshInstance{"ball", 0, stretched,
-            i % 2 ? std::optional<uint32_t>(2u) : std::nullopt, glm::vec3(0.0f)});
+        const glm::mat4 stretched = glm::scale(
+            placement(0.45f, i % 3 == 0, glm::vec3(x, 0.6f, -1.5f)), glm::vec3(0.6f, 1.0f + 0.5f * float(i % 4), 1.0f));
+        scene.instances.push_back(
+            MeshInstance{"ball", 0, stretched, i % 2 ? std::optional<uint32_t>(2u) : std::nullopt, glm::vec3(0.0f)});
         scene.instances.push_back(MeshInstance{"box", 1, placement(0.8f, i % 4 == 1, glm::vec3(x, 0.5f, 1.5f)),
             i % 3 == 2 ? std::optional<uint32_t>(0u) : std::nullopt, glm::vec3(0.0f)});
     }
     for (float x : {-3.0f, 3.0f})
-        scene.instances.push_back(MeshInstance{"lamp", 2, glm::translate(kIdentity, glm::vec3(x, 2.5f, 0.0f)),
-            std::nullopt, glm::vec3(0.0f)});
+        scene.instances.push_back(MeshInstance{
+            "lamp", 2, glm::translate(kIdentity, glm::vec3(x, 2.5f, 0.0f)), std::nullopt, glm::vec3(0.0f)});
     Environment sky;
     sky.colour = glm::vec3(0.2f);
     scene.environment = sky;
@@ -85,7 +85,7 @@ Scene instancedStudio() {
 TEST_F(HardCases, InstancesRenderAsTheirWorldSpaceCopies) {
     const Scene scene = instancedStudio();
     const FlatScene kept = flattenScene(scene, keepInstances());
-    EXPECT_EQ(kept.instances.size(), 18u); // the two emissive placements are copied
+    EXPECT_EQ(kept.instances.size(), 18u);                    // the two emissive placements are copied
     EXPECT_EQ(kept.lights.lights.size(), 2u + 2u * 80u + 1u); // light quad, two lamps' triangles, the sky
     IntegratorSettings s = independentSettings();
     s.maxDepth = 6;
@@ -94,8 +94,8 @@ TEST_F(HardCases, InstancesRenderAsTheirWorldSpaceCopies) {
     s.seed = 2;
     const auto copied = renderScene(scene, s, scene.cameras[0], 48, 48, 256, 0, 0, expandInstances());
     EXPECT_EQ(instanced.droppedSamples + copied.droppedSamples, 0u);
-    const AgreementResult a = compareBlocks(blockStats(instanced.mean, &instanced.varianceOfMean, 4),
-        blockStats(copied.mean, &copied.varianceOfMean, 4));
+    const AgreementResult a = compareBlocks(
+        blockStats(instanced.mean, &instanced.varianceOfMean, 4), blockStats(copied.mean, &copied.varianceOfMean, 4));
     std::printf("[          ] instanced against copied: chi2/dof %.3f, mean z %+.3f\n", a.chi2PerDof, a.meanZ);
     EXPECT_LT(a.chi2PerDof, 1.6);
     EXPECT_LT(std::abs(a.meanZ), 0.5);
@@ -110,7 +110,8 @@ TEST_F(HardCases, CornellBoxPlacedAsInstancesKeepsItsMeanRadiance) {
     const Scene box = loadDefaultScene();
     const auto reference = renderScene(box, s, box.cameras.at(0), 48, 48, 32);
     const ImageStats expected = imageStats(reference, 0);
-    const std::pair<const char*, glm::mat4> cases[] = {{"scale 1e-3, mirrored", placement(1e-3f, true, glm::vec3(0.0f))},
+    const std::pair<const char*, glm::mat4> cases[] = {
+        {"scale 1e-3, mirrored", placement(1e-3f, true, glm::vec3(0.0f))},
         {"scale 1e3", placement(1e3f, false, glm::vec3(0.0f))},
         {"moved by 1e4, mirrored", placement(1.0f, true, glm::vec3(1e4f, -1e4f, 1e4f))}};
     for (const auto& [name, map] : cases) {
@@ -120,7 +121,8 @@ TEST_F(HardCases, CornellBoxPlacedAsInstancesKeepsItsMeanRadiance) {
         const auto r = renderScene(scene, s, scene.cameras.at(0), 48, 48, 32, 0, 0, keepInstances());
         EXPECT_EQ(r.droppedSamples, 0u) << name;
         const ImageStats st = imageStats(r, 0);
-        std::printf("[          ] %-24s mean %.5f +- %.5f (box %.5f)\n", name, st.mean, st.standardError, expected.mean);
+        std::printf(
+            "[          ] %-24s mean %.5f +- %.5f (box %.5f)\n", name, st.mean, st.standardError, expected.mean);
         EXPECT_NEAR(st.mean, expected.mean, 4.0 * std::hypot(st.standardError, expected.standardError)) << name;
     }
 }
@@ -145,7 +147,8 @@ TEST_F(HardCases, SealedRoomPlacedAsInstancesLetsNoLightIn) {
     IntegratorSettings s = independentSettings();
     s.maxDepth = 8;
     const Scene room = loadHardScene("sealed-room-scale-1.gltf", s);
-    const std::pair<const char*, glm::mat4> cases[] = {{"scale 1e-3, mirrored", exactTurn(1e-3f, true, glm::vec3(0.0f))},
+    const std::pair<const char*, glm::mat4> cases[] = {
+        {"scale 1e-3, mirrored", exactTurn(1e-3f, true, glm::vec3(0.0f))},
         {"scale 1e3", exactTurn(1e3f, false, glm::vec3(0.0f))},
         {"moved by 100, mirrored", exactTurn(1.0f, true, glm::vec3(100.0f, -100.0f, 100.0f))}};
     for (const auto& [name, map] : cases) {
