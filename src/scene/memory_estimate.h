@@ -18,7 +18,7 @@ uint64_t estimatedSceneBytes(uint64_t triangles);
 
 // Throws SceneError(file, "needs about X for N triangles (<what>), more than <the limit>") when
 // the estimate exceeds what hostMemoryHeadroom() leaves; `what` says where the triangles come
-// from (e.g. "every node instance expanded").
+// from (e.g. "instances copied into world space").
 void requireMemoryForTriangles(const std::string& file, uint64_t triangles, const std::string& what);
 
 } // namespace pt

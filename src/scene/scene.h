@@ -281,14 +281,6 @@ struct Scene {
         for (const auto& m : sharedMeshes) n += m.triangleCount();
         return n;
     }
-    // Triangles once every instance is placed: what a single-level scene would hold.
-    uint64_t expandedTriangleCount() const {
-        uint64_t n = 0;
-        for (const auto& m : meshes) n += m.triangles.size();
-        for (const auto& i : instances)
-            if (i.mesh < sharedMeshes.size()) n += sharedMeshes[i.mesh].triangleCount();
-        return n;
-    }
 };
 
 } // namespace pt

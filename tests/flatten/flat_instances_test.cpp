@@ -85,8 +85,9 @@ TEST(FlatInstances, AutoCopiesFewTrianglesAndKeepsMany) {
 
 TEST(FlatInstances, CopiesMatchTheMeshPlacedInWorldSpace) {
     Scene scene = placedCubes(3);
-    scene.instances[1].objectToWorld = glm::scale(glm::rotate(scene.instances[1].objectToWorld, 0.5f, glm::vec3(0, 1, 0)),
-        glm::vec3(1.0f, -2.0f, 1.0f)); // mirrored
+    scene.instances[1].objectToWorld =
+        glm::scale(glm::rotate(scene.instances[1].objectToWorld, 0.5f, glm::vec3(0, 1, 0)),
+            glm::vec3(1.0f, -2.0f, 1.0f)); // mirrored
     const FlatScene copied = flattenScene(scene, with(Instancing::Expand));
     Scene expanded = scene;
     expandInstances(expanded);
