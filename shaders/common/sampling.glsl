@@ -59,4 +59,48 @@ float powerHeuristic(float pdfA, float pdfB) {
     return a + b > 0.0 ? a / (a + b) : 0.0;
 }
 
+// ---- Spherical triangles: a triangle as seen from a point, on the unit sphere around it ----
+
+// Solid angle of the spherical triangle with unit corners a, b, c (Van Oosterom and Strackee
+// 1983): tan(omega / 2) = |a . (b x c)| / (1 + a.b + b.c + c.a).
+float sphericalTriangleArea(vec3 a, vec3 b, vec3 c) {
+    return 2.0 * atan(abs(dot(a, cross(b, c))), 1.0 + dot(a, b) + dot(b, c) + dot(c, a));
+}
+
+// The part of unit vector v orthogonal to unit vector n, normalised.
+vec3 orthogonalPart(vec3 v, vec3 n) { return normalize(v - dot(v, n) * n); }
+
+// A direction uniform over the spherical triangle with unit corners a, b, c (Arvo, "Stratified
+// Sampling of Spherical Triangles", SIGGRAPH 1995): u.x picks the sub-triangle a, b, c' of area
+// u.x times the whole (c' on the arc from a to c), u.y the point on the arc from b to c'.
+// Returns vec3(0) where the triangle is too thin for the construction (a caller treats that as
+// no sample).
+vec3 sampleSphericalTriangle(vec3 a, vec3 b, vec3 c, vec2 u) {
+    vec3 nab = cross(a, b), nbc = cross(b, c), nca = cross(c, a);
+    if (dot(nab, nab) == 0.0 || dot(nbc, nbc) == 0.0 || dot(nca, nca) == 0.0) return vec3(0.0);
+    nab = normalize(nab);
+    nca = normalize(nca);
+    // The angle at a, between the great circles through it, by its sine and cosine; the area by
+    // Van Oosterom and Strackee's formula. No acos: Mesa lowers it to a polynomial good to 1e-4
+    // radians only, which put samples outside the triangle near its edges.
+    float cosAlpha = -dot(nab, nca);
+    float sinAlpha = length(cross(nab, nca));
+    float area = sphericalTriangleArea(a, b, c);
+    if (!(area > 0.0) || sinAlpha == 0.0) return vec3(0.0);
+    // sin and cos of (u.x area - alpha).
+    float subArea = u.x * area;
+    float sinSub = sin(subArea), cosSub = cos(subArea);
+    float s = sinSub * cosAlpha - cosSub * sinAlpha;
+    float t = cosSub * cosAlpha + sinSub * sinAlpha;
+    float p = t - cosAlpha;
+    float q = s + sinAlpha * dot(a, b); // dot(a, b): the cosine of the arc opposite c
+    float cosArc = ((q * t - p * s) * cosAlpha - q) / ((q * s + p * t) * sinAlpha);
+    // c' lies on the arc from a to c: where the area's rounding would carry it past c, c.
+    cosArc = clamp(cosArc, dot(a, c), 1.0);
+    vec3 cPrime = cosArc * a + sqrt(max(0.0, 1.0 - cosArc * cosArc)) * orthogonalPart(c, a);
+    float z = 1.0 - u.y * (1.0 - dot(cPrime, b));
+    vec3 w = z * b + sqrt(max(0.0, 1.0 - z * z)) * orthogonalPart(cPrime, b);
+    return allFinite(w) ? w : vec3(0.0);
+}
+
 #endif

@@ -64,6 +64,9 @@
         "interpolated vertex normals")                                                                                 \
     PT_FEATURE(emitters, flag, HAS_EMITTERS, 7, true, true, usesEmission(scene), v ? "emitters" : nullptr,             \
         "surfaces that emit: emissive materials, emissive textures, the course's replace_all")                         \
+    PT_FEATURE(sphericalLights, flag, SPHERICAL_TRIANGLE_LIGHTS, 40, true, true,                                       \
+        f.emitters&& usesSphericalTriangleSampling(scene), v ? "solid-angle-lights" : nullptr,                         \
+        "triangle emitters that some surface sees under more than 0.5 sr, sampled by solid angle there")               \
     PT_FEATURE(punctualLights, flag, HAS_PUNCTUAL_LIGHTS, 15, true, true, hasPunctualLights(scene),                    \
         v ? "punctual-lights" : nullptr, "point, spot, directional and the course's square lights")                    \
     PT_FEATURE(environment, flag, HAS_ENVIRONMENT, 17, true, true, scene.environment.width > 0,                        \

@@ -353,6 +353,11 @@ struct GpuInstance {
 };
 PT_CHECK_SIZE(GpuInstance, 112);
 
+// Triangle emitters seen under at least this solid angle (steradians) are sampled by solid angle
+// (shaders/lights/triangle_light.glsl); where no surface sees one so, the kernel leaves the code
+// out (SPHERICAL_TRIANGLE_LIGHTS, src/lights/light_table.h).
+#define SPHERICAL_SAMPLING_MIN 0.5
+
 // ---- Light types (GpuLight::type) ----
 #define LIGHT_TRIANGLE 0u
 #define LIGHT_SPHERE 1u

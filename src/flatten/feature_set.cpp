@@ -110,6 +110,14 @@ bool usesEmission(const FlatScene& scene) {
 
 // Any material slot (or the course's background texture) reading an image texture
 // (image = true) or a procedural one (image = false).
+// Some receiver sees a triangle emitter under a solid angle worth sampling directly
+// (lights/light_table.h); instanced triangles, in object space, are not receivers here.
+bool usesSphericalTriangleSampling(const FlatScene& scene) {
+    size_t world = scene.triangles.size();
+    for (const gpu::GpuInstance& i : scene.instances) world = std::min<size_t>(world, i.firstTriangle);
+    return someReceiverSeesALargeTriangleLight(scene.triangles, world);
+}
+
 bool usesTextureKind(const FlatScene& scene, bool image) {
     auto matches = [&](uint32_t slot) {
         return slot != NO_TEXTURE && (scene.textures[slot].type == TEXTURE_IMAGE) == image;

@@ -31,6 +31,14 @@ LightTable buildLightTable(std::span<gpu::GpuTriangle> triangles, std::span<gpu:
     std::span<const PunctualLight> punctual, std::span<const Material> materials, float sceneRadius,
     double environmentRadiance = -1.0, const std::function<glm::vec3(uint32_t)>& triangleEmission = {});
 
+// Whether some receiver sees a triangle emitter under at least SPHERICAL_SAMPLING_MIN (light
+// sampling picks directions in its solid angle there; shaders/lights/triangle_light.glsl): the
+// centroids of up to `maxReceivers` of the non-emitting triangles among the first `worldTriangles`
+// (world space; evenly strided) against every emitting one. Where none does, solid-angle sampling
+// would never be chosen and its code is left out of the kernel.
+bool someReceiverSeesALargeTriangleLight(
+    std::span<const gpu::GpuTriangle> triangles, size_t worldTriangles, size_t maxReceivers = 4096);
+
 // Triangles only.
 LightTable buildLightTable(std::span<gpu::GpuTriangle> triangles, std::span<const Material> materials);
 

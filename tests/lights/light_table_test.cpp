@@ -303,3 +303,33 @@ TEST(LightTable, TexturedEmittersAreWeighedByTheirTextureAndBlackOnesLeave) {
     EXPECT_NEAR(grey / white, greyLinear, 1e-4);
     EXPECT_NEAR(white + grey, 1.0, 1e-6);
 }
+
+namespace pt {
+namespace {
+
+// Solid-angle sampling of triangle lights is compiled in only where some surface sees one under
+// more than SPHERICAL_SAMPLING_MIN: a floor 0.4 under a square 1.5 across does (about 2.6 sr
+// from its centroids' side), the same floor 6 below it does not (0.06 sr).
+TEST(SphericalTriangleSampling, OnlyWhereASurfaceSeesALightLarge) {
+    auto scene = [](float height) {
+        std::vector<gpu::GpuTriangle> tris;
+        auto add = [&](glm::vec3 a, glm::vec3 b, glm::vec3 c, uint32_t light) {
+            gpu::GpuTriangle t{};
+            t.p0 = a, t.p1 = b, t.p2 = c, t.lightIndex = light;
+            tris.push_back(t);
+        };
+        add({-0.75f, height, -0.75f}, {0.75f, height, -0.75f}, {0.75f, height, 0.75f}, 0);
+        add({-0.75f, height, -0.75f}, {0.75f, height, 0.75f}, {-0.75f, height, 0.75f}, 1);
+        add({-0.5f, 0, 0.5f}, {0.5f, 0, 0.5f}, {0.5f, 0, -0.5f}, NO_LIGHT);
+        add({-0.5f, 0, 0.5f}, {0.5f, 0, -0.5f}, {-0.5f, 0, -0.5f}, NO_LIGHT);
+        return tris;
+    };
+    const auto near = scene(0.4f), far = scene(6.0f);
+    EXPECT_TRUE(someReceiverSeesALargeTriangleLight(near, near.size()));
+    EXPECT_FALSE(someReceiverSeesALargeTriangleLight(far, far.size()));
+    // Receivers beyond the world range (instanced meshes, in object space) do not count.
+    EXPECT_FALSE(someReceiverSeesALargeTriangleLight(near, 2));
+}
+
+} // namespace
+} // namespace pt

@@ -4,6 +4,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include "support/sampling_chi2.h"
 
+#include <algorithm>
 #include <memory>
 
 namespace pt::test {
@@ -142,6 +143,25 @@ double sum(const std::vector<double>& v) {
     return s;
 }
 
+// Whether the ray from `origin` along `dir` meets an emitting triangle of `flat` on one of its
+// edges (all barycentrics at least -1e-5, the least within 1e-5 of 0), in double precision.
+bool meetsALightEdge(const pt::FlatScene& flat, glm::dvec3 origin, glm::dvec3 dir) {
+    for (const pt::gpu::GpuTriangle& t : flat.triangles) {
+        if (t.lightIndex == NO_LIGHT) continue;
+        const glm::dvec3 p0(t.p0), e1 = glm::dvec3(t.p1) - p0, e2 = glm::dvec3(t.p2) - p0;
+        const glm::dvec3 pv = glm::cross(dir, e2);
+        const double det = glm::dot(e1, pv);
+        if (det == 0.0) continue;
+        const glm::dvec3 tv = origin - p0;
+        const double u = glm::dot(tv, pv) / det;
+        const glm::dvec3 qv = glm::cross(tv, e1);
+        const double v = glm::dot(dir, qv) / det;
+        const double w = 1.0 - u - v, least = std::min({u, v, w});
+        if (glm::dot(e2, qv) / det > 0.0 && least >= -1e-5 && least <= 1e-5) return true;
+    }
+    return false;
+}
+
 // sampleLight's directions against the pdf the integrator uses for BSDF rays that hit lights:
 // same distribution (chi-square), same pdf per sample (MIS weights need both techniques to
 // agree on it), and a pdf that integrates to one over the sphere.
@@ -156,16 +176,26 @@ void checkLightSampling(const LightTestScene& scene) {
         std::vector<glm::vec4> dirs(samples.size());
         for (size_t i = 0; i < samples.size(); ++i) dirs[i] = glm::vec4(glm::vec3(samples[i]), 0.0f);
         const std::vector<float> pdfAtSample = lightPdfs(*scene.gpu, dirs);
-        size_t mismatched = 0;
+        // A direction on the edge between two triangles of a quad (or on a light's outline) may be
+        // traced into the neighbour (or past the outline) and get its pdf: a tie, rare.
+        size_t mismatched = 0, edgeTies = 0;
         for (size_t i = 0; i < samples.size(); ++i) {
             const float sampled = samples[i].w;
             const bool ok = sampled > 0.0f && std::abs(pdfAtSample[i] - sampled) <= 1e-3f * sampled;
-            if (!ok && ++mismatched <= 5)
+            if (ok) continue;
+            if (meetsALightEdge(scene.flat, glm::dvec3(kShadingPoint), glm::dvec3(glm::vec3(dirs[i])))) {
+                ++edgeTies;
+                continue;
+            }
+            if (++mismatched <= 5)
                 ADD_FAILURE() << "seed " << seed << " sample " << i << " direction (" << dirs[i].x << ", " << dirs[i].y
                               << ", " << dirs[i].z << "): sampleLight pdf " << sampled
                               << ", light pdf of that direction " << pdfAtSample[i];
         }
         EXPECT_EQ(mismatched, 0u);
+        EXPECT_LE(edgeTies, samples.size() / 2000) << "seed " << seed;
+        std::printf("[          ] seed %u: %zu of %zu samples on an edge traced into a neighbour\n", seed, edgeTies,
+            samples.size());
         const std::string what = "light sampling seed " + std::to_string(seed);
         EXPECT_GT(pValue(histogram(kSphere, samples), expected, what.c_str()), kMinPValue);
     }
