@@ -20,17 +20,6 @@ trap 'rm -rf "$work"' EXIT
 scene="$work/scene/scene.gltf"
 sky=(--env-colour 0.05 0.05 0.05)
 "$new" render "$scene" "${sky[@]}" --spp "$refspp" -q -o "$work/ref.exr" 2>/dev/null
-echo "| round | old: spp, M paths/s, relMSE | new: spp, M paths/s, relMSE | relMSE new / old |"
-echo "|---|---|---|---|"
-for r in $(seq 1 "$rounds"); do
-  if [ $((r % 2)) = 1 ]; then a=0; b=1; else a=1; b=0; fi
-  LP_NUM_THREADS=1 taskset -c $a "$old" render "$scene" "${sky[@]}" --time "$seconds" --seed $r \
-    --reference "$work/ref.exr" -q -o "$work/old.exr" 2>"$work/old.log" &
-  LP_NUM_THREADS=1 taskset -c $b "$new" render "$scene" "${sky[@]}" --time "$seconds" --seed $r \
-    --reference "$work/ref.exr" -q -o "$work/new.exr" 2>"$work/new.log" &
-  wait
-  row() { sed -n 's/.*: \([0-9]*\) spp in .* s, \([0-9.]*\) M paths\/s.*, relMSE \([0-9.e-]*\).*/\1 spp, \2, \3/p' "$1"; }
-  o=$(row "$work/old.log"); n=$(row "$work/new.log")
-  ratio=$(python3 -c "print(round(${n##*, }/${o##*, }, 3))")
-  echo "| $r | $o | $n | $ratio |"
-done
+# The same-moment A/B (bench/ab_equal_time.sh): rows of spp, M paths/s and relMSE before (OLD)
+# and after (NEW), and relMSE new / old.
+bash bench/ab_equal_time.sh "$old" "$new" "$scene" "$work/ref.exr" "$seconds" "$rounds" "${sky[@]}"

@@ -73,19 +73,18 @@ vec3 orthogonalPart(vec3 v, vec3 n) { return normalize(v - dot(v, n) * n); }
 // A direction uniform over the spherical triangle with unit corners a, b, c (Arvo, "Stratified
 // Sampling of Spherical Triangles", SIGGRAPH 1995): u.x picks the sub-triangle a, b, c' of area
 // u.x times the whole (c' on the arc from a to c), u.y the point on the arc from b to c'.
-// Returns vec3(0) where the triangle is too thin for the construction (a caller treats that as
-// no sample).
-vec3 sampleSphericalTriangle(vec3 a, vec3 b, vec3 c, vec2 u) {
+// `area` is sphericalTriangleArea(a, b, c). Returns vec3(0) where the triangle is too thin for the
+// construction (a caller treats that as no sample).
+vec3 sampleSphericalTriangle(vec3 a, vec3 b, vec3 c, float area, vec2 u) {
     vec3 nab = cross(a, b), nbc = cross(b, c), nca = cross(c, a);
     if (dot(nab, nab) == 0.0 || dot(nbc, nbc) == 0.0 || dot(nca, nca) == 0.0) return vec3(0.0);
     nab = normalize(nab);
     nca = normalize(nca);
-    // The angle at a, between the great circles through it, by its sine and cosine; the area by
-    // Van Oosterom and Strackee's formula. No acos: Mesa lowers it to a polynomial good to 1e-4
+    // The angle at a, between the great circles through it, by its sine and cosine (the area is
+    // Van Oosterom and Strackee's). No acos: Mesa lowers it to a polynomial good to 1e-4
     // radians only, which put samples outside the triangle near its edges.
     float cosAlpha = -dot(nab, nca);
     float sinAlpha = length(cross(nab, nca));
-    float area = sphericalTriangleArea(a, b, c);
     if (!(area > 0.0) || sinAlpha == 0.0) return vec3(0.0);
     // sin and cos of (u.x area - alpha).
     float subArea = u.x * area;

@@ -131,6 +131,22 @@ uint traversalNodeVisits = 0u;
         current = stack[stackSize];                                                                                    \
     }
 
+// One inner node's step: the children the ray enters, the nearest next and the others waiting on
+// the stack, farthest deepest, with their entry distances; none entered pops the stack.
+#define VISIT_INNER_NODE(node)                                                                                         \
+    {                                                                                                                  \
+        vec4 d;                                                                                                        \
+        uvec4 c;                                                                                                       \
+        orderedChildren(node, boxRay, hit.t, d, c);                                                                    \
+        if (d.w != FLOAT_MAX) PUSH_CHILD(c.w, d.w);                                                                    \
+        if (d.z != FLOAT_MAX) PUSH_CHILD(c.z, d.z);                                                                    \
+        if (d.y != FLOAT_MAX) PUSH_CHILD(c.y, d.y);                                                                    \
+        if (d.x != FLOAT_MAX)                                                                                          \
+            current = c.x;                                                                                             \
+        else                                                                                                           \
+            POP_CHILD();                                                                                               \
+    }
+
 // One traversal loop for the triangle trees and the sphere tree: `sphereTree` is a literal at
 // every call, so the compiler keeps only one kind of leaf test in each inlined copy. `anyHit`
 // stops at the first hit (shadow rays). A triangle tree starts at node `root` (0: the world
@@ -151,17 +167,7 @@ bool traverseTree(
         while ((current & BVH4_LEAF_BIT) == 0u) {
             if (DEBUG_VIEW == DEBUG_VIEW_BVH_COST) ++traversalNodeVisits;
             GpuBvh4Node node = sphereTree ? loadBvh4Node(nodes, current) : loadTriangleTreeNode(nodes, current);
-            vec4 d;
-            uvec4 c;
-            orderedChildren(node, boxRay, hit.t, d, c);
-            // The others wait on the stack, farthest deepest, with their entry distances.
-            if (d.w != FLOAT_MAX) PUSH_CHILD(c.w, d.w);
-            if (d.z != FLOAT_MAX) PUSH_CHILD(c.z, d.z);
-            if (d.y != FLOAT_MAX) PUSH_CHILD(c.y, d.y);
-            if (d.x != FLOAT_MAX)
-                current = c.x;
-            else
-                POP_CHILD();
+            VISIT_INNER_NODE(node);
         }
         uint first = current & BVH4_FIRST_MASK;
         uint end = first + ((current >> BVH4_COUNT_SHIFT) & 15u) + 1u;
@@ -207,16 +213,8 @@ bool traverseInstances(bool anyHit, Ray ray, BoxRay boxRay, inout Hit hit) {
     while (true) {
         while ((current & BVH4_LEAF_BIT) == 0u) {
             if (DEBUG_VIEW == DEBUG_VIEW_BVH_COST) ++traversalNodeVisits;
-            vec4 d;
-            uvec4 c;
-            orderedChildren(loadBvh4Node(scene.instanceNodes, current), boxRay, hit.t, d, c);
-            if (d.w != FLOAT_MAX) PUSH_CHILD(c.w, d.w);
-            if (d.z != FLOAT_MAX) PUSH_CHILD(c.z, d.z);
-            if (d.y != FLOAT_MAX) PUSH_CHILD(c.y, d.y);
-            if (d.x != FLOAT_MAX)
-                current = c.x;
-            else
-                POP_CHILD();
+            GpuBvh4Node node = loadBvh4Node(scene.instanceNodes, current);
+            VISIT_INNER_NODE(node);
         }
         uint first = current & BVH4_FIRST_MASK;
         uint end = first + ((current >> BVH4_COUNT_SHIFT) & 15u) + 1u;

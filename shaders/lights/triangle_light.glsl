@@ -15,8 +15,10 @@
 const float SPHERICAL_SAMPLING_MAX = 6.22; // steradians
 
 // The triangle's solid angle from x when light sampling picks directions in it, else 0 (points
-// by area). The one decision both sampling and the pdf of a BSDF ray that hits the light use.
-float sphericalSamplingArea(GpuTriangle tri, vec3 x) {
+// by area). The one decision both sampling and the pdf of a BSDF ray that hits the light use;
+// `corners` are the unit directions to the corners when the answer is not 0.
+float sphericalSamplingArea(GpuTriangle tri, vec3 x, out vec3 corners[3]) {
+    corners[0] = corners[1] = corners[2] = vec3(0.0);
     if (!SPHERICAL_TRIANGLE_LIGHTS) return 0.0;
     vec3 a = tri.p0 - x, b = tri.p1 - x, c = tri.p2 - x;
     // Cheap first: the solid angle is at most area / h^2, h the distance to the triangle's plane,
@@ -26,7 +28,10 @@ float sphericalSamplingArea(GpuTriangle tri, vec3 x) {
     if (nn * sqrt(nn) < 2.0 * SPHERICAL_SAMPLING_MIN * an * an) return 0.0;
     float la = dot(a, a), lb = dot(b, b), lc = dot(c, c);
     if (!(la > 0.0 && lb > 0.0 && lc > 0.0)) return 0.0;
-    float omega = sphericalTriangleArea(a * inversesqrt(la), b * inversesqrt(lb), c * inversesqrt(lc));
+    corners[0] = a * inversesqrt(la);
+    corners[1] = b * inversesqrt(lb);
+    corners[2] = c * inversesqrt(lc);
+    float omega = sphericalTriangleArea(corners[0], corners[1], corners[2]);
     return omega >= SPHERICAL_SAMPLING_MIN && omega <= SPHERICAL_SAMPLING_MAX ? omega : 0.0;
 }
 
@@ -38,7 +43,8 @@ float areaSampledPdf(GpuLight light, float dist, float cosLight) {
     return c > 0.0 ? light.pmf * dist * dist / (light.area * c) : 0.0;
 }
 float triangleLightPdf(GpuLight light, GpuTriangle tri, vec3 x, float dist, float cosLight) {
-    float omega = sphericalSamplingArea(tri, x);
+    vec3 corners[3];
+    float omega = sphericalSamplingArea(tri, x, corners);
     return omega > 0.0 ? light.pmf / omega : areaSampledPdf(light, dist, cosLight);
 }
 
@@ -68,10 +74,11 @@ LightSample sampleTriangleLight(GpuLight light, vec3 x, vec2 u) {
     LightSample s = noLightSample();
     GpuTriangle tri = loadTriangle(light.primitive);
     s.normal = normalize(cross(tri.p1 - tri.p0, tri.p2 - tri.p0));
-    float omega = sphericalSamplingArea(tri, x);
+    vec3 corners[3];
+    float omega = sphericalSamplingArea(tri, x, corners);
     vec2 b;
     if (omega > 0.0) {
-        vec3 w = sampleSphericalTriangle(normalize(tri.p0 - x), normalize(tri.p1 - x), normalize(tri.p2 - x), u);
+        vec3 w = sampleSphericalTriangle(corners[0], corners[1], corners[2], omega, u);
         float along = dot(w, s.normal);
         if (along == 0.0) return s; // no sample: a degenerate construction or a ray in the plane
         // Where the direction meets the triangle's plane.

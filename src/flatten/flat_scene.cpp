@@ -1,6 +1,7 @@
 #include "flatten/flat_scene.h"
 
 #include "flatten/flat_instances.h"
+#include "scene/mesh_placement.h"
 
 #include "lights/texture_emission.h"
 
@@ -146,15 +147,11 @@ void flattenSpheres(const Scene& scene, const BvhBuildOptions& bvhOptions, FlatS
     for (const Sphere& s : scene.spheres) {
         if (s.material >= scene.materials.size())
             throw std::runtime_error(scene.source + ": sphere '" + s.name + "' uses a material that does not exist");
-        const glm::mat4 inverse = glm::inverse(s.objectToWorld);
-        const float det = glm::determinant(glm::mat3(s.objectToWorld));
-        bool ok = std::isfinite(det) && det != 0.0f;
-        for (int c = 0; c < 4 && ok; ++c)
-            ok = isFinite(glm::vec3(inverse[c])) && isFinite(glm::vec3(s.objectToWorld[c]));
-        if (!ok) {
+        if (!isPlaceable(s.objectToWorld)) {
             flat.degenerateSpheres++;
             continue;
         }
+        const glm::mat4 inverse = glm::inverse(s.objectToWorld);
         gpu::GpuSphere g{};
         setRows(g.worldToObject, inverse);
         setRows(g.objectToWorld, s.objectToWorld);

@@ -55,11 +55,13 @@ void expandInstances(Scene& scene) {
 }
 
 bool isPlaceable(const glm::mat4& m) {
+    const float det = glm::determinant(glm::mat3(m));
+    if (!std::isfinite(det) || det == 0.0f) return false;
+    const glm::mat4 inverse = glm::inverse(m);
     for (int c = 0; c < 4; ++c)
         for (int r = 0; r < 4; ++r)
-            if (!std::isfinite(m[c][r])) return false;
-    const float det = glm::determinant(glm::mat3(m));
-    return std::isfinite(det) && det != 0.0f;
+            if (!std::isfinite(m[c][r]) || !std::isfinite(inverse[c][r])) return false;
+    return true;
 }
 
 } // namespace pt

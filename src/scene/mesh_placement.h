@@ -19,7 +19,7 @@ std::vector<Mesh> placeInstance(const Scene& scene, const MeshInstance& instance
 // Every instance copied into Scene::meshes; sharedMeshes and instances are emptied.
 void expandInstances(Scene& scene);
 
-// Whether the map can place a mesh: finite and invertible.
+// Whether an affine map can place a mesh or a sphere: finite, invertible, and its inverse finite.
 bool isPlaceable(const glm::mat4& objectToWorld);
 
 } // namespace pt

@@ -51,38 +51,15 @@ ImageStats imageStats(const Renderer::Readback& r, int channel, const std::funct
     return s;
 }
 
-Scene scaledScene(Scene scene, float scale, glm::vec3 offset) {
-    const glm::mat4 map =
-        glm::mat4(glm::mat3(scale)) + glm::mat4(glm::vec4(0), glm::vec4(0), glm::vec4(0), glm::vec4(offset, 0));
-    for (Mesh& m : scene.meshes)
-        for (glm::vec3& p : m.positions) p = scale * p + offset;
-    for (Sphere& s : scene.spheres) s.objectToWorld = map * s.objectToWorld;
-    for (PunctualLight& l : scene.punctualLights) {
-        l.position = scale * l.position + offset;
-        l.size *= scale;
-        // Point and spot intensities fall off with distance squared: keep their irradiance.
-        if (l.type == PunctualLight::Type::Point || l.type == PunctualLight::Type::Spot) l.intensity *= scale * scale;
-    }
-    for (Camera& c : scene.cameras) {
-        c.position = scale * c.position + offset;
-        c.focusDistance *= scale;
-        c.apertureSize *= scale;
-    }
-    return scene;
-}
+namespace {
 
-Scene placedAsInstances(Scene scene, const glm::mat4& map) {
+// Spheres, punctual lights and cameras mapped by `map` (a rotation, a uniform scale, mirrored or
+// not, and a translation); radiance is unchanged by it.
+void mapAllButMeshes(Scene& scene, const glm::mat4& map) {
     const glm::mat3 linear(map);
     const float scale = std::cbrt(std::abs(glm::determinant(linear)));
     auto point = [&](glm::vec3 p) { return glm::vec3(map * glm::vec4(p, 1.0f)); };
     auto direction = [&](glm::vec3 d) { return glm::normalize(linear * d); };
-    for (Mesh& m : scene.meshes) {
-        scene.instances.push_back(
-            MeshInstance{m.name, uint32_t(scene.sharedMeshes.size()), map, std::nullopt, m.motion});
-        m.motion = glm::vec3(0.0f);
-        scene.sharedMeshes.push_back(SharedMesh{m.name, {std::move(m)}});
-    }
-    scene.meshes.clear();
     for (Sphere& s : scene.spheres) s.objectToWorld = map * s.objectToWorld;
     for (PunctualLight& l : scene.punctualLights) {
         l.position = point(l.position);
@@ -98,6 +75,28 @@ Scene placedAsInstances(Scene scene, const glm::mat4& map) {
         c.focusDistance *= scale;
         c.apertureSize *= scale;
     }
+}
+
+} // namespace
+
+Scene scaledScene(Scene scene, float scale, glm::vec3 offset) {
+    for (Mesh& m : scene.meshes)
+        for (glm::vec3& p : m.positions) p = scale * p + offset;
+    glm::mat4 map(scale);
+    map[3] = glm::vec4(offset, 1.0f);
+    mapAllButMeshes(scene, map);
+    return scene;
+}
+
+Scene placedAsInstances(Scene scene, const glm::mat4& map) {
+    for (Mesh& m : scene.meshes) {
+        scene.instances.push_back(
+            MeshInstance{m.name, uint32_t(scene.sharedMeshes.size()), map, std::nullopt, m.motion});
+        m.motion = glm::vec3(0.0f);
+        scene.sharedMeshes.push_back(SharedMesh{m.name, {std::move(m)}});
+    }
+    scene.meshes.clear();
+    mapAllButMeshes(scene, map);
     return scene;
 }
 

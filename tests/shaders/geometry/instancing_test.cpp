@@ -7,6 +7,7 @@
 #include "accel/quantized_bvh.h"
 #include "scene/mesh_placement.h"
 #include "support/gpu_test_support.h"
+#include "support/test_rays.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -62,27 +63,6 @@ std::vector<TraceHit> trace(uint32_t mode, const Uploaded& u, const std::vector<
         if (primitive & TEST_HIT_INSTANCE_BIT) h.instance = std::bit_cast<uint32_t>(out[i].w);
     }
     return hits;
-}
-
-GpuTestRay makeRay(glm::vec3 origin, glm::vec3 direction, float tMax = std::numeric_limits<float>::max()) {
-    GpuTestRay r{};
-    r.origin = origin;
-    r.direction = direction;
-    r.tMax = tMax;
-    return r;
-}
-
-glm::vec3 randomUnit(std::mt19937& rng) {
-    std::normal_distribution<float> n;
-    for (;;) {
-        const glm::vec3 v(n(rng), n(rng), n(rng));
-        if (glm::length(v) > 1e-3f) return glm::normalize(v);
-    }
-}
-
-glm::vec3 randomIn(std::mt19937& rng, glm::vec3 lo, glm::vec3 hi) {
-    std::uniform_real_distribution<float> u(0.0f, 1.0f);
-    return lo + (hi - lo) * glm::vec3(u(rng), u(rng), u(rng));
 }
 
 // Small random triangles around the origin, any orientation (a mesh with inner structure).

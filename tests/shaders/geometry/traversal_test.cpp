@@ -5,6 +5,7 @@
 // eagerly, a wrong child order, a stack overflow, tMax mishandled), not floating-point noise.
 #include "accel/quantized_bvh.h"
 #include "support/gpu_test_support.h"
+#include "support/test_rays.h"
 
 #include <algorithm>
 #include <bit>
@@ -24,8 +25,9 @@
 namespace {
 
 using pt::gpu::GpuTestRay;
-
-constexpr float kNoLimit = std::numeric_limits<float>::max();
+using pt::test::makeRay;
+using pt::test::randomIn;
+using pt::test::randomUnit;
 
 // A scene flattened (triangles in BVH order) and uploaded for the test kernel.
 struct TestScene {
@@ -49,28 +51,6 @@ TestScene uploadMeshes(std::vector<pt::Mesh> meshes) {
     EXPECT_EQ(s.flat.quantizedNodes.empty(), !quantizedTrees);
     s.gpu = std::make_unique<pt::GpuScene>(pt::test::sharedContext(), s.flat, pt::gpu::GpuSceneParams{}, 0);
     return s;
-}
-
-GpuTestRay makeRay(glm::vec3 origin, glm::vec3 direction, float tMax = kNoLimit) {
-    GpuTestRay r{};
-    r.origin = origin;
-    r.direction = direction;
-    r.tMax = tMax;
-    return r;
-}
-
-glm::vec3 randomUnit(std::mt19937& rng) {
-    std::normal_distribution<float> n;
-    for (;;) {
-        glm::vec3 v(n(rng), n(rng), n(rng));
-        float len = glm::length(v);
-        if (len > 1e-3f) return v / len;
-    }
-}
-
-glm::vec3 randomIn(std::mt19937& rng, glm::vec3 lo, glm::vec3 hi) {
-    std::uniform_real_distribution<float> u(0.0f, 1.0f);
-    return lo + (hi - lo) * glm::vec3(u(rng), u(rng), u(rng));
 }
 
 // Directions with components exactly zero (both signs of zero and of the others): the slab
