@@ -10,8 +10,7 @@
 
 namespace pt::test {
 
-inline gpu::GpuTestRay makeRay(
-    glm::vec3 origin, glm::vec3 direction, float tMax = std::numeric_limits<float>::max()) {
+inline gpu::GpuTestRay makeRay(glm::vec3 origin, glm::vec3 direction, float tMax = std::numeric_limits<float>::max()) {
     gpu::GpuTestRay r{};
     r.origin = origin;
     r.direction = direction;
