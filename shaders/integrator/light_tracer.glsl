@@ -28,83 +28,8 @@
 #include "integrator/caustic_partition.glsl"
 #include "integrator/shadow_ray.glsl"
 #include "integrator/ray_counts.glsl"
-
-layout(buffer_reference, std430, buffer_reference_align = 8) buffer SplatRef { uint64_t v[]; };
-
-// Light paths draw from their own block of dimensions, far from the camera path's, so adding
-// them leaves the camera samples (and every image without light tracing) unchanged.
-const uint DIM_LIGHT_PATH = 0x40000000u;
-const uint DIM_LT_SELECT = 0u; // 1D: which light
-const uint DIM_LT_POINT = 1u;  // 2D: point on it
-const uint DIM_LT_EMIT = 3u;   // 2D: emitted direction
-const uint DIM_LT_SIDE = 5u;   // 1D: side of a double-sided emitter
-const uint DIM_LT_FIRST_BOUNCE = 6u;
-const uint DIM_LT_LOBE = 0u;      // per bounce, 1D: lobe (reflect or refract)
-const uint DIM_LT_DIRECTION = 1u; // 2D: direction at a receiver
-const uint DIM_LT_ROULETTE = 3u;
-const uint DIMS_PER_LT_BOUNCE = 4u;
-
-uint lightPathDimension(uint offset) { return DIM_LIGHT_PATH + offset; }
-uint lightBounceDimension(uint bounce, uint offset) {
-    return DIM_LIGHT_PATH + DIM_LT_FIRST_BOUNCE + bounce * DIMS_PER_LT_BOUNCE + offset;
-}
-
-// Adds one path's contribution, already divided by the number of pixels, to a pixel's sums.
-void splatAdd(uvec2 pixel, vec3 value) {
-    if (!allFinite(value)) return;
-    uint pixels = scene.imageSize.x * scene.imageSize.y;
-    SplatRef splats = SplatRef(scene.accumulation + uint64_t(pixels) * uint64_t(ACCUMULATION_VEC4S_PER_PIXEL * 16u));
-    uint base = SPLAT_WORDS_PER_PIXEL * (pixel.y * scene.imageSize.x + pixel.x);
-    // Clamped far below the sums' headroom: a single path never overflows them.
-    const float maxScaled = 4.0e18;
-    for (int c = 0; c < 3; ++c) {
-        float v = max(value[c], 0.0);
-        if (v <= 0.0) continue;
-        atomicAdd(splats.v[base + SPLAT_SUM + uint(c)], uint64_t(min(v * float(SPLAT_SUM_SCALE), maxScaled) + 0.5));
-        atomicAdd(splats.v[base + SPLAT_SUM_SQUARES + uint(c)],
-            uint64_t(min(v * v * float(SPLAT_SQUARE_SCALE), maxScaled) + 0.5));
-    }
-}
-
-// A point emitting light, with its area density (selection included).
-struct EmitterPoint {
-    vec3 p;
-    vec3 ng; // geometric normal: the front (emitting) side
-    vec3 Le;
-    float magnitude;
-    uint materialIndex;
-    float pdf; // per unit area, times the light's selection probability
-    bool valid;
-};
-
-EmitterPoint sampleEmitterPoint(uint lightIndex, vec2 u) {
-    EmitterPoint e;
-    e.valid = false;
-    GpuLight light = sceneLights.v[lightIndex];
-    if (!isLightTracedEmitter(lightIndex) || light.pmf <= 0.0) return e;
-    if (light.type == LIGHT_TRIANGLE) {
-        GpuTriangle tri = loadTriangle(light.primitive);
-        vec2 b = sampleUniformTriangle(u);
-        e.p = (1.0 - b.x - b.y) * tri.p0 + b.x * tri.p1 + b.y * tri.p2;
-        e.ng = normalize(cross(tri.p1 - tri.p0, tri.p2 - tri.p0));
-        e.magnitude = maxComponent(max(max(abs(tri.p0), abs(tri.p1)), abs(tri.p2)));
-        e.materialIndex = tri.materialIndex;
-        e.pdf = light.pmf / light.area;
-        e.Le = triangleEmission(light.primitive, sceneMaterials.v[tri.materialIndex], b, e.p, true);
-    } else {
-        // A uniform point on the unit sphere mapped to world space: density 1 / (4 pi J).
-        GpuSphere sphere = SphereRef(scene.spheres).v[light.primitive];
-        vec3 po = sampleUniformSphere(u);
-        e.p = transformPoint(sphere.objectToWorld, po);
-        float J = sphereAreaScale(sphere, light, po, e.ng);
-        e.magnitude = sphereMagnitude(sphere, vec3(0.0));
-        e.materialIndex = sphere.materialIndex;
-        e.pdf = light.pmf / (4.0 * PI * J);
-        e.Le = sceneMaterials.v[sphere.materialIndex].emission;
-    }
-    e.valid = e.pdf > 0.0 && maxComponent(e.Le) > 0.0 && allFinite(e.p) && allFinite(e.ng);
-    return e;
-}
+#include "integrator/splat.glsl"
+#include "lights/emitter_sampling.glsl"
 
 // An opaque surface as seen from the side `front` says (the camera's, or the light path's own),
 // with the light arriving from wLight: false where the path tracer would find nothing (a
@@ -121,43 +46,17 @@ bool opaqueFrame(inout SurfaceInteraction si, GpuMaterial mat, bool front, vec3 
 // Connects a light path arriving at receiver si (from direction wLight) to the camera and
 // splats it. beta: the path's weight (emitted radiance over the density of the path so far).
 void connectToCamera(SurfaceInteraction si, GpuMaterial mat, vec3 wLight, vec3 beta) {
-    GpuCamera cam = scene.camera;
-    vec3 toCamera = cam.origin - si.p;
-    float dist2 = dot(toCamera, toCamera);
-    if (!(dist2 > 0.0)) return;
-    float dist = sqrt(dist2);
-    vec3 wCamera = toCamera / dist;
+    CameraView view;
+    if (!viewFromPinhole(scene.camera, scene.imageSize, si.p, view)) return;
     // The receiver as the camera ray would find it.
     Frame frame;
-    if (!opaqueFrame(si, mat, dot(wCamera, si.ng) > 0.0, wLight, frame)) return;
-    vec3 fCos = surfaceEval(mat, toLocal(frame, wCamera), toLocal(frame, wLight)); // f |wL.ns|
+    if (!opaqueFrame(si, mat, dot(view.wCamera, si.ng) > 0.0, wLight, frame)) return;
+    vec3 fCos = surfaceEval(mat, toLocal(frame, view.wCamera), toLocal(frame, wLight)); // f |wL.ns|
     float cosLightGeometric = abs(dot(wLight, si.ng));
     if (maxComponent(fCos) <= 0.0 || cosLightGeometric < 1e-7) return;
-
-    // Where the camera sees si: the inverse of cameraRay (integrator/camera.glsl).
-    vec3 v = si.p - cam.origin;
-    float z = dot(v, cam.forward);
-    if (!(z > 0.0)) return;
-    vec2 plane = vec2(dot(v, cam.right), dot(v, cam.up)) / z;
-    vec2 f = vec2((plane.x - cam.window.x) / (cam.window.y - cam.window.x),
-        (cam.window.w - plane.y) / (cam.window.w - cam.window.z));
-    if (!(f.x >= 0.0 && f.x < 1.0 && f.y >= 0.0 && f.y < 1.0)) return;
-    uvec2 pixel = min(uvec2(f * vec2(scene.imageSize)), scene.imageSize - 1u);
-
-    countShadowRay();
-    Ray shadow;
-    shadow.origin = spawnOrigin(dot(wCamera, si.nSurface) > 0.0 ? si.pSmooth : si.p, si.ng, wCamera, si.magnitude);
-    shadow.direction = cam.origin - shadow.origin;
-    if (traceAny(shadow, SHADOW_RAY_FAR)) return;
-
-    // The pixel's estimate is (1 / A_pixel) times the radiance over its image-plane area at unit
-    // distance; per unit area of the receiver that plane area is |wC.ng| / (d^2 cos^3 theta_c).
-    // Divided by the pixel count, A_pixel becomes the whole window's area.
-    float cosCamera = z / dist;
-    float windowArea = (cam.window.y - cam.window.x) * (cam.window.w - cam.window.z);
-    float geometry =
-        abs(dot(wCamera, si.ng)) / (cosLightGeometric * windowArea * dist2 * cosCamera * cosCamera * cosCamera);
-    splatAdd(pixel, beta * fCos * geometry);
+    if (cameraOccluded(si, view)) return;
+    // Per unit area of the receiver, with the adjoint's shading-normal correction |wC.ng| / |wL.ng|.
+    splatAdd(view.pixel, beta * fCos * (view.importance * abs(dot(view.wCamera, si.ng)) / cosLightGeometric));
 }
 
 // One light path in flight (see traceLightPaths for why it advances a segment at a time).

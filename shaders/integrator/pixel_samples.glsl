@@ -9,6 +9,9 @@
 #include "integrator/path.glsl"
 #include "integrator/debug_view.glsl"
 #include "integrator/accumulate.glsl"
+#ifdef PT_BDPT
+#include "integrator/bdpt.glsl"
+#endif
 
 // The camera ray of sample `rng` of `pixel`; sets the path's shutter time.
 Ray sampleCameraRay(uvec2 pixel, Rng rng) {
@@ -60,12 +63,29 @@ void addPathSamplesRegenerated(uvec2 pixel, uint first, uint count, float sample
     }
 }
 
+#ifdef PT_BDPT
+// The same by bidirectional path tracing: each sample's light subpath first (its connections
+// to the camera are splatted), then its camera path, connected to the light subpath's vertices.
+void addBdptSamples(uvec2 pixel, uint first, uint count, float sampleClamp, inout PixelSums sums) {
+    bool cameraConnects = scene.camera.lensRadius == 0.0; // a thin lens would need the lens sampled
+    for (uint s = 0u; s < count; ++s) {
+        Rng rng = rngCreate(pixel, first + s, scene.seed);
+        Ray ray = sampleCameraRay(pixel, rng);
+        traceLightSubpath(rng, cameraConnects);
+        addToPixelSums(sums, sampleValue(traceBdptCameraPath(ray, rng, cameraConnects), sampleClamp));
+    }
+}
+#endif
+
 // Samples `first` to `first + count - 1` of `pixel`, added to `sums` in that order. (If-else on
 // one constant at a time: the specializer then deletes the branches not taken, and with them
 // the second copy of the path tracer that the driver would otherwise compile.)
 void addPixelSamples(uvec2 pixel, uint first, uint count, float sampleClamp, inout PixelSums sums) {
-    if (CLASSIC)
-        addSamplesOneByOne(pixel, first, count, sampleClamp, sums);
+    if (CLASSIC) addSamplesOneByOne(pixel, first, count, sampleClamp, sums);
+#ifdef PT_BDPT
+    else if (BDPT && (DEBUG_VIEW == DEBUG_VIEW_NONE || DEBUG_VIEW == DEBUG_VIEW_NAN_MASK))
+        addBdptSamples(pixel, first, count, sampleClamp, sums);
+#endif
     else if (DEBUG_VIEW == DEBUG_VIEW_NONE || DEBUG_VIEW == DEBUG_VIEW_NAN_MASK)
         addPathSamplesRegenerated(pixel, first, count, sampleClamp, sums);
     else

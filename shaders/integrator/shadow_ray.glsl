@@ -8,6 +8,7 @@
 #include "geometry/traverse.glsl"
 #include "lights/light_common.glsl"
 #include "integrator/ray_counts.glsl"
+#include "integrator/camera.glsl"
 
 // Shadow rays stop this fraction short of the (offset) light point, the receiver's own offset
 // having already moved the origin off its surface.
@@ -33,6 +34,16 @@ bool lightOccluded(SurfaceInteraction si, LightSample ls) {
         shadow.direction = target - shadow.origin;
     }
     return traceAny(shadow, tMax);
+}
+
+// True when something lies between surface point si and the camera at view (a pinhole).
+bool cameraOccluded(SurfaceInteraction si, CameraView view) {
+    countShadowRay();
+    Ray shadow;
+    shadow.origin =
+        spawnOrigin(dot(view.wCamera, si.nSurface) > 0.0 ? si.pSmooth : si.p, si.ng, view.wCamera, si.magnitude);
+    shadow.direction = scene.camera.origin - shadow.origin;
+    return traceAny(shadow, SHADOW_RAY_FAR);
 }
 
 #endif

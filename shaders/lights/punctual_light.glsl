@@ -32,13 +32,16 @@ LightSample sampleDirectionalLight(GpuLight light, vec3 x) {
 // A point light limited to a cone, with a smooth band between the falloff and the coverage
 // angle: ((cos a - cos coverage) / (cos falloff - cos coverage))^e, e = 4 for the course's
 // spots and 2 for glTF's (KHR_lights_punctual's squared edge), stored in `area`.
-LightSample sampleSpotLight(GpuLight light, vec3 x) {
-    LightSample s = samplePointLight(light, x);
-    float cosAngle = dot(-s.wi, light.direction);
+float spotFalloff(GpuLight light, float cosAngle) {
     float band = max(light.cosFalloff - light.cosCoverage, 1e-7);
     float t = clamp((cosAngle - light.cosCoverage) / band, 0.0, 1.0);
     float t2 = t * t;
-    s.radiance *= light.area == 2.0 ? t2 : (light.area == 4.0 ? t2 * t2 : pow(t, light.area));
+    return light.area == 2.0 ? t2 : (light.area == 4.0 ? t2 * t2 : pow(t, light.area));
+}
+
+LightSample sampleSpotLight(GpuLight light, vec3 x) {
+    LightSample s = samplePointLight(light, x);
+    s.radiance *= spotFalloff(light, dot(-s.wi, light.direction));
     return s;
 }
 

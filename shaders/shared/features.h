@@ -92,7 +92,12 @@
     PT_FEATURE(mis, flag, USE_MIS, 9, true, s.nee&& s.mis, f.nee&& s.mis && !f.classic, v ? "mis" : nullptr,           \
         "multiple importance sampling of light and BSDF samples")                                                      \
     PT_FEATURE(rr, flag, USE_RR, 10, true, s.rr, s.rr && !f.classic, v ? "rr" : nullptr, "Russian roulette")           \
-    /* An estimator the scene decides, not a compiled-in feature: off in all(). */                                     \
+    /* Estimators the scene decides, not compiled-in features: off in all(). */                                        \
+    PT_FEATURE(bdpt, module, BDPT, 41, false, false, bdptChosen(scene, s, f), v ? "bdpt" : nullptr,                    \
+        "bidirectional path tracing: light and camera subpaths joined by every strategy, weighted by MIS")             \
+    PT_FEATURE(bdptStrategy, choice, BDPT_STRATEGY, 42, BDPT_ALL_STRATEGIES, BDPT_ALL_STRATEGIES, BDPT_ALL_STRATEGIES, \
+        v == BDPT_ALL_STRATEGIES ? nullptr : "bdpt-one-strategy",                                                      \
+        "BDPT_ONE_STRATEGY: tests only, one bidirectional strategy alone, unweighted")                                 \
     PT_FEATURE(lightTracing, module, LIGHT_TRACING, 31, false, false, lightTracingPays(scene, s, f),                   \
         v ? "light-tracing" : nullptr,                                                                                 \
         "caustics seen directly (camera, diffuse, specular chain, area light) by light tracing, splatted")             \

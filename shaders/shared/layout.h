@@ -139,6 +139,16 @@ using uint64_t = std::uint64_t;
 #define SPLAT_SUM_SCALE 268435456.0   // 2^28: resolution 3.7e-9 per path
 #define SPLAT_SQUARE_SCALE 16777216.0 // 2^24
 
+// ---- Bidirectional path tracing (BDPT in shared/features.h) ----
+// Light subpath vertices a camera path can connect to: at most this many per sample, so BDPT
+// needs max depth <= BDPT_MAX_LIGHT_VERTICES + 2 (the camera segment and one connection).
+#define BDPT_MAX_LIGHT_VERTICES 32u
+// BDPT_STRATEGY: every strategy, weighted by MIS; or (tests) one strategy alone, unweighted:
+// BDPT_ONE_STRATEGY(segments, s) keeps only paths of that many segments whose light subpath
+// has s vertices (0: the camera path hits the emitter; 1: light sampling).
+#define BDPT_ALL_STRATEGIES 0u
+#define BDPT_ONE_STRATEGY(segments, s) (((segments) << 8u) | ((s) + 1u))
+
 // ---- Samplers (SAMPLER in shared/features.h) ----
 #define SAMPLER_INDEPENDENT 0u // a hash of (pixel, sample index, dimension, seed)
 #define SAMPLER_SOBOL 1u       // Owen-scrambled Sobol' points, shuffled per pixel

@@ -63,9 +63,11 @@ void addSceneOptions(CLI::App* cmd, pt::RenderOptions& o, SwitchWords& w) {
         ->check(CLI::IsMember({"on", "off"}));
     cmd->add_option("--rr", w.rr, "Russian roulette: on|off (default on)")->check(CLI::IsMember({"on", "off"}));
     cmd->add_option("--integrator", w.integrator,
-           "path: path tracing; classic: the CENG795 course's classic ray tracer (ambient + direct light with its "
-           "Blinn-Phong, specular chains); default: course cameras without <Renderer> classic, else path")
-        ->check(CLI::IsMember({"path", "classic"}));
+           "path: path tracing; bdpt: bidirectional path tracing (light and camera subpaths joined by every "
+           "strategy with MIS: for light that arrives through gaps, shades and caustics); auto: the one the scene "
+           "calls for; classic: the CENG795 course's classic ray tracer (ambient + direct light with its "
+           "Blinn-Phong, specular chains); default: course cameras without <Renderer> classic, else auto")
+        ->check(CLI::IsMember({"path", "bdpt", "auto", "classic"}));
     cmd->add_option("--sampling", w.sampling,
            "BSDF direction sampling: bsdf (importance sampling of every lobe, cosine-weighted for Lambert; "
            "'cosine' is the same) or uniform (uniform hemisphere / sphere); default bsdf")
@@ -110,6 +112,8 @@ void applySwitchWords(const SwitchWords& w, pt::RenderOptions& o) {
     if (const char* v = std::getenv("PT_VALIDATION"); v && std::string(v) == "1") o.validation = true;
     if (w.envColour.size() == 3) o.environmentColour = glm::vec3(w.envColour[0], w.envColour[1], w.envColour[2]);
     if (!w.integrator.empty()) o.classic = w.integrator == "classic";
+    if (w.integrator == "path") o.integrator.estimator = pt::Estimator::Path;
+    if (w.integrator == "bdpt") o.integrator.estimator = pt::Estimator::Bidirectional;
     if (!w.nee.empty()) o.nee = onOff(w.nee);
     if (!w.mis.empty()) o.mis = onOff(w.mis);
     if (!w.rr.empty()) o.rr = onOff(w.rr);

@@ -56,9 +56,10 @@ int renderJob(VulkanContext& context, const Scene& scene, FlatScene& flat, bool 
     // correct where computeFeatures allows it), so both kernels render the same image.
     FeatureSet features = computeFeatures(flat, job.settings);
     if (o.allFeatures) {
-        const bool lightTracing = features.lightTracing;
+        const bool lightTracing = features.lightTracing, bdpt = features.bdpt;
         features = FeatureSet::all(job.settings);
         features.lightTracing = lightTracing;
+        features.bdpt = bdpt;
     }
     const FilmSettings film{job.width, job.height, scene.background};
     std::optional<Renderer> made;

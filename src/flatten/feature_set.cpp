@@ -9,7 +9,14 @@ namespace pt {
 
 std::string IntegratorSettings::describe() const {
     std::ostringstream s;
-    if (classic) s << "integrator=classic ";
+    if (classic)
+        s << "integrator=classic ";
+    else
+        s << "integrator="
+          << (estimator == Estimator::Path               ? "path"
+                 : estimator == Estimator::Bidirectional ? "bdpt"
+                                                         : "auto")
+          << ' ';
     s << "nee=" << (nee ? "on" : "off") << " mis=" << (mis ? "on" : "off") << " rr=" << (rr ? "on" : "off")
       << " sampling=" << (sampling == DirectionSampling::Cosine ? "cosine" : "uniform")
       << " sampler=" << (sampler == SamplerKind::Sobol ? "sobol" : "independent") << " max-depth=" << maxDepth
@@ -157,12 +164,25 @@ bool neeUseful(const FlatScene& scene, const IntegratorSettings& s, const Featur
     return s.nee && lights && (f.diffuse || f.glossy || f.pbr || f.microfacet);
 }
 
+// Bidirectional path tracing can render the scene: not for the classic ray tracer, nor through
+// dispersive glass (the two subpaths would need one wavelength), nor paths longer than the light
+// vertices a sample keeps (BDPT_MAX_LIGHT_VERTICES, plus the camera segment and a connection).
+bool bdptPossible(const FlatScene& scene, const IntegratorSettings& s, const FeatureSet& f) {
+    return !f.classic && !f.dispersion && !scene.lights.lights.empty() && s.maxDepth <= BDPT_MAX_LIGHT_VERTICES + 2;
+}
+
+// `--integrator bdpt` where possible; `auto` never, yet (path tracing is the default until a
+// measured rule says where bidirectional paths pay).
+bool bdptChosen(const FlatScene& scene, const IntegratorSettings& s, const FeatureSet& f) {
+    return s.estimator == Estimator::Bidirectional && bdptPossible(scene, s, f);
+}
+
 // Light tracing pays only where caustics can be seen directly: a smooth (delta) mirror, conductor or
 // dielectric (a rough one ends the specular chain, and the path tracer has those paths), a receiver
 // and an area emitter. Left to the path tracer: absorbing interiors, cut-outs, moving objects and
 // dispersive glass (the light path does not model them).
 bool lightTracingPays(const FlatScene& scene, const IntegratorSettings& s, const FeatureSet& f) {
-    return s.lightTracing && !f.classic && hasLightOfType(scene, {LIGHT_TRIANGLE, LIGHT_SPHERE}) &&
+    return s.lightTracing && !f.classic && !f.bdpt && hasLightOfType(scene, {LIGHT_TRIANGLE, LIGHT_SPHERE}) &&
            usesDeltaMaterial(scene) && usesCausticReceiver(scene) && !f.absorption && !f.alpha && !f.motion &&
            !f.dispersion;
 }

@@ -10,6 +10,10 @@ enum class DirectionSampling { Uniform, Cosine };
 // Owen-scrambled Sobol' points shuffled per pixel (shaders/common/sobol.glsl).
 enum class SamplerKind { Independent, Sobol };
 
+// How light transport is estimated (`--integrator`): path tracing, bidirectional path tracing,
+// or the one the scene calls for (src/flatten/feature_set.cpp, bdptChosen).
+enum class Estimator { Auto, Path, Bidirectional };
+
 // The integrator switches (the course's RendererParams) and limits.
 struct IntegratorSettings {
     bool nee = true; // next event estimation (light sampling)
@@ -36,6 +40,7 @@ struct IntegratorSettings {
     // tracing, splatted, instead of by BSDF sampling; used where the scene has such paths
     // (computeFeatures). The image is the same in expectation, with far less noise there.
     bool lightTracing = true;
+    Estimator estimator = Estimator::Auto;
 
     std::string describe() const;
 };

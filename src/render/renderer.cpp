@@ -1,6 +1,7 @@
 #include "render/renderer.h"
 
 #include "pt_copy_words_spv.h"           // generated: shaders/viewer/copy_words.comp
+#include "pt_render_bdpt_spv.h"          // generated: the same with -DPT_BDPT
 #include "pt_render_light_tracing_spv.h" // generated: the same with -DPT_LIGHT_TRACING
 #include "pt_render_spv.h"               // generated: the SPIR-V of shaders/integrator/render.comp
 
@@ -16,15 +17,16 @@ constexpr VkDeviceSize kAccumulationBytesPerPixel = ACCUMULATION_VEC4S_PER_PIXEL
 constexpr VkDeviceSize kSplatBytesPerPixel = SPLAT_WORDS_PER_PIXEL * sizeof(uint64_t);
 
 namespace {
-// Light tracing splats with 64-bit atomics; a device without them renders caustics by BSDF
-// sampling alone (the same image, noisier).
+// Light tracing and BDPT splat with 64-bit atomics; a device without them renders by path
+// tracing alone (the same image, noisier).
 FeatureSet supportedFeatures(const VulkanContext& context, FeatureSet features) {
-    if (!context.info().int64Atomics) features.lightTracing = false;
+    if (!context.info().int64Atomics) features.lightTracing = features.bdpt = false;
     return features;
 }
 
-// The kernel's SPIR-V: the module with light tracing only when it is used.
+// The kernel's SPIR-V: the module with light tracing or BDPT only when it is used.
 std::span<const uint32_t> renderKernel(const FeatureSet& features) {
+    if (features.bdpt) return std::span<const uint32_t>(pt_render_bdpt_spv);
     if (features.lightTracing) return std::span<const uint32_t>(pt_render_light_tracing_spv);
     return std::span<const uint32_t>(pt_render_spv);
 }
@@ -112,7 +114,7 @@ void Renderer::primePipeline() {
 }
 
 VkDeviceSize Renderer::bytesPerPixel() const {
-    return kAccumulationBytesPerPixel + (features_.lightTracing ? kSplatBytesPerPixel : 0);
+    return kAccumulationBytesPerPixel + (hasSplats() ? kSplatBytesPerPixel : 0);
 }
 
 VkDeviceSize Renderer::splatOffset() const {
@@ -290,7 +292,7 @@ AccumulationState Renderer::readState() const {
     state.samples = {firstSample_, firstSample_ + samples_};
     state.spp = samples_;
     state.sums.resize(state.pixels() * ACCUMULATION_VEC4S_PER_PIXEL);
-    if (features_.lightTracing) state.splats.assign(state.pixels() * SPLAT_WORDS_PER_PIXEL, 0);
+    if (hasSplats()) state.splats.assign(state.pixels() * SPLAT_WORDS_PER_PIXEL, 0);
     if (samples_ > 0) {
         accumulation().download(state.sums.data(), state.sums.size() * sizeof(glm::vec4));
         if (!state.splats.empty())
@@ -307,10 +309,10 @@ void Renderer::loadState(const AccumulationState& state) {
     if (state.spp != state.samples.count())
         throw std::runtime_error(
             "saved state has gaps in its sample range " + state.samples.describe() + " and cannot be continued");
-    if (state.hasSplats() != features_.lightTracing)
-        throw std::runtime_error(std::string("saved state was rendered with light tracing ") +
-                                 (state.hasSplats() ? "on" : "off") + " but this render has it " +
-                                 (features_.lightTracing ? "on" : "off") + " (--light-tracing)");
+    if (state.hasSplats() != hasSplats())
+        throw std::runtime_error(std::string("saved state was rendered ") + (state.hasSplats() ? "with" : "without") +
+                                 " light paths but this render is " + (hasSplats() ? "with" : "without") +
+                                 " (--light-tracing, --integrator)");
     accumulation().upload(state.sums.data(), state.sums.size() * sizeof(glm::vec4));
     if (state.hasSplats())
         accumulation().upload(state.splats.data(), state.splats.size() * sizeof(uint64_t), splatOffset());

@@ -67,7 +67,7 @@ public:
     // GpuSceneParams::accumulation says, then (with light tracing) the splat sums,
     // uint64[SPLAT_WORDS_PER_PIXEL * width * height].
     VkDeviceAddress accumulationAddress() const { return accumulation().address(); }
-    bool hasSplats() const { return features_.lightTracing; }
+    bool hasSplats() const { return features_.lightTracing || features_.bdpt; }
     // Where the splat sums start (after every pixel's ACCUM_* block), or 0 without them.
     VkDeviceAddress splatsAddress() const { return hasSplats() ? accumulation().address() + splatOffset() : 0; }
     const Camera& camera() const { return camera_; }
