@@ -56,8 +56,8 @@ float strategyWeight(uint s, uint segments, float mis) {
 struct LightVertex {
     Ray ray;
     Hit hit;
-    vec3 beta;     // emitted radiance over the density of the light subpath up to here
-    float dVCM;    // MIS sums at this vertex (file comment)
+    vec3 beta;  // emitted radiance over the density of the light subpath up to here
+    float dVCM; // MIS sums at this vertex (file comment)
     float dVC;
     uint segments; // light subpath segments up to this vertex
 };
@@ -86,8 +86,8 @@ bool entersAbsorbingInterior(SurfaceInteraction si, GpuMaterial mat, vec3 d) {
 
 // ---- t = 1: a light subpath vertex seen by the camera ----
 
-void connectLightVertexToCamera(SurfaceInteraction si, GpuMaterial mat, vec3 wLight, vec3 beta, float dVCM,
-    float dVC, uint segments) {
+void connectLightVertexToCamera(
+    SurfaceInteraction si, GpuMaterial mat, vec3 wLight, vec3 beta, float dVCM, float dVC, uint segments) {
     CameraView view;
     if (!viewFromPinhole(scene.camera, scene.imageSize, si.p, view)) return;
     VertexEval e;
@@ -195,7 +195,8 @@ void traceLightSubpath(Rng rng, bool cameraConnects) {
                 vec3 wCameraLocal = toLocal(frame, bs.wi);
                 float cosLightGeometric = max(abs(dot(wLight, si.ng)), 1e-7);
                 // The adjoint: f(wC, wL) |wL.ns| |wC.ng| / |wL.ng|, over the density.
-                weight = surfaceEval(mat, wCameraLocal, wLightLocal) * (abs(dot(bs.wi, si.ng)) / (cosLightGeometric * bs.pdf));
+                weight = surfaceEval(mat, wCameraLocal, wLightLocal) *
+                         (abs(dot(bs.wi, si.ng)) / (cosLightGeometric * bs.pdf));
                 pdfReverse = surfacePdf(mat, wCameraLocal, wLightLocal);
             }
         }
@@ -237,8 +238,8 @@ void traceLightSubpath(Rng rng, bool cameraConnects) {
 // ---- The camera subpath and its connections ----
 
 // s = 1: light sampling at camera vertex si, weighted against every other strategy.
-vec3 bdptLightSample(SurfaceInteraction si, Frame frame, vec3 woLocal, GpuMaterial mat, Rng rng, uint depth,
-    float dVCM, float dVC) {
+vec3 bdptLightSample(
+    SurfaceInteraction si, Frame frame, vec3 woLocal, GpuMaterial mat, Rng rng, uint depth, float dVCM, float dVC) {
     uint lightIndex = selectLight(rng1(rng, bounceDimension(depth, DIM_LIGHT_SELECT)));
     LightSample ls = sampleLightIndex(lightIndex, si.p, rng2(rng, bounceDimension(depth, DIM_LIGHT_POINT)));
     if (ls.pdf <= 0.0 || maxComponent(ls.radiance) <= 0.0) return vec3(0.0);
@@ -268,8 +269,8 @@ vec3 bdptLightSample(SurfaceInteraction si, Frame frame, vec3 woLocal, GpuMateri
 
 // s >= 2: camera vertex si (reached from direction wo, MIS sums dVCM and dVC, `depth` segments)
 // connected to light subpath vertex lv.
-vec3 connectToLightVertex(SurfaceInteraction si, GpuMaterial mat, vec3 wo, uint depth, float dVCM, float dVC,
-    LightVertex lv) {
+vec3 connectToLightVertex(
+    SurfaceInteraction si, GpuMaterial mat, vec3 wo, uint depth, float dVCM, float dVC, LightVertex lv) {
     ShadedVertex light = shadeLightVertex(lv);
     vec3 d = light.si.p - si.p;
     float dist2 = dot(d, d);

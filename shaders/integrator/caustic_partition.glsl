@@ -14,6 +14,7 @@
 #include "shared/features.glsl"
 #include "bsdf/surface_bsdf.glsl"
 #include "common/buffers.glsl"
+#include "lights/emitter_sampling.glsl"
 
 // On at run time: the kernel was specialised for it, renders radiance, and has a pinhole
 // camera (a thin lens would need the connection to sample the lens).
@@ -32,17 +33,6 @@ bool isCausticReceiver(GpuMaterial m) {
     bool shaded = !HAS_UNLIT || (m.flags & MATERIAL_FLAG_UNLIT) == 0u;
     return shaded && ((HAS_DIFFUSE && m.type == MATERIAL_DIFFUSE) || (HAS_GLOSSY && m.type == MATERIAL_GLOSSY) ||
                          isRoughConductor(m));
-}
-
-// Emitters the light tracer starts paths from: emissive triangles, and spheres without an
-// emission texture (sphere light sampling has none either).
-bool isLightTracedEmitter(uint lightIndex) {
-    if (lightIndex == NO_LIGHT) return false;
-    GpuLight light = sceneLights.v[lightIndex];
-    if (light.type == LIGHT_TRIANGLE) return true;
-    if (!HAS_SPHERES || light.type != LIGHT_SPHERE) return false;
-    GpuSphere sphere = SphereRef(scene.spheres).v[light.primitive];
-    return sceneMaterials.v[sphere.materialIndex].emissiveTexture == NO_TEXTURE;
 }
 
 // A delta bounce between directions a and b (both pointing away from the surface) that the

@@ -9,7 +9,7 @@
 #include "lights/light_common.glsl"
 #include "lights/sphere_light.glsl"
 #include "lights/triangle_light.glsl"
-#include "integrator/caustic_partition.glsl"
+#include "shared/features.glsl"
 
 // Light paths draw from their own block of dimensions, far from the camera path's, so adding
 // them leaves the camera samples (and every image without light tracing) unchanged.
@@ -27,6 +27,17 @@ const uint DIMS_PER_LT_BOUNCE = 4u;
 uint lightPathDimension(uint offset) { return DIM_LIGHT_PATH + offset; }
 uint lightBounceDimension(uint bounce, uint offset) {
     return DIM_LIGHT_PATH + DIM_LT_FIRST_BOUNCE + bounce * DIMS_PER_LT_BOUNCE + offset;
+}
+
+// Area emitters light paths start from (the caustic light tracer's, and BDPT's): emissive
+// triangles, and spheres without an emission texture (sphere light sampling has none either).
+bool isLightTracedEmitter(uint lightIndex) {
+    if (lightIndex == NO_LIGHT) return false;
+    GpuLight light = sceneLights.v[lightIndex];
+    if (light.type == LIGHT_TRIANGLE) return true;
+    if (!HAS_SPHERES || light.type != LIGHT_SPHERE) return false;
+    GpuSphere sphere = SphereRef(scene.spheres).v[light.primitive];
+    return sceneMaterials.v[sphere.materialIndex].emissiveTexture == NO_TEXTURE;
 }
 
 // A point emitting light, with its area density (selection included).

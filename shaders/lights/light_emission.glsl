@@ -50,7 +50,8 @@ LightEmission sampleLightEmission(uint lightIndex, vec2 uPoint, vec2 uDirection,
             float cosTheta = mix(1.0, light.cosCoverage, uDirection.x);
             float sinTheta = sqrt(max(0.0, 1.0 - cosTheta * cosTheta));
             float phi = TWO_PI * uDirection.y;
-            em.direction = toWorld(makeFrame(light.direction), vec3(sinTheta * cos(phi), sinTheta * sin(phi), cosTheta));
+            em.direction =
+                toWorld(makeFrame(light.direction), vec3(sinTheta * cos(phi), sinTheta * sin(phi), cosTheta));
             pdfDirection = spotConePdf(light);
             I *= spotFalloff(light, cosTheta);
         }
