@@ -123,6 +123,14 @@ Renderer::Readback renderScene(const Scene& scene, const IntegratorSettings& set
     return renderer.read();
 }
 
+Renderer::Readback renderSceneWith(const Scene& scene, const IntegratorSettings& settings, const FeatureSet& features,
+    const Camera& camera, int width, int height, uint32_t spp) {
+    FlatScene flat = flattenScene(scene);
+    Renderer renderer(sharedContext(), flat, features, settings, camera, FilmSettings{width, height, scene.background});
+    renderer.addSamples(spp, 0);
+    return renderer.read();
+}
+
 std::filesystem::path testDataDir() { return PT_TEST_DATA_DIR; }
 
 double gammaQ(double a, double x) {

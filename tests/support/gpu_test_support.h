@@ -53,6 +53,10 @@ IntegratorSettings independentSettings();
 Renderer::Readback renderScene(const Scene& scene, const IntegratorSettings& settings, const Camera& camera, int width,
     int height, uint32_t spp, uint32_t passSpp = 0, uint32_t tileSize = 0, const BvhBuildOptions& bvh = {});
 
+// The same with the kernel specialised as `features` says (tests that change what the scene decides).
+Renderer::Readback renderSceneWith(const Scene& scene, const IntegratorSettings& settings, const FeatureSet& features,
+    const Camera& camera, int width, int height, uint32_t spp);
+
 // Directory of test data (tests/), set by CMake.
 std::filesystem::path testDataDir();
 
