@@ -8,7 +8,10 @@
 //                          F from the material's complex index, diffuse x (1 - F) with kdfresnel
 // Importance sampling picks the diffuse or the specular lobe by their reflectance weights; the
 // specular lobe is sampled as a cosine power around the mirror direction (Phong) or of the
-// half vector around the normal (Blinn-Phong, Torrance-Sparrow).
+// half vector around the normal (Blinn-Phong, Torrance-Sparrow). The course's mirror with
+// layers adds a perfect mirror of reflectance km (m.mirror) to all of this: a delta lobe,
+// picked by its weight too and returned with isDelta and that probability as its pdf; eval and
+// pdf describe the rest, the pdf scaled by the probability of not picking the mirror.
 #ifndef PT_BSDF_GLOSSY_GLSL
 #define PT_BSDF_GLOSSY_GLSL
 #include "common/math.glsl"
@@ -21,7 +24,14 @@ bool glossyIsPhong(GpuMaterial m) {
     return m.glossyModel == GLOSSY_ORIGINAL_PHONG || m.glossyModel == GLOSSY_MODIFIED_PHONG;
 }
 
-// Probability of sampling the specular lobe.
+// Probability of sampling the mirror lobe (0 without one).
+float glossyMirrorProbability(GpuMaterial m) {
+    float k = luminance(m.mirror);
+    if (!(k > 0.0)) return 0.0;
+    return k / (k + luminance(m.baseColor) + luminance(m.specular));
+}
+
+// Probability of sampling the specular lobe, once the mirror is not picked.
 float glossySpecularProbability(GpuMaterial m) {
     float d = luminance(m.baseColor);
     float s = luminance(m.specular);
@@ -71,9 +81,10 @@ float glossySpecularPdf(GpuMaterial m, vec3 wo, vec3 wi) {
 
 float glossyPdf(GpuMaterial m, vec3 wo, vec3 wi) {
     if (wo.z <= 0.0 || wi.z <= 0.0) return 0.0;
-    if (!COSINE_SAMPLING) return uniformHemispherePdf(wi.z);
+    float notMirror = 1.0 - glossyMirrorProbability(m);
+    if (!COSINE_SAMPLING) return notMirror * uniformHemispherePdf(wi.z);
     float ps = glossySpecularProbability(m);
-    return (1.0 - ps) * cosineHemispherePdf(wi.z) + ps * glossySpecularPdf(m, wo, wi);
+    return notMirror * ((1.0 - ps) * cosineHemispherePdf(wi.z) + ps * glossySpecularPdf(m, wo, wi));
 }
 
 // A direction with density (p + 1) / (2 pi) cos^p around +z.
@@ -87,6 +98,16 @@ vec3 sampleCosinePower(vec2 u, float p) {
 BsdfSample glossySample(GpuMaterial m, Frame frame, vec3 wo, float uLobe, vec2 u) {
     BsdfSample s = invalidBsdfSample();
     if (wo.z <= 0.0) return s;
+    float pm = glossyMirrorProbability(m);
+    if (uLobe < pm) {
+        s.wi = toWorld(frame, vec3(-wo.xy, wo.z));
+        s.weight = m.mirror / pm;
+        s.pdf = pm;
+        s.isDelta = true;
+        s.valid = true;
+        return s;
+    }
+    uLobe = (uLobe - pm) / (1.0 - pm); // uniform again over the other lobes
     vec3 wi;
     if (!COSINE_SAMPLING) {
         wi = sampleUniformHemisphere(u);

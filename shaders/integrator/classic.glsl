@@ -71,12 +71,13 @@ vec3 classicDirect(SurfaceInteraction si, Frame frame, vec3 woLocal, GpuMaterial
 
 // The reflected or refracted ray of a specular surface; invalid for the others.
 BsdfSample classicSpecularSample(GpuMaterial m, bool frontFace, Frame frame, vec3 woLocal, float uLobe, vec2 u) {
-    if (HAS_MIRROR && m.type == MATERIAL_MIRROR && m.alpha == 0.0) {
+    bool layeredMirror = HAS_GLOSSY && m.type == MATERIAL_GLOSSY && maxComponent(m.mirror) > 0.0;
+    if ((HAS_MIRROR && m.type == MATERIAL_MIRROR && m.alpha == 0.0) || layeredMirror) {
         // The course's mirror: reflectance km at every angle, no Fresnel.
         BsdfSample s = invalidBsdfSample();
         if (woLocal.z <= 0.0) return s;
         s.wi = toWorld(frame, vec3(-woLocal.xy, woLocal.z));
-        s.weight = m.baseColor;
+        s.weight = layeredMirror ? m.mirror : m.baseColor;
         s.pdf = 1.0;
         s.isDelta = true;
         s.valid = true;

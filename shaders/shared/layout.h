@@ -311,8 +311,10 @@ struct GpuMaterial {
     float glossiness;         // MATERIAL_FLAG_GLOSSINESS: roughness = 1 - glossiness x texture alpha
     uint pad9;
     uint pad10;
+    vec3 mirror; // glossy: reflectance of a perfect mirror lobe added to the BRDF (the course's layered mirror)
+    uint pad11;
 };
-PT_CHECK_SIZE(GpuMaterial, 336);
+PT_CHECK_SIZE(GpuMaterial, 352);
 
 // A texture: an image in the texel buffer (with filter, wrap, encoding and a uv transform) or
 // a course procedural pattern.

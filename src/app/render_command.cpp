@@ -153,11 +153,7 @@ int runRender(const RenderOptions& o) {
     if (!o.reference.empty()) {
         if (jobs.size() != 1)
             throw std::runtime_error(o.reference + ": --reference needs a single image (use --camera)");
-        reference = readExr(o.reference);
-        if (reference->width != jobs[0].width || reference->height != jobs[0].height)
-            throw std::runtime_error(o.reference + ": reference is " + std::to_string(reference->width) + "x" +
-                                     std::to_string(reference->height) + " but the render is " +
-                                     std::to_string(jobs[0].width) + "x" + std::to_string(jobs[0].height));
+        reference = referenceAtSize(readExr(o.reference), jobs[0].width, jobs[0].height, o.reference);
     }
     if (jobs.size() != 1 && (!o.samples.empty() || !o.checkpoint.empty() || !o.resume.empty()))
         throw std::runtime_error((o.scene.empty() ? std::string("built-in scene") : o.scene) +

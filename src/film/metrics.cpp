@@ -44,6 +44,32 @@ double relMse(const Image& x, const Image& ref) {
     });
 }
 
+Image referenceAtSize(const Image& ref, int width, int height, const std::string& name) {
+    if (ref.width == width && ref.height == height) return ref;
+    if (width < 1 || height < 1 || ref.width % width != 0 || ref.height % height != 0)
+        throw std::runtime_error(name + ": reference is " + std::to_string(ref.width) + "x" +
+                                 std::to_string(ref.height) + " but the render is " + std::to_string(width) + "x" +
+                                 std::to_string(height) + " (nor a whole multiple of it, to be box-filtered down)");
+    const int fx = ref.width / width, fy = ref.height / height;
+    Image out;
+    out.width = width;
+    out.height = height;
+    out.rgba.assign(size_t(width) * height * 4, 0.0f);
+    const double norm = 1.0 / (double(fx) * fy);
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+            double sum[4] = {0, 0, 0, 0};
+            for (int j = 0; j < fy; ++j)
+                for (int i = 0; i < fx; ++i) {
+                    const float* p = ref.at(x * fx + i, y * fy + j);
+                    for (int c = 0; c < 4; ++c) sum[c] += p[c];
+                }
+            float* o = out.at(x, y);
+            for (int c = 0; c < 4; ++c) o[c] = float(sum[c] * norm);
+        }
+    return out;
+}
+
 double estimatedRelMse(const Image& mean, const Image& varianceOfMean) {
     checkSameSize(mean, varianceOfMean, "estimatedRelMse");
     // Each pixel's variance of the mean over the square of the mean of its 8 neighbours (those

@@ -1,5 +1,7 @@
 #pragma once
 
+#include <string>
+
 #include <vector>
 
 #include "image/image.h"
@@ -14,6 +16,11 @@ namespace pt {
 // (the project's definition; the 0.01 keeps black reference pixels from
 // dominating).
 double relMse(const Image& x, const Image& ref);
+
+// The reference `ref` (read from `name`) at a render's size: as it is, or box-filtered down where
+// each of its sides is a whole multiple of the render's (a long render at the official size
+// scoring a smaller, faster one). Anything else is an error naming both sizes.
+Image referenceAtSize(const Image& ref, int width, int height, const std::string& name);
 // Plain mean over pixels and R,G,B of (x - ref)^2.
 double mse(const Image& x, const Image& ref);
 

@@ -64,6 +64,7 @@ gpu::GpuMaterial toGpu(const Material& m) {
     g.anisotropyRotation = m.anisotropyRotation;
     g.dispersion = m.dispersion;
     g.glossiness = m.glossiness;
+    g.mirror = m.mirrorReflectance;
     if (m.glossinessTexture) g.flags |= MATERIAL_FLAG_GLOSSINESS;
     if (m.type == MaterialType::Pbr && m.thinWalled) g.flags |= MATERIAL_FLAG_THIN_WALLED;
     auto slot = [](const std::optional<uint32_t>& t) { return t ? *t : NO_TEXTURE; };

@@ -72,6 +72,10 @@ struct Material {
     // alpha (roughness = 1 - glossiness x alpha) instead of roughness and metallic.
     bool glossinessTexture = false;
     float glossiness = 1.0f;
+    // Glossy: a perfect mirror of this reflectance (no Fresnel) added to the BRDF, the course's
+    // mirror with diffuse or specular layers (ceng795 FORMAT.md: "the diffuse and specular terms
+    // are still added").
+    glm::vec3 mirrorReflectance{0.0f};
 
     // Textures: indices into Scene::textures. Colour slots multiply the factor above.
     std::optional<uint32_t> baseColorTexture;                // rgb: baseColor, a: opacity

@@ -7,6 +7,7 @@
 #include <limits>
 #include <random>
 #include <stdexcept>
+#include <string>
 
 namespace {
 
@@ -38,6 +39,29 @@ TEST(Metrics, SizeMismatchThrows) {
     EXPECT_THROW(pt::relMse(broken, broken), std::invalid_argument);
     EXPECT_THROW(pt::blockStats(a, nullptr, 0), std::invalid_argument);
     EXPECT_THROW(pt::blockStats(a, nullptr, 5), std::invalid_argument);
+}
+
+// A reference at a whole multiple of the render's size is box-filtered down to it; other sizes
+// are refused with both sizes named.
+TEST(Metrics, ReferenceAtSizeBoxFiltersWholeMultiples) {
+    pt::Image ref = constantImage(4, 6, 0, 0, 0);
+    for (int y = 0; y < 6; ++y)
+        for (int x = 0; x < 4; ++x) ref.at(x, y)[0] = float(10 * y + x);
+    const pt::Image same = pt::referenceAtSize(ref, 4, 6, "r.exr");
+    EXPECT_EQ(same.rgba, ref.rgba);
+    const pt::Image half = pt::referenceAtSize(ref, 2, 2, "r.exr"); // 2x3 boxes
+    ASSERT_EQ(half.width, 2);
+    ASSERT_EQ(half.height, 2);
+    EXPECT_FLOAT_EQ(half.at(0, 0)[0], (0 + 1 + 10 + 11 + 20 + 21) / 6.0f);
+    EXPECT_FLOAT_EQ(half.at(1, 1)[0], (32 + 33 + 42 + 43 + 52 + 53) / 6.0f);
+    EXPECT_FLOAT_EQ(half.at(1, 0)[3], 1.0f);
+    try {
+        pt::referenceAtSize(ref, 3, 6, "r.exr");
+        FAIL() << "4 is not a multiple of 3";
+    } catch (const std::runtime_error& e) {
+        EXPECT_NE(std::string(e.what()).find("r.exr: reference is 4x6 but the render is 3x6"), std::string::npos)
+            << e.what();
+    }
 }
 
 TEST(Metrics, BlockStatsDropsPartialBlocks) {

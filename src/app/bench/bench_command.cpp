@@ -130,11 +130,7 @@ int runBench(const BenchOptions& b) {
 
     std::optional<Image> given;
     if (!b.reference.empty()) {
-        given = readExr(b.reference);
-        if (given->width != job.width || given->height != job.height)
-            throw std::runtime_error(b.reference + ": reference is " + std::to_string(given->width) + "x" +
-                                     std::to_string(given->height) + " but the render is " + std::to_string(job.width) +
-                                     "x" + std::to_string(job.height));
+        given = referenceAtSize(readExr(b.reference), job.width, job.height, b.reference);
     }
 
     FlatScene flat = flattenWithNotes(scene, o);

@@ -117,10 +117,20 @@ void noteExtraLayers(Notes& notes, const ColourReader& colour, const std::string
         notes.push_back(type + " with specular highlights (ignored)");
 }
 
-void convertMirror(Notes& notes, const ColourReader& colour, Material& m) {
+// A mirror with diffuse or specular layers is the course's sum of its BRDF and the mirror: a
+// glossy material with a mirror lobe (shaders/bsdf/glossy.glsl).
+void convertMirror(const Context& ctx, Notes& notes, pugi::xml_node e, const ColourReader& colour,
+    const std::optional<pugi::xml_node>& brdf, Material& m) {
+    const glm::vec3 km = reflectance(notes, colour.required("MirrorReflectance"));
+    if (anyPositive(colour("DiffuseReflectance", glm::vec3(0.0f))) ||
+        anyPositive(colour("SpecularReflectance", glm::vec3(0.0f)))) {
+        convertDiffuse(ctx, notes, e, colour, brdf, m);
+        m.type = MaterialType::Glossy;
+        m.mirrorReflectance = km;
+        return;
+    }
     m.type = MaterialType::Mirror;
-    m.baseColor = reflectance(notes, colour.required("MirrorReflectance"));
-    noteExtraLayers(notes, colour, "mirror");
+    m.baseColor = km;
 }
 
 void convertDielectric(const Context& ctx, Notes& notes, pugi::xml_node e, const ColourReader& colour, Material& m) {
@@ -218,7 +228,7 @@ Material convertMaterial(
     }
     const std::string type = lowercase(e.attribute("type").value());
     if (type == "mirror")
-        convertMirror(notes, colour, m);
+        convertMirror(ctx, notes, e, colour, brdfElement, m);
     else if (type == "dielectric")
         convertDielectric(ctx, notes, e, colour, m);
     else if (type == "conductor")
@@ -232,6 +242,8 @@ Material convertMaterial(
         if (!(*r > 0.0f)) ctx.fail(e.child("Roughness"), "must not be negative");
         if (m.type == MaterialType::Mirror || m.type == MaterialType::Conductor || m.type == MaterialType::Dielectric)
             makeRough(m, *r);
+        else if (anyPositive(m.mirrorReflectance))
+            notes.push_back("Roughness on mirrors with diffuse or specular layers (their mirror stays smooth)");
         else
             notes.push_back("Roughness on diffuse and BRDF materials (ignored)");
     }

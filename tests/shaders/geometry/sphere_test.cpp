@@ -142,5 +142,27 @@ TEST_F(WhiteSky, ConductorReflectsItsFresnelReflectance) {
     EXPECT_FLOAT_EQ(r.mean.at(0, 0)[0], 1.0f);
 }
 
+// The course's mirror with a diffuse layer (a glossy material with a mirror lobe): on a convex
+// sphere under a white sky both lobes see only sky, so each pixel on the sphere is kd + km.
+TEST_F(WhiteSky, LayeredMirrorReflectsItsDiffuseAndMirrorReflectances) {
+    Material layered;
+    layered.type = MaterialType::Glossy;
+    layered.baseColor = glm::vec3(0.3f, 0.2f, 0.1f);
+    layered.mirrorReflectance = glm::vec3(0.4f, 0.5f, 0.6f);
+    auto r = render(layered);
+    EXPECT_EQ(r.droppedSamples, 0u);
+    for (int c = 0; c < 3; ++c) {
+        double sum = 0, var = 0;
+        int n = 0;
+        for (int y = 12; y <= 20; ++y)
+            for (int x = 12; x <= 20; ++x, ++n) {
+                sum += r.mean.at(x, y)[c];
+                var += r.varianceOfMean.at(x, y)[c];
+            }
+        const double expected = layered.baseColor[c] + layered.mirrorReflectance[c];
+        EXPECT_NEAR(sum / n, expected, 4.0 * std::sqrt(var) / n + 1e-4) << "channel " << c;
+    }
+}
+
 } // namespace
 } // namespace pt::test

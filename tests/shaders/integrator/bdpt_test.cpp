@@ -20,8 +20,7 @@ std::filesystem::path repoDir() { return std::filesystem::path(PT_TEST_DATA_DIR)
 std::filesystem::path diffuseBox() { return testDataDir() / "references" / "cbox-diffuse" / "scene.gltf"; }
 
 AgreementResult agreement(const Renderer::Readback& a, const Renderer::Readback& b, int block = 8) {
-    return compareBlocks(
-        blockStats(a.mean, &a.varianceOfMean, block), blockStats(b.mean, &b.varianceOfMean, block));
+    return compareBlocks(blockStats(a.mean, &a.varianceOfMean, block), blockStats(b.mean, &b.varianceOfMean, block));
 }
 
 IntegratorSettings bdptSettings(uint32_t maxDepth) {
