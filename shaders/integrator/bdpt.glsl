@@ -56,6 +56,7 @@ float strategyWeight(uint s, uint segments, float mis) {
 struct LightVertex {
     Ray ray;
     Hit hit;
+    vec3 p;     // the hit point, to reject connections before rebuilding the rest
     vec3 beta;  // emitted radiance over the density of the light subpath up to here
     float dVCM; // MIS sums at this vertex (file comment)
     float dVC;
@@ -151,6 +152,7 @@ void traceLightSubpath(Rng rng, bool cameraConnects) {
                 LightVertex v;
                 v.ray = ray;
                 v.hit = hit;
+                v.p = si.p;
                 v.beta = beta;
                 v.dVCM = dVCM;
                 v.dVC = dVC;
@@ -271,15 +273,15 @@ vec3 bdptLightSample(
 // connected to light subpath vertex lv.
 vec3 connectToLightVertex(
     SurfaceInteraction si, GpuMaterial mat, vec3 wo, uint depth, float dVCM, float dVC, LightVertex lv) {
-    ShadedVertex light = shadeLightVertex(lv);
-    vec3 d = light.si.p - si.p;
+    vec3 d = lv.p - si.p;
     float dist2 = dot(d, d);
     if (!(dist2 > 0.0)) return vec3(0.0);
     float dist = sqrt(dist2);
     vec3 dir = d / dist; // camera vertex -> light vertex
-    vec3 wLight = -lv.ray.direction;
     VertexEval c, l;
     if (!evalVertex(si, mat, wo, dir, c)) return vec3(0.0);
+    ShadedVertex light = shadeLightVertex(lv);
+    vec3 wLight = -lv.ray.direction;
     if (!evalVertex(light.si, light.mat, -dir, wLight, l)) return vec3(0.0);
     float cosLightIn = abs(dot(wLight, light.si.ng));
     if (cosLightIn < 1e-7) return vec3(0.0);

@@ -8,6 +8,10 @@
 #include "geometry/traverse.glsl"
 #include "shared/features.glsl"
 #include "material/material_textures.glsl"
+#include "common/rng.glsl"
+#include "bsdf/surface_bsdf.glsl"
+#include "lights/light_sampling.glsl"
+#include "integrator/shadow_ray.glsl"
 
 // BVH cost: node visits of the camera ray's closest-hit query (both trees), shown on a
 // blue-green-red ramp from 0 to this many visits (red saturates above it).
@@ -46,8 +50,35 @@ vec3 nanMask(vec3 L) {
     return allFinite(L) ? vec3(NAN_MASK_GREY * clamp(luminance(L), 0.0, 1.0)) : vec3(1.0, 0.0, 0.0);
 }
 
+// Light visibility: at the camera ray's hit on a surface that samples lights, one sample of a
+// light that light paths can start from (not the sky nor a directional light): green 1 where it
+// could light the surface (it has radiance and lies above an opaque surface), red 1 where,
+// besides, nothing is in between. Mean red over mean green is the fraction of light samples
+// that find their light (src/render/light_visibility_probe.cpp).
+vec3 lightVisibility(Ray ray, Rng rng) {
+    Hit hit;
+    if (scene.numLights == 0u || !traceClosest(ray, FLOAT_MAX, hit)) return vec3(0.0);
+    SurfaceInteraction si = makeInteraction(ray, hit);
+    GpuMaterial mat = sceneMaterials.v[si.materialIndex];
+    applyTextures(mat, si);
+    if (!isSurfaceBsdf(mat)) return vec3(0.0);
+    bool transmissive = isTransmissiveSurface(mat);
+    if (!transmissive && !si.frontFace) {
+        if ((mat.flags & MATERIAL_FLAG_DOUBLE_SIDED) == 0u) return vec3(0.0);
+        turnToBackSide(si);
+    }
+    uint index = selectLight(rng1(rng, bounceDimension(1u, DIM_LIGHT_SELECT)));
+    uint type = sceneLights.v[index].type;
+    if (type == LIGHT_DIRECTIONAL || type == LIGHT_ENVIRONMENT) return vec3(0.0);
+    LightSample ls = sampleLightIndex(index, si.p, rng2(rng, bounceDimension(1u, DIM_LIGHT_POINT)));
+    if (ls.pdf <= 0.0 || maxComponent(ls.radiance) <= 0.0) return vec3(0.0);
+    if (!transmissive && dot(ls.wi, si.nSurface) <= 0.0) return vec3(0.0);
+    return vec3(lightOccluded(si, ls) ? 0.0 : 1.0, 1.0, 0.0);
+}
+
 // Albedo, normal, depth and BVH cost: what the camera ray's closest hit shows.
-vec3 debugView(Ray ray) {
+vec3 debugView(Ray ray, Rng rng) {
+    if (DEBUG_VIEW == DEBUG_VIEW_LIGHT_VISIBILITY) return lightVisibility(ray, rng);
     Hit hit;
     traversalNodeVisits = 0u;
     bool found = traceClosest(ray, FLOAT_MAX, hit);

@@ -36,7 +36,7 @@ void addSamplesOneByOne(uvec2 pixel, uint first, uint count, float sampleClamp, 
     for (uint s = 0u; s < count; ++s) {
         Rng rng = rngCreate(pixel, first + s, scene.seed);
         Ray ray = sampleCameraRay(pixel, rng);
-        addToPixelSums(sums, sampleValue(radiance ? tracePath(ray, rng) : debugView(ray), sampleClamp));
+        addToPixelSums(sums, sampleValue(radiance ? tracePath(ray, rng) : debugView(ray, rng), sampleClamp));
     }
 }
 

@@ -160,6 +160,9 @@ using uint64_t = std::uint64_t;
 #define DEBUG_VIEW_DEPTH 3u
 #define DEBUG_VIEW_BVH_COST 4u
 #define DEBUG_VIEW_NAN_MASK 5u
+// Not one of the viewer's: how often light sampling at the surfaces the camera sees finds its
+// light (integrator/debug_view.glsl; `--integrator auto` measures with it).
+#define DEBUG_VIEW_LIGHT_VISIBILITY 6u
 
 // A triangle as the intersector reads it: world-space vertices plus the ids it needs at a hit.
 struct GpuTriangle {

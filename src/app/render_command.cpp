@@ -11,6 +11,7 @@
 #include "image/image_io.h"
 #include "film/metrics.h"
 #include "render/progressive_render.h"
+#include "render/light_visibility_probe.h"
 #include "render/renderer.h"
 #include "film/state_file.h"
 #include "film/tonemap.h"
@@ -51,9 +52,21 @@ std::vector<ExrChannel> varianceChannels(const Image& varianceOfMean) {
 // `lastUse`: no job after this one needs `flat`, so its big arrays are freed as they are uploaded.
 int renderJob(VulkanContext& context, const Scene& scene, FlatScene& flat, bool lastUse, const Job& job,
     const RenderOptions& o, const std::optional<Image>& reference, std::ostream* errorLog) {
+    // --integrator auto: measure how often light sampling finds the light, where BDPT could
+    // render the scene (the rule is computeFeatures').
+    flat.lightVisibility.reset();
+    IntegratorSettings bidirectional = job.settings;
+    bidirectional.estimator = Estimator::Bidirectional;
+    if (job.settings.estimator == Estimator::Auto && computeFeatures(flat, bidirectional).bdpt) {
+        flat.lightVisibility = probeLightVisibility(context, flat, job.settings, job.camera, job.width, job.height);
+        if (!o.quiet && flat.lightVisibility)
+            std::fprintf(stderr,
+                "pt: %s: integrator auto: %.1f%% of light samples find their light (BDPT below %.0f%%)\n",
+                job.camera.name.c_str(), 100.0 * *flat.lightVisibility, 100.0 * kBdptBelowLightVisibility);
+    }
     // --all-features: the unspecialised kernel, for measuring what specialisation saves. Light
-    // tracing is an estimator, not a feature: the scene decides it either way (it is only
-    // correct where computeFeatures allows it), so both kernels render the same image.
+    // tracing and BDPT are estimators, not features: the scene decides them either way (each is
+    // only correct where computeFeatures allows it), so both kernels render the same image.
     FeatureSet features = computeFeatures(flat, job.settings);
     if (o.allFeatures) {
         const bool lightTracing = features.lightTracing, bdpt = features.bdpt;

@@ -171,10 +171,14 @@ bool bdptPossible(const FlatScene& scene, const IntegratorSettings& s, const Fea
     return !f.classic && !f.dispersion && !scene.lights.lights.empty() && s.maxDepth <= BDPT_MAX_LIGHT_VERTICES + 2;
 }
 
-// `--integrator bdpt` where possible; `auto` never, yet (path tracing is the default until a
-// measured rule says where bidirectional paths pay).
+// `--integrator bdpt` where possible; under `auto`, where light sampling at the surfaces the
+// camera sees finds its light less often than kBdptBelowLightVisibility (measured on the device,
+// FlatScene::lightVisibility): light that arrives through a gap, a shade or glass, which
+// unidirectional paths find by chance and light subpaths carry to them.
 bool bdptChosen(const FlatScene& scene, const IntegratorSettings& s, const FeatureSet& f) {
-    return s.estimator == Estimator::Bidirectional && bdptPossible(scene, s, f);
+    if (s.estimator == Estimator::Path || !bdptPossible(scene, s, f)) return false;
+    if (s.estimator == Estimator::Bidirectional) return true;
+    return scene.lightVisibility && *scene.lightVisibility < kBdptBelowLightVisibility;
 }
 
 // Light tracing pays only where caustics can be seen directly: a smooth (delta) mirror, conductor or

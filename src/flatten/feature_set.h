@@ -14,6 +14,10 @@
 
 namespace pt {
 
+// `--integrator auto` renders by BDPT where fewer light samples than this find their light
+// (FlatScene::lightVisibility; bench/RESULTS.md, "Bidirectional path tracing").
+constexpr float kBdptBelowLightVisibility = 0.1f;
+
 #define PT_FEATURE_CPP_TYPE_flag bool
 #define PT_FEATURE_CPP_TYPE_module bool
 #define PT_FEATURE_CPP_TYPE_choice uint32_t

@@ -8,6 +8,7 @@
 #include "shared/layout.h"
 
 #include <array>
+#include <optional>
 #include <vector>
 
 namespace pt {
@@ -63,6 +64,10 @@ struct FlatScene {
     std::vector<glm::vec4> motions; // motion blur: xyz = translation over the shutter interval
     FlatEnvironment environment;
     LightTable lights;
+    // Measured on the device before a render's features are decided, for `--integrator auto`
+    // (src/render/light_visibility_probe.h): the fraction of light samples at the surfaces the
+    // camera sees that find their light. Absent where not measured.
+    std::optional<float> lightVisibility;
     size_t degenerateTriangles = 0; // zero-area or non-finite triangles dropped
     size_t degenerateSpheres = 0;   // singular or non-finite sphere transforms dropped
     // The world tree's build.

@@ -58,13 +58,20 @@ TEST_F(CliTest, AbsurdResolutionFailsFastWithoutAllocating) {
 
 TEST_F(CliTest, ReferenceOfTheWrongSize) {
     const std::string ref = kDiffuseReference.string(); // 256x256
-    const PtRun r = run({"render", "--reference", ref, "--spp", "1", "--width", "32", "--height", "32", "-o",
+    const PtRun r = run({"render", "--reference", ref, "--spp", "1", "--width", "48", "--height", "48", "-o",
         (dir_ / "x.exr").string()});
     EXPECT_EXIT_STATUS(r, 1);
     const std::string line = r.errorLine();
     EXPECT_NE(line.find(ref), std::string::npos) << line;
     EXPECT_NE(line.find("256"), std::string::npos) << "should give the reference's size: " << line;
     EXPECT_TRUE(outputs().empty());
+    // A whole fraction of the reference's size is scored against it box-filtered down.
+    const PtRun quarter = run({"render", kDiffuseScene.string(), "--reference", ref, "--spp", "64", "--width", "64",
+        "--height", "64", "-o", (dir_ / "x.exr").string()});
+    EXPECT_EXIT_STATUS(quarter, 0);
+    const size_t at = quarter.err.rfind(", relMSE ");
+    ASSERT_NE(at, std::string::npos) << quarter;
+    EXPECT_LT(std::stod(quarter.err.substr(at + 9)), 0.02) << "the same box, its reference filtered down: " << quarter;
 }
 
 TEST_F(CliTest, MissingReference) {

@@ -10,7 +10,8 @@ namespace pt::test {
 namespace {
 
 std::vector<std::string> renderArgs(const fs::path& exr) {
-    return {"render", "-o", exr.string(), "--spp", "4", "--width", "24", "--height", "24"};
+    // path: one kernel (`auto` first measures with a kernel of its own; CliTest.AutoIntegrator...).
+    return {"render", "-o", exr.string(), "--spp", "4", "--width", "24", "--height", "24", "--integrator", "path"};
 }
 
 std::vector<fs::path> entries(const fs::path& dir, const std::string& prefix) {

@@ -50,6 +50,26 @@ TEST_F(CliTest, DefaultSceneWritesExrWithMetadataAndPng) {
     EXPECT_EQ(outputs(), (std::vector<std::string>{"cbox.exr", "cbox.png"})) << "temporary files left behind";
 }
 
+// --integrator auto (the default) measures how often light sampling finds the light and takes
+// BDPT where it seldom does: the two rooms of scenes/ajar (lit through a door ajar), not the box.
+// The measurement and the choice are logged; the choice is in the EXR's features.
+TEST_F(CliTest, AutoIntegratorTakesBdptWhereLightArrivesThroughAGap) {
+    const auto render = [&](const fs::path& scene, const std::string& name) {
+        const fs::path exr = dir_ / (name + ".exr");
+        const PtRun r =
+            run({"render", scene.string(), "-o", exr.string(), "--spp", "1", "--width", "32", "--height", "18"});
+        EXPECT_EXIT_STATUS(r, 0);
+        EXPECT_NE(r.err.find("integrator auto: "), std::string::npos) << r;
+        pt::ImageMetadata meta;
+        pt::readExr(exr, &meta);
+        return meta["features"];
+    };
+    const std::string ajar = render(kTests.parent_path() / "scenes" / "ajar" / "scene.gltf", "ajar");
+    EXPECT_NE((" " + ajar + " ").find(" bdpt "), std::string::npos) << ajar;
+    const std::string box = render(kDiffuseScene, "box");
+    EXPECT_EQ((" " + box + " ").find(" bdpt "), std::string::npos) << box;
+}
+
 TEST_F(CliTest, SeedAndSppReachTheMetadata) {
     const fs::path exr = dir_ / "sub" / "dir" / "seeded.exr";
     const PtRun r =

@@ -7,6 +7,7 @@
 #include "flatten/feature_set.h"
 #include "flatten/flat_scene.h"
 #include "film/metrics.h"
+#include "render/light_visibility_probe.h"
 #include "scene/scene_loader.h"
 #include "support/gpu_test_support.h"
 
@@ -174,7 +175,7 @@ TEST_F(Bdpt, ImageIsTheSameHoweverTheSamplesAreSplit) {
 }
 
 TEST_F(Bdpt, ChosenOnlyWhereItCanRenderTheScene) {
-    const FlatScene box = flattenScene(loadScene(diffuseBox()));
+    FlatScene box = flattenScene(loadScene(diffuseBox()));
     IntegratorSettings s = bdptSettings(BDPT_MAX_LIGHT_VERTICES + 2);
     EXPECT_TRUE(computeFeatures(box, s).bdpt);
     EXPECT_FALSE(computeFeatures(box, s).lightTracing) << "BDPT subsumes the caustic light tracer";
@@ -186,6 +187,33 @@ TEST_F(Bdpt, ChosenOnlyWhereItCanRenderTheScene) {
     s.classic = false;
     s.estimator = Estimator::Path;
     EXPECT_FALSE(computeFeatures(box, s).bdpt) << "--integrator path";
+    // auto: by the measured fraction of light samples that find their light.
+    s.estimator = Estimator::Auto;
+    EXPECT_FALSE(computeFeatures(box, s).bdpt) << "not measured";
+    box.lightVisibility = 0.9f;
+    EXPECT_FALSE(computeFeatures(box, s).bdpt) << "light sampling finds the light";
+    box.lightVisibility = 0.02f;
+    EXPECT_TRUE(computeFeatures(box, s).bdpt) << "light sampling seldom finds the light";
+    s.maxDepth = BDPT_MAX_LIGHT_VERTICES + 3;
+    EXPECT_FALSE(computeFeatures(box, s).bdpt) << "nor where it cannot render the scene";
+}
+
+// The measurement auto decides by: nine in ten light samples find the box's light, hardly any
+// find the lamp in the next room of scenes/ajar.
+TEST_F(Bdpt, LightSamplesFindTheLightInTheBoxButNotThroughADoorAjar) {
+    const auto visibility = [](const std::filesystem::path& path) {
+        const Scene scene = loadScene(path);
+        const std::optional<float> v = probeLightVisibility(
+            sharedContext(), flattenScene(scene), independentSettings(), scene.cameras.at(0), 64, 36);
+        EXPECT_TRUE(v.has_value()) << path;
+        return v.value_or(-1.0f);
+    };
+    const float box = visibility(diffuseBox());
+    const float ajar = visibility(repoDir() / "scenes" / "ajar" / "scene.gltf");
+    std::printf("[          ] light samples that find their light: box %.3f, two rooms %.3f\n", box, ajar);
+    EXPECT_GT(box, 0.8f);
+    EXPECT_LT(ajar, 0.05f);
+    EXPECT_GT(ajar, 0.0f) << "some surfaces by the gap see the lamp";
 }
 
 } // namespace
