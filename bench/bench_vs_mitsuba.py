@@ -13,7 +13,8 @@ relMSE ~ 1/t (unbiased Monte Carlo). The ratio printed is the median over the re
 Scenes: cbox-diffuse and cbox-glass-mirror (tests/references); cbox-bumpy-sphere (the box with a
 1 M-triangle sphere, bench/make_mesh_scene.py, 128x128) and cbox-rough (rough gold, rough glass, a
 textured floor: bench/make_rough_scene.py --mitsuba), both written into $PT_BENCH_CACHE (default
-~/.cache/pt-bench) when missing. The reference is bench/references/<scene>/reference.exr where
+~/.cache/pt-bench) when missing; ajar (scenes/ajar: two rooms lit through a door ajar,
+bench/make_ajar_scene.py), where pt's `auto` takes bidirectional path tracing. The reference is bench/references/<scene>/reference.exr where
 there is one (20 minutes of Mitsuba, bench/make_mitsuba_reference.py: noise relMSE 30-50x below
 the 2048-spp references of tests/references, which would otherwise pull the 60-s ratios towards
 1), else the scene folder's. Each reference's own noise (ref_noise_relmse, the expected relMSE of
@@ -83,8 +84,14 @@ GENERATED = {
 }
 
 
+# Our own scenes kept in the repository (scenes/NAME): the two rooms lit through a door ajar.
+OWN = {"ajar": os.path.join(REPO, "scenes", "ajar")}
+
+
 def scene_dir(name):
     """The folder of a scene, made first where it is one of ours that is generated."""
+    if name in OWN:
+        return OWN[name]
     if name not in GENERATED:
         return os.path.join(REFERENCES, name)
     folder, command = GENERATED[name]

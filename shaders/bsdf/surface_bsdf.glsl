@@ -11,6 +11,9 @@
 #include "bsdf/rough_conductor.glsl"
 #include "bsdf/rough_dielectric.glsl"
 #include "bsdf/gltf_pbr.glsl"
+#include "bsdf/mirror.glsl"
+#include "bsdf/conductor.glsl"
+#include "geometry/interaction.glsl"
 #include "shared/features.glsl"
 
 // GGX-rough conductor or dielectric (alpha 0 keeps the smooth delta models). A rough mirror is
@@ -65,6 +68,33 @@ BsdfSample surfaceSample(GpuMaterial m, Frame frame, vec3 wo, float uLobe, vec2 
     if (isRoughConductor(m)) return roughConductorSample(m, frame, wo, u);
     if (isRoughDielectric(m)) return roughDielectricSample(m, frame, wo, uLobe, u);
     return lambertSample(m.baseColor, frame, wo, u);
+}
+
+// The frame a surface shades in, seen from the side the ray arrived on (si.frontFace). Rough
+// dielectrics and PBR transmission (transmissive): both sides shade, light crosses the surface,
+// and the frame keeps the front-side normal (wo.z < 0 inside). Opaque surfaces: one-sided ones
+// are black from behind (false), double-sided ones turn to the viewer's side (si with them).
+bool surfaceFrame(inout SurfaceInteraction si, inout GpuMaterial mat, out Frame frame) {
+    bool transmissive = isTransmissiveSurface(mat);
+    if (!transmissive && !si.frontFace && (mat.flags & MATERIAL_FLAG_DOUBLE_SIDED) == 0u) return false;
+    frame = makeFrame(transmissive || si.frontFace ? si.ns : -si.ns);
+    orientMaterialFrame(frame, mat);
+    if (!transmissive && !si.frontFace) turnToBackSide(si);
+    return true;
+}
+
+// The bounce off a smooth mirror or conductor (every lobe a delta); invalid for other surfaces.
+BsdfSample smoothReflectorSample(GpuMaterial mat, Frame frame, vec3 wo) {
+    if (HAS_MIRROR && mat.type == MATERIAL_MIRROR && !isRoughConductor(mat))
+        return mirrorSample(mat.baseColor, frame, wo);
+    if (HAS_CONDUCTOR && mat.type == MATERIAL_CONDUCTOR && !isRoughConductor(mat))
+        return conductorSample(mat.baseColor, mat.conductorEta, mat.conductorK, frame, wo);
+    return invalidBsdfSample();
+}
+
+bool isSmoothReflector(GpuMaterial mat) {
+    return ((HAS_MIRROR && mat.type == MATERIAL_MIRROR) || (HAS_CONDUCTOR && mat.type == MATERIAL_CONDUCTOR)) &&
+           !isRoughConductor(mat);
 }
 
 #endif

@@ -51,6 +51,20 @@ float strategyWeight(uint s, uint segments, float mis) {
     return BDPT_STRATEGY == BDPT_ONE_STRATEGY(segments, s) ? 1.0 : 0.0;
 }
 
+// The MIS sums of a subpath carried across the bounce `bs` (either subpath's: the recursion is
+// the same): cosOut, the new direction's geometric cosine here; pdfReverse, the density of the
+// other subpath's sampling the direction this one arrived from. A delta bounce's forward and
+// reverse lobe probabilities are equal and cancel, and no strategy connects at it.
+void advanceMisSums(BsdfSample bs, float cosOut, float pdfReverse, inout float dVCM, inout float dVC) {
+    if (bs.isDelta) {
+        dVCM = 0.0;
+        dVC *= misPower(cosOut);
+    } else {
+        dVC = misPower(cosOut / bs.pdf) * (dVC * misPower(pdfReverse) + dVCM);
+        dVCM = misPower(1.0 / bs.pdf);
+    }
+}
+
 // A light subpath vertex a camera vertex can connect to. Its interaction is rebuilt from the
 // segment that found it (cheaper to keep than the shaded material).
 struct LightVertex {
@@ -176,17 +190,12 @@ void traceLightSubpath(Rng rng, bool cameraConnects) {
             bs = dielectricSample(mat.baseColor, mat.ior, si.frontFace, frame, toLocal(frame, wLight), uLobe);
         } else {
             bool transmissive = isTransmissiveSurface(mat);
-            bool doubleSided = (mat.flags & MATERIAL_FLAG_DOUBLE_SIDED) != 0u;
-            if (!transmissive && !si.frontFace && !doubleSided) break;
-            Frame frame = makeFrame(transmissive || si.frontFace ? si.ns : -si.ns);
-            orientMaterialFrame(frame, mat);
-            if (!transmissive && !si.frontFace) turnToBackSide(si);
+            Frame frame;
+            if (!surfaceFrame(si, mat, frame)) break;
             if (!transmissive && dot(wLight, si.nSurface) <= 0.0) break;
             vec3 wLightLocal = toLocal(frame, wLight);
-            if (HAS_MIRROR && mat.type == MATERIAL_MIRROR && !isRoughConductor(mat))
-                bs = mirrorSample(mat.baseColor, frame, wLightLocal);
-            else if (HAS_CONDUCTOR && mat.type == MATERIAL_CONDUCTOR && !isRoughConductor(mat))
-                bs = conductorSample(mat.baseColor, mat.conductorEta, mat.conductorK, frame, wLightLocal);
+            if (isSmoothReflector(mat))
+                bs = smoothReflectorSample(mat, frame, wLightLocal);
             else if (connectible)
                 bs = surfaceSample(mat, frame, wLightLocal, uLobe, uDirection);
             if (!bs.valid) break;
@@ -212,15 +221,7 @@ void traceLightSubpath(Rng rng, bool cameraConnects) {
             weight = bs.weight * bs.etaScale * (abs(dot(wLight, si.ns)) * abs(dot(wCamera, si.ng)) / denominator);
         }
         if (!allFinite(weight) || maxComponent(weight) <= 0.0) break;
-        float cosOut = abs(dot(wCamera, si.ng));
-        if (bs.isDelta) {
-            // Forward and reverse lobe probabilities are equal and cancel; no strategy connects here.
-            dVCM = 0.0;
-            dVC *= misPower(cosOut);
-        } else {
-            dVC = misPower(cosOut / bs.pdf) * (dVC * misPower(pdfReverse) + dVCM);
-            dVCM = misPower(1.0 / bs.pdf);
-        }
+        advanceMisSums(bs, abs(dot(wCamera, si.ng)), pdfReverse, dVCM, dVC);
         beta *= weight;
         throughput *= weight;
         if (USE_RR && segments + 1u >= scene.rrStartDepth) {
@@ -360,15 +361,11 @@ vec3 traceBdptCameraPath(Ray ray, Rng rng, bool cameraConnects) {
             float uLobe = rng1(rng, bounceDimension(depth, DIM_BSDF_LOBE));
             bs = dielectricSample(mat.baseColor, mat.ior, si.frontFace, frame, toLocal(frame, wo), uLobe);
         } else {
-            if (!transmissive && !si.frontFace && !doubleSided) break;
-            Frame frame = makeFrame(transmissive || si.frontFace ? si.ns : -si.ns);
-            orientMaterialFrame(frame, mat);
-            if (!transmissive && !si.frontFace) turnToBackSide(si);
+            Frame frame;
+            if (!surfaceFrame(si, mat, frame)) break;
             vec3 woLocal = toLocal(frame, wo);
-            if (HAS_MIRROR && mat.type == MATERIAL_MIRROR && !isRoughConductor(mat)) {
-                bs = mirrorSample(mat.baseColor, frame, woLocal);
-            } else if (HAS_CONDUCTOR && mat.type == MATERIAL_CONDUCTOR && !isRoughConductor(mat)) {
-                bs = conductorSample(mat.baseColor, mat.conductorEta, mat.conductorK, frame, woLocal);
+            if (isSmoothReflector(mat)) {
+                bs = smoothReflectorSample(mat, frame, woLocal);
             } else if (isSurfaceBsdf(mat)) {
                 if (USE_NEE && scene.numLights > 0u)
                     L += beta * bdptLightSample(si, frame, woLocal, mat, rng, depth, dVCM, dVC);
@@ -384,14 +381,7 @@ vec3 traceBdptCameraPath(Ray ray, Rng rng, bool cameraConnects) {
             if (HAS_NORMAL_MAPS && !transmissive && dot(bs.wi, si.nSurface) <= 0.0) break;
         }
         if (!bs.valid || maxComponent(bs.weight) <= 0.0 || !(bs.pdf > 0.0)) break;
-        float cosOut = abs(dot(bs.wi, si.ng));
-        if (bs.isDelta) {
-            dVCM = 0.0;
-            dVC *= misPower(cosOut);
-        } else {
-            dVC = misPower(cosOut / bs.pdf) * (dVC * misPower(pdfReverse) + dVCM);
-            dVCM = misPower(1.0 / bs.pdf);
-        }
+        advanceMisSums(bs, abs(dot(bs.wi, si.ng)), pdfReverse, dVCM, dVC);
         beta *= bs.weight;
         etaScale *= bs.etaScale;
         if (USE_RR && depth >= scene.rrStartDepth) {

@@ -171,15 +171,11 @@ bool pathStep(inout PathState st) {
         // Opaque surfaces: one-sided ones are black from behind, double-sided ones flip. Both
         // kinds share the calls below, so the driver inlines each BSDF's code once, not twice.
         bool transmissive = isTransmissiveSurface(mat);
-        if (!transmissive && !si.frontFace && !doubleSided) return false;
-        Frame frame = makeFrame(transmissive || si.frontFace ? si.ns : -si.ns);
-        orientMaterialFrame(frame, mat);
-        if (!transmissive && !si.frontFace) turnToBackSide(si);
+        Frame frame;
+        if (!surfaceFrame(si, mat, frame)) return false;
         vec3 woLocal = toLocal(frame, wo);
-        if (HAS_MIRROR && mat.type == MATERIAL_MIRROR && !isRoughConductor(mat)) {
-            bs = mirrorSample(mat.baseColor, frame, woLocal);
-        } else if (HAS_CONDUCTOR && mat.type == MATERIAL_CONDUCTOR && !isRoughConductor(mat)) {
-            bs = conductorSample(mat.baseColor, mat.conductorEta, mat.conductorK, frame, woLocal);
+        if (isSmoothReflector(mat)) {
+            bs = smoothReflectorSample(mat, frame, woLocal);
         } else if (isSurfaceBsdf(mat)) {
             // Inside a rough dielectric a shadow ray to a light outside always meets the
             // object's own boundary (shadow rays do not refract): light sampling is skipped
