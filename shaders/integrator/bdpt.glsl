@@ -270,17 +270,17 @@ vec3 bdptLightSample(
     return fCos * ls.radiance * (weight / ls.pdf);
 }
 
-// s >= 2: camera vertex si (reached from direction wo, MIS sums dVCM and dVC, `depth` segments)
-// connected to light subpath vertex lv.
+// s >= 2: camera vertex si (shading in `frame`, reached from direction wo, MIS sums dVCM and
+// dVC, `depth` segments) connected to light subpath vertex lv.
 vec3 connectToLightVertex(
-    SurfaceInteraction si, GpuMaterial mat, vec3 wo, uint depth, float dVCM, float dVC, LightVertex lv) {
+    SurfaceInteraction si, GpuMaterial mat, Frame frame, vec3 wo, uint depth, float dVCM, float dVC, LightVertex lv) {
     vec3 d = lv.p - si.p;
     float dist2 = dot(d, d);
     if (!(dist2 > 0.0)) return vec3(0.0);
     float dist = sqrt(dist2);
     vec3 dir = d / dist; // camera vertex -> light vertex
     VertexEval c, l;
-    if (!evalVertex(si, mat, wo, dir, c)) return vec3(0.0);
+    if (!evalInFrame(si, mat, frame, wo, dir, c)) return vec3(0.0);
     ShadedVertex light = shadeLightVertex(lv);
     vec3 wLight = -lv.ray.direction;
     if (!evalVertex(light.si, light.mat, -dir, wLight, l)) return vec3(0.0);
@@ -372,7 +372,7 @@ vec3 traceBdptCameraPath(Ray ray, Rng rng, bool cameraConnects) {
                 for (uint i = 0u; i < lightVertexCount; ++i) {
                     LightVertex lv = lightVertices[i];
                     if (depth + lv.segments + 1u > scene.maxDepth) break;
-                    L += beta * connectToLightVertex(si, mat, wo, depth, dVCM, dVC, lv);
+                    L += beta * connectToLightVertex(si, mat, frame, wo, depth, dVCM, dVC, lv);
                 }
                 bs = surfaceSample(mat, frame, woLocal, rng1(rng, bounceDimension(depth, DIM_BSDF_LOBE)),
                     rng2(rng, bounceDimension(depth, DIM_BSDF_DIRECTION)));

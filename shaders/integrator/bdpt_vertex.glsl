@@ -17,8 +17,20 @@ struct VertexEval {
     float pdfTowardsCamera; // of sampling wCamera from wLight (the light path's direction)
 };
 
-// False where the path has no contribution through si. Opaque surfaces are turned to the side
-// wCamera is on (si is changed as the path tracer changes it, for the shadow ray's origin).
+// The same in the frame the vertex already shades in (surfaceFrame: a camera path's vertex, its
+// opaque surface turned to the camera's side and the material oriented). False where the path
+// has no contribution through si.
+bool evalInFrame(SurfaceInteraction si, GpuMaterial mat, Frame frame, vec3 wCamera, vec3 wLight, out VertexEval e) {
+    if (!isTransmissiveSurface(mat) && dot(wLight, si.nSurface) <= 0.0) return false;
+    vec3 a = toLocal(frame, wCamera), b = toLocal(frame, wLight);
+    e.fCos = surfaceEvalPdf(mat, a, b, e.pdfTowardsLight);
+    e.pdfTowardsCamera = surfacePdf(mat, b, a);
+    return maxComponent(e.fCos) > 0.0;
+}
+
+// A light subpath's vertex as the camera's side would shade it: opaque surfaces are turned to
+// the side wCamera is on (si is changed as the path tracer changes it, for the shadow ray's
+// origin), and a one-sided one seen from behind has no contribution.
 bool evalVertex(inout SurfaceInteraction si, GpuMaterial mat, vec3 wCamera, vec3 wLight, out VertexEval e) {
     Frame frame;
     if (isTransmissiveSurface(mat)) {
@@ -28,13 +40,9 @@ bool evalVertex(inout SurfaceInteraction si, GpuMaterial mat, vec3 wCamera, vec3
         if (!front && (mat.flags & MATERIAL_FLAG_DOUBLE_SIDED) == 0u) return false;
         frame = makeFrame(front ? si.ns : -si.ns);
         if (!front) turnToBackSide(si);
-        if (dot(wLight, si.nSurface) <= 0.0) return false;
     }
     orientMaterialFrame(frame, mat);
-    vec3 a = toLocal(frame, wCamera), b = toLocal(frame, wLight);
-    e.fCos = surfaceEvalPdf(mat, a, b, e.pdfTowardsLight);
-    e.pdfTowardsCamera = surfacePdf(mat, b, a);
-    return maxComponent(e.fCos) > 0.0;
+    return evalInFrame(si, mat, frame, wCamera, wLight, e);
 }
 
 // Whether anything lies between two surface points (as evalVertex left them): each end offset

@@ -113,10 +113,13 @@ TEST_F(Bdpt, AgreesWithPathTracingUnderEveryKindOfLight) {
 }
 
 // An emitter inside a glass sphere under a sky (the hard case of scenes/hard): light subpaths
-// start inside the glass and leave through it.
+// start inside the glass and leave through it. The emitter is part of a uniform field there, so
+// both images are nearly constant and their variance estimates nearly zero: the z-test says
+// little, the difference of the means says it all.
 TEST_F(Bdpt, AgreesWithPathTracingForALightInsideGlass) {
     const Scene scene = loadScene(repoDir() / "scenes" / "hard" / "light-inside-glass.xml");
-    expectAgreement(bdptAgainstPath("light inside glass", scene, 12, 32, 32, 256, 1024));
+    const AgreementResult r = bdptAgainstPath("light inside glass", scene, 12, 32, 32, 256, 1024);
+    EXPECT_LT(r.meanRelDiff, 1e-3);
 }
 
 // Each strategy alone, unweighted, for the paths of three segments (camera, two bounces, light)
