@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
@@ -119,6 +120,35 @@ TEST_F(Partition, LightTracedPartsMergeToTheSingleRender) {
     // A part carries the splat sums too: resuming it (last: it checkpoints into a.exr) is
     // bit-identical.
     renderGlass({"--spp", "6", "--resume", (dir_ / "a.exr").string(), "-o", "resumed.exr"});
+    EXPECT_EQ(readExr(dir_ / "resumed.exr").rgba, single.rgba);
+}
+
+// BDPT splats its light subpaths' camera connections into the same integer sums: its parts merge
+// to the single render, a resumed part is bit-identical, and a part by the path tracer is refused.
+TEST_F(Partition, BidirectionalPartsMergeToTheSingleRender) {
+    const std::vector<std::string> scene = {"render", "--width", "24", "--height", "24", "--max-depth", "5", "-q"};
+    auto renderBdpt = [&](std::vector<std::string> more) {
+        if (std::find(more.begin(), more.end(), "--integrator") == more.end())
+            more.insert(more.end(), {"--integrator", "bdpt"});
+        const PtRun r = runPt(dir_, with(scene, more));
+        ASSERT_EQ(r.status, 0) << r.describe();
+    };
+    renderBdpt({"--spp", "6", "-o", "single.exr"});
+    renderBdpt({"--samples", "0:4", "-o", "a.exr"});
+    renderBdpt({"--samples", "4:6", "-o", "b.exr"});
+    renderBdpt({"--samples", "4:6", "--integrator", "path", "-o", "b-path.exr"});
+    ASSERT_EQ(merge({"b.exr", "a.exr", "-o", "merged.exr"}).status, 0);
+    ImageMetadata meta;
+    const Image merged = readExr(dir_ / "merged.exr", &meta);
+    const Image single = readExr(dir_ / "single.exr");
+    EXPECT_NE(meta["features"].find("bdpt"), std::string::npos) << meta["features"];
+    ASSERT_EQ(merged.rgba.size(), single.rgba.size());
+    for (size_t i = 0; i < merged.rgba.size(); ++i) ASSERT_LE(ulpDistance(merged.rgba[i], single.rgba[i]), 1) << i;
+    const PtRun mixed = merge({"a.exr", "b-path.exr", "-o", "bad.exr"});
+    EXPECT_EQ(mixed.status, 1) << mixed.describe();
+    EXPECT_NE(mixed.err.find("integrator=path"), std::string::npos) << mixed.err;
+    EXPECT_FALSE(fs::exists(dir_ / "bad.exr"));
+    renderBdpt({"--spp", "6", "--resume", (dir_ / "a.exr").string(), "-o", "resumed.exr"});
     EXPECT_EQ(readExr(dir_ / "resumed.exr").rgba, single.rgba);
 }
 
