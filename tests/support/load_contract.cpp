@@ -14,6 +14,7 @@ namespace {
 constexpr size_t kMaxProblemLength = 1000;
 
 bool finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+bool finite(const glm::vec4& v) { return finite(glm::vec3(v)) && std::isfinite(v.w); }
 
 std::string meshInconsistency(const Mesh& m, size_t materialCount) {
     const size_t n = m.positions.size();
@@ -47,9 +48,24 @@ std::string textureInconsistency(const Scene& s, const std::optional<uint32_t>& 
 } // namespace
 
 std::string sceneInconsistency(const Scene& s) {
-    if (s.meshes.empty() && s.spheres.empty()) return "a scene with nothing to render was accepted";
+    // A mesh several nodes place is kept once (sharedMeshes) with an instance per placement: a scene
+    // of instances alone has something to render.
+    if (s.meshes.empty() && s.spheres.empty() && s.instances.empty())
+        return "a scene with nothing to render was accepted";
     for (const Mesh& m : s.meshes)
         if (std::string p = meshInconsistency(m, s.materials.size()); !p.empty()) return p;
+    for (const SharedMesh& shared : s.sharedMeshes)
+        for (const Mesh& m : shared.parts)
+            if (std::string p = meshInconsistency(m, s.materials.size()); !p.empty()) return p;
+    for (const MeshInstance& instance : s.instances) {
+        const std::string name = "instance '" + instance.name + "'";
+        if (instance.mesh >= s.sharedMeshes.size()) return name + " places a mesh that does not exist";
+        if (s.sharedMeshes[instance.mesh].parts.empty()) return name + " places a mesh with no triangles";
+        if (instance.material && *instance.material >= s.materials.size()) return name + " has a material out of range";
+        for (int c = 0; c < 4; ++c)
+            if (!finite(glm::vec4(instance.objectToWorld[c]))) return name + " has a non-finite transform";
+        if (!finite(instance.motion)) return name + " has a non-finite motion";
+    }
     for (const Sphere& sp : s.spheres) {
         if (sp.material >= s.materials.size()) return "sphere '" + sp.name + "' has a material out of range";
         for (int c = 0; c < 4; ++c)
