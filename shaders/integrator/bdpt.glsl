@@ -150,7 +150,10 @@ void traceLightSubpath(Rng rng, bool cameraConnects) {
         if (HAS_ABSORPTION && !si.frontFace && hasInteriorAbsorption(mat)) beta *= exp(-mat.sigmaA * hit.t);
         vec3 wLight = -ray.direction;
         float cosIn = max(abs(dot(wLight, si.ng)), 1e-12);
-        if (segments == 1u) {
+        if (segments == 1u && em.infinite) {
+            // Both densities are of directions, so the first segment's length does not enter.
+            dVCM = misPower(directLightPdfInfinite(lightIndex, ray.direction) / (em.pdfEmit * cosIn));
+        } else if (segments == 1u) {
             vec3 d = si.p - em.p;
             float dist2 = dot(d, d);
             dVCM = misPower(directLightPdfArea(lightIndex, si.p, em.p, em.normal) * dist2 / (em.pdfEmit * cosIn));
@@ -257,7 +260,7 @@ vec3 bdptLightSample(
         // s >= 2: the light subpath starts here and reaches si.
         GpuLight light = sceneLights.v[lightIndex];
         bool positionDelta = isPositionDeltaLight(light);
-        float cosAtLight = positionDelta ? 1.0 : abs(dot(ls.normal, ls.wi));
+        float cosAtLight = positionDelta || isInfiniteLight(light) ? 1.0 : abs(dot(ls.normal, ls.wi));
         float directPdfW = positionDelta ? ls.pdf * ls.distance * ls.distance : ls.pdf;
         float cosHere = abs(dot(ls.wi, si.ng));
         float pdfReverse = surfacePdf(mat, wiLocal, woLocal);
@@ -318,9 +321,12 @@ vec3 traceBdptCameraPath(Ray ray, Rng rng, bool cameraConnects) {
         Hit hit;
         countClosestRay();
         if (!traceClosest(ray, FLOAT_MAX, hit)) {
-            // Escaped: the environment (no light subpath starts there: s = 0 against s = 1).
+            // Escaped: the environment, against light sampling (s = 1) and the light subpaths that
+            // start from it (s >= 2; at infinity the sums take no last segment's length).
             if (HAS_ENVIRONMENT && scene.envWidth > 0u) {
-                float others = depth > 1u && USE_NEE ? misPower(environmentPdf(ray.direction)) * dVCM : 0.0;
+                float pdfDirection = environmentPdf(ray.direction);
+                float others = depth > 1u && USE_NEE ? misPower(pdfDirection) * dVCM : 0.0;
+                others += misPower(pdfDirection * infiniteLightDiscPdf()) * dVC;
                 L += beta * envRadiance(ray.direction) * strategyWeight(0u, depth, 1.0 / (1.0 + others));
             } else {
                 L += beta * backgroundRadiance(ray.direction, depth == 1u) * strategyWeight(0u, depth, 1.0);

@@ -3,8 +3,11 @@
 // path or a connection produced. Area emitters (triangles, spheres, the course's squares) emit
 // cosine-weighted from their lit side (either side of a double-sided one, picked with
 // probability 1/2); point lights uniformly over the sphere, spots uniformly over their cone.
-// Directional lights and the environment start no light subpaths: their paths are left to the
-// camera-side strategies (hitting them, sampling them), and their emission density is 0.
+// Lights at infinity (the environment, directional lights) send parallel light in a direction:
+// the environment's sampled as light sampling samples it, a directional light's its own; the
+// path starts on a disc across that direction, of the scene sphere's radius, outside the scene
+// (pbrt's and SmallVCM's construction). Their emission density is per unit disc area and solid
+// angle; the first segment's length does not enter the MIS sums (integrator/bdpt.glsl).
 #ifndef PT_LIGHTS_LIGHT_EMISSION_GLSL
 #define PT_LIGHTS_LIGHT_EMISSION_GLSL
 #include "lights/emitter_sampling.glsl"
@@ -19,9 +22,39 @@ struct LightEmission {
     float magnitude; // scales the ray offset of an area light's point
     float cosLight;  // |cos| between normal and direction (1 for point lights)
     float pdfEmit;   // selection x area density x direction density (point lights: no area)
-    bool hittable;   // a camera path can hit it (emissive triangles and spheres)
+    bool hittable;   // a camera path can hit it (emissive triangles and spheres, the environment)
+    bool infinite;   // the environment or a directional light: p is on the disc outside the scene
     bool valid;
 };
+
+bool isInfiniteLight(GpuLight light) {
+    return (HAS_ENVIRONMENT && light.type == LIGHT_ENVIRONMENT) ||
+           (HAS_PUNCTUAL_LIGHTS && light.type == LIGHT_DIRECTIONAL);
+}
+
+// Density per unit area of the disc the paths of a light at infinity start on.
+float infiniteLightDiscPdf() { return 1.0 / (PI * scene.sceneSphere.w * scene.sceneSphere.w); }
+
+// Light from a light at infinity: direction toLight (unit, towards the light), radiance Le (a
+// directional light's irradiance), direction density pdfDirection (selection included; a
+// directional light's: its selection pmf, the delta left out as light sampling leaves it out).
+LightEmission infiniteLightEmission(vec3 toLight, vec3 Le, float pdfDirection, vec2 uPoint) {
+    LightEmission em;
+    vec3 t, b;
+    buildBasis(toLight, t, b);
+    vec2 disc = sampleConcentricDisk(uPoint) * scene.sceneSphere.w;
+    em.p = scene.sceneSphere.xyz + scene.sceneSphere.w * toLight + disc.x * t + disc.y * b;
+    em.normal = -toLight;
+    em.direction = -toLight;
+    em.magnitude = 0.0;
+    em.cosLight = 1.0;
+    em.pdfEmit = pdfDirection * infiniteLightDiscPdf();
+    em.beta = Le / em.pdfEmit;
+    em.hittable = false;
+    em.infinite = true;
+    em.valid = pdfDirection > 0.0 && maxComponent(em.beta) > 0.0 && allFinite(em.beta) && allFinite(em.p);
+    return em;
+}
 
 bool isPositionDeltaLight(GpuLight light) {
     return HAS_PUNCTUAL_LIGHTS && (light.type == LIGHT_POINT || light.type == LIGHT_SPOT);
@@ -34,10 +67,20 @@ LightEmission sampleLightEmission(uint lightIndex, vec2 uPoint, vec2 uDirection,
     LightEmission em;
     em.valid = false;
     em.hittable = false;
+    em.infinite = false;
     em.normal = vec3(0.0);
     em.magnitude = 0.0;
     GpuLight light = sceneLights.v[lightIndex];
     if (!(light.pmf > 0.0)) return em;
+    if (HAS_ENVIRONMENT && light.type == LIGHT_ENVIRONMENT) {
+        LightSample ls = sampleEnvironment(light, uDirection);
+        if (!(ls.pdf > 0.0)) return em;
+        em = infiniteLightEmission(ls.wi, ls.radiance, ls.pdf, uPoint);
+        em.hittable = true;
+        return em;
+    }
+    if (HAS_PUNCTUAL_LIGHTS && light.type == LIGHT_DIRECTIONAL)
+        return infiniteLightEmission(-light.direction, light.intensity, light.pmf, uPoint);
     if (isPositionDeltaLight(light)) {
         em.p = light.position;
         em.cosLight = 1.0;
@@ -95,9 +138,12 @@ LightEmission sampleLightEmission(uint lightIndex, vec2 uPoint, vec2 uDirection,
 
 // The density with which a light subpath starts at point p of light lightIndex (normal n there,
 // either way round) and leaves in direction w (unit): what sampleLightEmission's pdfEmit is for
-// that point and direction; 0 for lights no light subpath starts from.
+// that point and direction; 0 for lights no light subpath starts from. Lights at infinity: any
+// p (the disc covers the scene), w the direction the light travels.
 float emissionPdf(uint lightIndex, vec3 p, vec3 n, vec3 w) {
     GpuLight light = sceneLights.v[lightIndex];
+    if (HAS_ENVIRONMENT && light.type == LIGHT_ENVIRONMENT) return envPdf(light.pmf, -w) * infiniteLightDiscPdf();
+    if (HAS_PUNCTUAL_LIGHTS && light.type == LIGHT_DIRECTIONAL) return light.pmf * infiniteLightDiscPdf();
     if (isPositionDeltaLight(light)) {
         if (light.type == LIGHT_POINT) return light.pmf / (4.0 * PI);
         return dot(w, light.direction) >= light.cosCoverage ? light.pmf * spotConePdf(light) : 0.0;
@@ -119,6 +165,14 @@ float emissionPdf(uint lightIndex, vec3 p, vec3 n, vec3 w) {
     }
     float sides = (sceneMaterials.v[materialIndex].flags & MATERIAL_FLAG_DOUBLE_SIDED) != 0u ? 2.0 : 1.0;
     return pdfArea * cosLight / (PI * sides);
+}
+
+// The density per unit solid angle with which light sampling picks the light at infinity
+// lightIndex in direction -w (w the direction its light travels); 0 without light sampling.
+float directLightPdfInfinite(uint lightIndex, vec3 w) {
+    if (!USE_NEE) return 0.0;
+    GpuLight light = sceneLights.v[lightIndex];
+    return HAS_ENVIRONMENT && light.type == LIGHT_ENVIRONMENT ? envPdf(light.pmf, -w) : light.pmf;
 }
 
 // The density per unit area (per unit "point" for point lights) with which light sampling from

@@ -458,8 +458,11 @@ struct GpuSceneParams {
     uint numInstanceNodes;
     uint64_t instances;     // GpuInstance[], in the order of the instance tree's leaves
     uint64_t instanceNodes; // GpuBvh4Node[]: the top-level tree, over the instances
+    // A sphere around all geometry (xyz centre, w radius): light subpaths from the environment and
+    // directional lights start on a disc of this radius outside it (lights/light_emission.glsl).
+    vec4 sceneSphere;
 };
-PT_CHECK_SIZE(GpuSceneParams, 112 + 80 + 80 + 16 + 16 + 16 + 16);
+PT_CHECK_SIZE(GpuSceneParams, 112 + 80 + 80 + 16 + 16 + 16 + 16 + 16);
 
 // Push constants of the render kernel: which pixels and which sample indices this dispatch adds.
 struct GpuRenderPush {

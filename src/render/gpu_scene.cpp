@@ -72,6 +72,12 @@ GpuScene::GpuScene(
 void GpuScene::build(VulkanContext& context, const FlatScene& scene, FlatScene* release, gpu::GpuSceneParams params,
     VkDeviceSize accumulationBytes) {
     requireDeviceMemory(context, scene, accumulationBytes);
+    // Before the trees are released: a sphere around them, a little larger than the box's, so that
+    // the discs the paths of lights at infinity start on lie outside the geometry.
+    const Aabb bounds = sceneBounds(scene);
+    params.sceneSphere = bounds.empty() ? glm::vec4(0.0f, 0.0f, 0.0f, 1.0f)
+                                        : glm::vec4(0.5f * (bounds.lo + bounds.hi),
+                                              std::max(0.505f * glm::length(bounds.hi - bounds.lo), 1e-6f));
     const bool quantized = !scene.quantizedNodes.empty();
     params.numTriangles = static_cast<uint32_t>(scene.triangles.size());
     params.numNodes = scene.worldNodes;

@@ -11,8 +11,9 @@ namespace pt {
 
 // How often light sampling at the surfaces a camera sees finds its light unoccluded: a few
 // samples per pixel of a small image, each taking one light sample at the camera ray's hit
-// (DEBUG_VIEW_LIGHT_VISIBILITY, shaders/integrator/debug_view.glsl). Lights no light path starts
-// from (directional, the sky) are left out. Absent where no sample could be taken (no light
+// (DEBUG_VIEW_LIGHT_VISIBILITY, shaders/integrator/debug_view.glsl), of every kind of light: a
+// room lit by the sky through a window is as hard as one lit through a door. Absent where no
+// sample could be taken (no light
 // faces a surface the camera sees). Deterministic: fixed size, samples and seed.
 // `width` and `height`: the render's, whose aspect the probe keeps.
 std::optional<float> probeLightVisibility(VulkanContext& context, const FlatScene& scene,
