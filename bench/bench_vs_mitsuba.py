@@ -14,7 +14,8 @@ Scenes: cbox-diffuse and cbox-glass-mirror (tests/references); cbox-bumpy-sphere
 1 M-triangle sphere, bench/make_mesh_scene.py, 128x128) and cbox-rough (rough gold, rough glass, a
 textured floor: bench/make_rough_scene.py --mitsuba), both written into $PT_BENCH_CACHE (default
 ~/.cache/pt-bench) when missing; ajar (scenes/ajar: two rooms lit through a door ajar,
-bench/make_ajar_scene.py), where pt's `auto` takes bidirectional path tracing. The reference is bench/references/<scene>/reference.exr where
+bench/make_ajar_scene.py) and ajar-daylight (the same lit by a sky through the far room's open
+end), where pt's `auto` takes bidirectional path tracing. The reference is bench/references/<scene>/reference.exr where
 there is one (20 minutes of Mitsuba, bench/make_mitsuba_reference.py: noise relMSE 30-50x below
 the 2048-spp references of tests/references, which would otherwise pull the 60-s ratios towards
 1), else the scene folder's. Each reference's own noise (ref_noise_relmse, the expected relMSE of
@@ -84,8 +85,9 @@ GENERATED = {
 }
 
 
-# Our own scenes kept in the repository (scenes/NAME): the two rooms lit through a door ajar.
-OWN = {"ajar": os.path.join(REPO, "scenes", "ajar")}
+# Our own scenes kept in the repository (scenes/NAME): the two rooms lit through a door ajar, by
+# a lamp in the far room or by the sky its open end looks onto (`make_ajar_scene.py --sky`).
+OWN = {name: os.path.join(REPO, "scenes", name) for name in ("ajar", "ajar-daylight")}
 
 
 def scene_dir(name):
@@ -144,6 +146,8 @@ def run_pt(pt, extra, directory, reference, meta, budget, seed, work):
     cmd = [pt, "render", os.path.join(directory, "scene.gltf"), "--time", str(budget), "--reference", reference,
            "--error-log", log, "-o", os.path.join(work, "pt.exr"), "-q", "--width", str(meta["width"]),
            "--height", str(meta["height"]), "--seed", str(seed)]
+    if "sky_radiance" in meta:  # glTF has no environment: pt takes the sky from its command line
+        cmd += ["--env-colour"] + [str(meta["sky_radiance"])] * 3
     subprocess.run(cmd + extra, check=True, capture_output=True)
     with open(log) as f:
         spp, seconds, rel = f.read().strip().splitlines()[-1].split(",")

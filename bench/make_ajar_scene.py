@@ -33,9 +33,14 @@ Writes, from one list of triangles and one camera (origin/target/up) in this scr
   OUT_DIR/meta.json             image size, camera, materials, triangles (bench_vs_mitsuba.py)
 
     python3 bench/make_ajar_scene.py OUT_DIR [--width 320 --height 180] [--max-depth 16]
-        [--door-angle 12] [--radiance 5000]
+        [--door-angle 12] [--radiance 5000] [--sky RADIANCE]
     build/pt render OUT_DIR/scene.gltf --spp 64 -o OUT_DIR/pt.exr
     mitsuba OUT_DIR/mitsuba/scene.xml -Dspp=64
+
+--sky RADIANCE: daylight instead of the lamp. Room B has no back wall (its far end opens onto a
+uniform sky of that radiance) and no lamp; room A still sees only what comes through the gap.
+glTF has no environment, so pt takes the sky from its command line (--env-colour R R R); the
+Mitsuba file has a `constant` emitter.
 """
 import argparse
 import base64
@@ -114,15 +119,19 @@ def box(lo, hi, bottom=True):
     return frame_box(lo, [hi[0] - lo[0], 0, 0], [0, hi[1] - lo[1], 0], [0, 0, hi[2] - lo[2]], bottom)
 
 
-def build(door_angle_deg):
-    """[(name, material, (positions, indices))], all in world space."""
+def build(door_angle_deg, daylight=False):
+    """[(name, material, (positions, indices))], all in world space. daylight: room B's back wall
+    and the lamp left out."""
     dx, dy, dz = [X1 - X0, 0, 0], [0, Y1 - Y0, 0], [0, 0, ZA - ZB]
     # The enclosing box, faces towards the inside.
-    room = merge([quad([X0, Y1, ZB], [X1 - X0, 0, 0], [0, 0, ZA - ZB]),   # ceiling (-y)
-                  quad([X0, Y0, ZB], dy, dz),                              # x = X0 (+x)
-                  quad([X1, Y0, ZB], dz, dy),                              # x = X1 (-x)
-                  quad([X0, Y0, ZB], dx, dy),                              # room B's back wall (+z)
-                  quad([X0, Y0, ZA], dy, dx)])                             # room A's back wall (-z)
+    faces = [quad([X0, Y1, ZB], [X1 - X0, 0, 0], [0, 0, ZA - ZB]),   # ceiling (-y)
+             quad([X0, Y0, ZB], dy, dz),                              # x = X0 (+x)
+             quad([X1, Y0, ZB], dz, dy),                              # x = X1 (-x)
+             quad([X0, Y0, ZB], dx, dy),                              # room B's back wall (+z)
+             quad([X0, Y0, ZA], dy, dx)]                              # room A's back wall (-z)
+    if daylight:
+        del faces[3]  # room B opens onto the sky
+    room = merge(faces)
     floor = quad([X0, Y0, ZB], dz, dx)                                     # (+y)
     # The wall between the rooms: left and right of the doorway and the lintel above it, each
     # reaching OVER past the enclosing box and into its neighbours.
@@ -147,7 +156,7 @@ def build(door_angle_deg):
     h = LIGHT_SIZE / 2
     light = quad([LIGHT_CENTRE[0] - h, LIGHT_CENTRE[1] - h, ZB + 0.002], [LIGHT_SIZE, 0, 0], [0, LIGHT_SIZE, 0])  # +z
     return [("room", "wall", room), ("floor", "floor", floor), ("door_wall", "wall", wall), ("door", "door", door),
-            ("box_a", "blue", box_a), ("box_b", "sage", box_b), ("light", "light", light)]
+            ("box_a", "blue", box_a), ("box_b", "sage", box_b)] + ([] if daylight else [("light", "light", light)])
 
 
 def camera_rotation(origin, target, up):
@@ -182,10 +191,16 @@ def f32(v):
 def meta(a, meshes):
     tris = {name: len(idx) // 3 for name, _, (_, idx) in meshes}
     mats = {k: {"type": "diffuse", "rgb": v} for k, v in MATERIALS.items()}
-    mats["light"] = {"type": "emitter", "rgb": [a.radiance] * 3, "one_sided": True}
-    return {"name": "ajar", "description": "Two closed rooms, a door ajar %g degrees between them, a %g m square "
-            "one-sided lamp in room B; the camera in room A sees only light that came through the gap. All "
-            "Lambertian." % (a.door_angle, LIGHT_SIZE),
+    if a.sky is None:
+        mats["light"] = {"type": "emitter", "rgb": [a.radiance] * 3, "one_sided": True}
+        description = ("Two closed rooms, a door ajar %g degrees between them, a %g m square one-sided lamp in "
+                       "room B; the camera in room A sees only light that came through the gap. All Lambertian."
+                       % (a.door_angle, LIGHT_SIZE))
+    else:
+        description = ("Two rooms, a door ajar %g degrees between them; room B's far end is open to a uniform sky "
+                       "of radiance %g (pt: --env-colour %g %g %g); the camera in room A sees only light that came "
+                       "through the gap. All Lambertian." % ((a.door_angle, a.sky) + (a.sky,) * 3))
+    return {"name": "ajar" if a.sky is None else "ajar-daylight", "description": description,
             "width": a.width, "height": a.height,
             "camera": dict(CAMERA, model="pinhole", fov_axis="vertical"),
             "integrator": "path (unidirectional, NEE + BSDF sampling with MIS)", "max_depth": a.max_depth,
@@ -194,11 +209,12 @@ def meta(a, meshes):
             "rr_depth": 1000, "rr_note": "rr_depth > max_depth: no Russian roulette",
             "pixel_filter": "box (uniform over the pixel footprint)",
             "output": "linear RGB radiance, float32 EXR, no tonemapping",
-            "triangles": tris, "triangles_total": sum(tris.values()), "materials": mats}
+            "triangles": tris, "triangles_total": sum(tris.values()), "materials": mats,
+            **({} if a.sky is None else {"sky_radiance": a.sky})}
 
 
 def write_gltf(path, a, meshes, info):
-    names = list(MATERIALS) + ["light"]
+    names = list(MATERIALS) + (["light"] if a.sky is None else [])
     spec0 = {"KHR_materials_specular": {"specularFactor": 0.0, "specularColorFactor": [1.0, 1.0, 1.0]}}
     materials = []
     for name in MATERIALS:
@@ -206,11 +222,13 @@ def write_gltf(path, a, meshes, info):
                           "pbrMetallicRoughness": {"baseColorFactor": MATERIALS[name] + [1.0], "metallicFactor": 0.0,
                                                    "roughnessFactor": 1.0},
                           "extensions": spec0})
-    materials.append({"name": "light", "doubleSided": False,
-                      "pbrMetallicRoughness": {"baseColorFactor": [0.0, 0.0, 0.0, 1.0], "metallicFactor": 0.0,
-                                               "roughnessFactor": 1.0},
-                      "emissiveFactor": [1.0, 1.0, 1.0],
-                      "extensions": dict(spec0, KHR_materials_emissive_strength={"emissiveStrength": a.radiance})})
+    if a.sky is None:
+        materials.append({"name": "light", "doubleSided": False,
+                              "pbrMetallicRoughness": {"baseColorFactor": [0.0, 0.0, 0.0, 1.0],
+                                                       "metallicFactor": 0.0, "roughnessFactor": 1.0},
+                              "emissiveFactor": [1.0, 1.0, 1.0],
+                              "extensions": dict(spec0, KHR_materials_emissive_strength={
+                                  "emissiveStrength": a.radiance})})
     blob = bytearray()
     views, accessors, gmeshes, nodes = [], [], [], []
     for name, material, (pos, idx) in meshes:
@@ -301,9 +319,14 @@ def write_mitsuba(directory, a, meshes):
                   '      <rgb name="reflectance" value="%s"/>' % vec(rgb),
                   "    </bsdf>",
                   "  </bsdf>"]
-    lines += ['  <bsdf type="diffuse" id="mat-light">',
-              '    <rgb name="reflectance" value="0, 0, 0"/>',
-              "  </bsdf>"]
+    if a.sky is not None:
+        lines += ['  <emitter type="constant">',
+                  '    <rgb name="radiance" value="%s"/>' % vec([a.sky] * 3),
+                  "  </emitter>"]
+    if a.sky is None:
+        lines += ['  <bsdf type="diffuse" id="mat-light">',
+                  '    <rgb name="reflectance" value="0, 0, 0"/>',
+                  "  </bsdf>"]
     for name, material, (pos, idx) in meshes:
         write_ply(os.path.join(directory, name + ".ply"), pos, idx)
         lines += ['  <shape type="ply" id="%s">' % name,
@@ -329,11 +352,15 @@ def main():
                     help="ray segments per path including the camera ray (glTF extras and Mitsuba's path)")
     ap.add_argument("--door-angle", type=float, default=12.0, help="how far the door stands open, degrees")
     ap.add_argument("--radiance", type=float, default=5000.0, help="the lamp's radiance (white)")
+    ap.add_argument("--sky", type=float, default=None,
+                    help="daylight: no lamp, room B open at its far end to a uniform sky of this radiance")
     a = ap.parse_args()
+    if a.sky is not None and not a.sky > 0.0:
+        ap.error("--sky must be positive")
     if not 0.0 < a.door_angle < 60.0:
         ap.error("--door-angle must be in (0, 60)")
     os.makedirs(a.out_dir, exist_ok=True)
-    meshes = build(a.door_angle)
+    meshes = build(a.door_angle, daylight=a.sky is not None)
     info = meta(a, meshes)
     write_gltf(os.path.join(a.out_dir, "scene.gltf"), a, meshes, info)
     write_mitsuba(os.path.join(a.out_dir, "mitsuba"), a, meshes)

@@ -50,8 +50,10 @@ vec3 nanMask(vec3 L) {
     return allFinite(L) ? vec3(NAN_MASK_GREY * clamp(luminance(L), 0.0, 1.0)) : vec3(1.0, 0.0, 0.0);
 }
 
-// Light visibility: at the camera ray's hit on a surface that samples lights, one light sample
-// (of any light: the sky and the sun too, which light subpaths now start from): green 1 where it
+// Light visibility: at the camera ray's hit on a surface that samples lights, one sample of a
+// light whose light subpaths start near the scene (not the sky nor a directional light: theirs
+// start on a disc around the whole scene, and measured on a room lit by daylight through a door
+// ajar they do not pay, bench/RESULTS.md): green 1 where it
 // could light the surface (it has radiance and lies above an opaque surface), red 1 where,
 // besides, nothing is in between. Mean red over mean green is the fraction of light samples
 // that find their light (src/render/light_visibility_probe.cpp).
@@ -68,6 +70,8 @@ vec3 lightVisibility(Ray ray, Rng rng) {
         turnToBackSide(si);
     }
     uint index = selectLight(rng1(rng, bounceDimension(1u, DIM_LIGHT_SELECT)));
+    uint type = sceneLights.v[index].type;
+    if (type == LIGHT_DIRECTIONAL || type == LIGHT_ENVIRONMENT) return vec3(0.0);
     LightSample ls = sampleLightIndex(index, si.p, rng2(rng, bounceDimension(1u, DIM_LIGHT_POINT)));
     if (ls.pdf <= 0.0 || maxComponent(ls.radiance) <= 0.0) return vec3(0.0);
     if (!transmissive && dot(ls.wi, si.nSurface) <= 0.0) return vec3(0.0);

@@ -11,10 +11,11 @@ namespace pt {
 
 // How often light sampling at the surfaces a camera sees finds its light unoccluded: a few
 // samples per pixel of a small image, each taking one light sample at the camera ray's hit
-// (DEBUG_VIEW_LIGHT_VISIBILITY, shaders/integrator/debug_view.glsl), of every kind of light: a
-// room lit by the sky through a window is as hard as one lit through a door. Absent where no
-// sample could be taken (no light
-// faces a surface the camera sees). Deterministic: fixed size, samples and seed.
+// (DEBUG_VIEW_LIGHT_VISIBILITY, shaders/integrator/debug_view.glsl). Lights at infinity (the
+// sky, directional lights) are left out: their light subpaths start on a disc around the whole
+// scene, most of them far from where they are needed, and BDPT did not pay on the one such scene
+// measured (a room lit by daylight through a door ajar). Absent where no sample could be taken
+// (no light faces a surface the camera sees). Deterministic: fixed size, samples and seed.
 // `width` and `height`: the render's, whose aspect the probe keeps.
 std::optional<float> probeLightVisibility(VulkanContext& context, const FlatScene& scene,
     const IntegratorSettings& settings, const Camera& camera, int width, int height);
