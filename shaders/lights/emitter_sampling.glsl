@@ -57,7 +57,7 @@ EmitterPoint sampleEmitterPoint(uint lightIndex, vec2 u) {
     GpuLight light = sceneLights.v[lightIndex];
     if (!isLightTracedEmitter(lightIndex) || light.pmf <= 0.0) return e;
     if (light.type == LIGHT_TRIANGLE) {
-        GpuTriangle tri = loadTriangle(light.primitive);
+        GpuTriangle tri = placedTriangle(loadTriangle(light.primitive)); // where it is at the path's time
         vec2 b = sampleUniformTriangle(u);
         e.p = (1.0 - b.x - b.y) * tri.p0 + b.x * tri.p1 + b.y * tri.p2;
         e.ng = normalize(cross(tri.p1 - tri.p0, tri.p2 - tri.p0));
@@ -69,9 +69,10 @@ EmitterPoint sampleEmitterPoint(uint lightIndex, vec2 u) {
         // A uniform point on the unit sphere mapped to world space: density 1 / (4 pi J).
         GpuSphere sphere = SphereRef(scene.spheres).v[light.primitive];
         vec3 po = sampleUniformSphere(u);
-        e.p = transformPoint(sphere.objectToWorld, po);
+        vec3 offset = sphereLightOffset(sphere);
+        e.p = transformPoint(sphere.objectToWorld, po) + offset;
         float J = sphereAreaScale(sphere, light, po, e.ng);
-        e.magnitude = sphereMagnitude(sphere, vec3(0.0));
+        e.magnitude = sphereMagnitude(sphere, offset);
         e.materialIndex = sphere.materialIndex;
         e.pdf = light.pmf / (4.0 * PI * J);
         e.Le = sceneMaterials.v[sphere.materialIndex].emission;

@@ -159,7 +159,8 @@ float emissionPdf(uint lightIndex, vec3 p, vec3 n, vec3 w) {
     } else {
         GpuSphere sphere = SphereRef(scene.spheres).v[light.primitive];
         vec3 normal;
-        float J = sphereAreaScale(sphere, light, normalize(toSphereObject(sphere, p)), normal);
+        float J =
+            sphereAreaScale(sphere, light, normalize(toSphereObject(sphere, p - sphereLightOffset(sphere))), normal);
         pdfArea = light.pmf / (4.0 * PI * J);
         materialIndex = sphere.materialIndex;
     }

@@ -32,7 +32,7 @@ float lightPdf(uint lightIndex, vec3 x, vec3 p, vec3 ng, float t, vec3 dir) {
     GpuLight light = sceneLights.v[lightIndex];
     if (HAS_SPHERES && light.type == LIGHT_SPHERE) return sphereLightPdf(light, x, p);
     if (!SPHERICAL_TRIANGLE_LIGHTS) return areaSampledPdf(light, t, dot(ng, dir));
-    return triangleLightPdf(light, loadTriangle(light.primitive), x, t, dot(ng, dir));
+    return triangleLightPdf(light, placedTriangle(loadTriangle(light.primitive)), x, t, dot(ng, dir));
 }
 
 // Solid-angle pdf of light sampling the environment in direction dir (0 without one).

@@ -7,6 +7,12 @@
 #include "lights/light_common.glsl"
 #include "common/math.glsl"
 #include "geometry/sphere.glsl"
+#include "geometry/motion.glsl"
+
+// Where a moving sphere light has moved at the path's time (motion blur).
+vec3 sphereLightOffset(GpuSphere sphere) {
+    return (HAS_MOTION && sphere.motion != NO_MOTION) ? motionOffset(sphere.motion) : vec3(0.0);
+}
 
 // 1 - cos(theta_max) of the cone a sphere of radius r at distance^2 d2 subtends, without the
 // cancellation of 1 - sqrt(1 - sin^2) for small (sun-sized) spheres.
@@ -26,11 +32,12 @@ float sphereAreaScale(GpuSphere sphere, GpuLight light, vec3 po, out vec3 normal
 
 float sphereLightPdf(GpuLight light, vec3 x, vec3 p) {
     GpuSphere sphere = SphereRef(scene.spheres).v[light.primitive];
-    vec3 toCentre = light.position - x;
+    vec3 offset = sphereLightOffset(sphere);
+    vec3 toCentre = light.position + offset - x;
     float d2 = dot(toCentre, toCentre);
     if (light.radius > 0.0 && d2 > light.radius * light.radius)
         return light.pmf / (TWO_PI * coneOneMinusCos(light.radius, d2));
-    vec3 po = normalize(toSphereObject(sphere, p));
+    vec3 po = normalize(toSphereObject(sphere, p - offset));
     vec3 n;
     float J = sphereAreaScale(sphere, light, po, n);
     vec3 d = p - x;
@@ -43,7 +50,9 @@ LightSample sampleSphereLight(GpuLight light, vec3 x, vec2 u) {
     LightSample s = noLightSample();
     GpuSphere sphere = SphereRef(scene.spheres).v[light.primitive];
     GpuMaterial mat = sceneMaterials.v[sphere.materialIndex];
-    vec3 toCentre = light.position - x;
+    vec3 offset = sphereLightOffset(sphere);
+    vec3 centre = light.position + offset;
+    vec3 toCentre = centre - x;
     float d2 = dot(toCentre, toCentre);
     if (light.radius > 0.0 && d2 > light.radius * light.radius) {
         float oneMinusCosMax = coneOneMinusCos(light.radius, d2);
@@ -60,13 +69,13 @@ LightSample sampleSphereLight(GpuLight light, vec3 x, vec2 u) {
         // Distance to the near side along wi (clamped at the silhouette).
         s.distance = dc * cosTheta - sqrt(max(0.0, light.radius * light.radius - d2 * sinTheta * sinTheta));
         s.point = x + s.distance * s.wi;
-        s.normal = normalize(s.point - light.position);
+        s.normal = normalize(s.point - centre);
         s.radiance = emittedRadiance(mat, true);
         s.pdf = light.pmf / (TWO_PI * oneMinusCosMax);
         return s;
     }
     vec3 po = sampleUniformSphere(u);
-    s.point = transformPoint(sphere.objectToWorld, po);
+    s.point = transformPoint(sphere.objectToWorld, po) + offset;
     float J = sphereAreaScale(sphere, light, po, s.normal);
     vec3 d = s.point - x;
     float dist2 = dot(d, d);

@@ -11,6 +11,7 @@
 #include "lights/light_common.glsl"
 #include "common/sampling.glsl"
 #include "textures/texture.glsl"
+#include "geometry/motion.glsl"
 
 const float SPHERICAL_SAMPLING_MAX = 6.22; // steradians
 
@@ -72,7 +73,7 @@ vec2 triangleBarycentrics(GpuTriangle tri, vec3 p) {
 
 LightSample sampleTriangleLight(GpuLight light, vec3 x, vec2 u) {
     LightSample s = noLightSample();
-    GpuTriangle tri = loadTriangle(light.primitive);
+    GpuTriangle tri = placedTriangle(loadTriangle(light.primitive)); // where it is at the path's time
     s.normal = normalize(cross(tri.p1 - tri.p0, tri.p2 - tri.p0));
     vec3 corners[3];
     float omega = sphericalSamplingArea(tri, x, corners);

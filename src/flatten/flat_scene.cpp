@@ -158,7 +158,7 @@ void flattenSpheres(const Scene& scene, const BvhBuildOptions& bvhOptions, FlatS
         setRows(g.objectToWorld, s.objectToWorld);
         g.materialIndex = s.material;
         g.lightIndex = NO_LIGHT;
-        g.motion = motionIndex(s.motion, scene.materials[s.material], flat);
+        g.motion = motionIndex(s.motion, flat);
         spheres.push_back(g);
         Aabb box = sphereBounds(s.objectToWorld);
         if (g.motion != NO_MOTION) box.grow(translated(box, s.motion)); // swept over the shutter interval

@@ -74,8 +74,8 @@ uint32_t offsetChild(uint32_t child, uint32_t nodeBase, uint32_t triangleBase, c
 
 bool isFinite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
-uint32_t motionIndex(const glm::vec3& motion, const Material& material, FlatScene& flat) {
-    if (motion == glm::vec3(0.0f) || material.emissive() || !isFinite(motion)) return NO_MOTION;
+uint32_t motionIndex(const glm::vec3& motion, FlatScene& flat) {
+    if (motion == glm::vec3(0.0f) || !isFinite(motion)) return NO_MOTION;
     if (flat.motions.size() >= (1u << (32 - TRIANGLE_MOTION_SHIFT)))
         throw std::runtime_error("more moving objects than the motion table holds");
     flat.motions.emplace_back(motion, 0.0f);
@@ -107,7 +107,7 @@ void gatherTriangles(const Scene& scene, const Mesh& mesh, uint32_t materialInde
     if (materialIndex >= scene.materials.size())
         throw std::runtime_error(scene.source + ": mesh '" + mesh.name + "' uses a material that does not exist");
     const Material& material = scene.materials[materialIndex];
-    const uint32_t motion = motionIndex(motionBy, material, flat);
+    const uint32_t motion = motionIndex(motionBy, flat);
     const bool alphaTested = cutsOut(material);
     const bool tangentFrame = !mesh.tangents.empty() && needsTangents(material);
     for (const glm::uvec3& t : mesh.triangles) {

@@ -21,8 +21,9 @@ struct TriangleSet {
 bool isFinite(const glm::vec3& v);
 
 // The motion-table entry of an object that moves by `motion` over the shutter, or NO_MOTION.
-// Emitters stay where they are: light sampling picks points on them without a time.
-uint32_t motionIndex(const glm::vec3& motion, const Material& material, FlatScene& flat);
+// Emitters move too: light sampling and light subpaths place them at the path's time
+// (shaders/lights, placedTriangle and sphereLightOffset).
+uint32_t motionIndex(const glm::vec3& motion, FlatScene& flat);
 
 // Whether the scene keeps the file's vertex tangents (normal maps and anisotropy read them): some
 // mesh has them under a material that needs them.
