@@ -20,10 +20,18 @@ Renderer::Readback renderForced(const Scene& scene, const IntegratorSettings& se
 
 Renderer::Readback renderAllModes(const Scene& scene, const IntegratorSettings& settings, const Camera& camera,
     int size, uint32_t spp, const char* what) {
+    // The forced modes by bidirectional path tracing too, wherever it can render the scene: its
+    // light subpaths and MIS sums meet the same extremes.
+    IntegratorSettings bidirectional = settings;
+    bidirectional.estimator = Estimator::Bidirectional;
+    const bool bdpt = computeFeatures(flattenScene(scene), bidirectional).bdpt;
     for (uint32_t forced : kForcedModes) {
+        const char* value = forced == FORCED_RANDOM_ZERO ? "0" : "1 - 2^-24";
         const auto r = renderForced(scene, settings, camera, size, size, 1, forced);
-        EXPECT_EQ(r.droppedSamples, 0u) << what << ": random numbers forced to "
-                                        << (forced == FORCED_RANDOM_ZERO ? "0" : "1 - 2^-24");
+        EXPECT_EQ(r.droppedSamples, 0u) << what << ": random numbers forced to " << value;
+        if (!bdpt) continue;
+        const auto b = renderForced(scene, bidirectional, camera, size, size, 1, forced);
+        EXPECT_EQ(b.droppedSamples, 0u) << what << ": BDPT, random numbers forced to " << value;
     }
     auto r = renderScene(scene, settings, camera, size, size, spp);
     EXPECT_EQ(r.droppedSamples, 0u) << what;

@@ -20,8 +20,9 @@ constexpr uint32_t kForcedModes[] = {FORCED_RANDOM_ZERO, FORCED_RANDOM_ONE};
 Renderer::Readback renderForced(const Scene& scene, const IntegratorSettings& settings, const Camera& camera, int width,
     int height, uint32_t spp, uint32_t forcedRandom);
 
-// renderForced in both forced modes (1 spp each) and with the normal sampler (`spp`), every
-// render expected to keep all its samples; returns the normal render. `what` names the case.
+// renderForced in both forced modes (1 spp each; by BDPT as well where it can render the scene)
+// and with the normal sampler (`spp`), every render expected to keep all its samples; returns
+// the normal render. `what` names the case.
 Renderer::Readback renderAllModes(const Scene& scene, const IntegratorSettings& settings, const Camera& camera,
     int size, uint32_t spp, const char* what);
 
