@@ -54,16 +54,9 @@ int renderJob(VulkanContext& context, const Scene& scene, FlatScene& flat, bool 
     const RenderOptions& o, const std::optional<Image>& reference, std::ostream* errorLog) {
     // --integrator auto: measure how often light sampling finds the light, where BDPT could
     // render the scene (the rule is computeFeatures').
-    flat.lightVisibility.reset();
-    IntegratorSettings bidirectional = job.settings;
-    bidirectional.estimator = Estimator::Bidirectional;
-    if (job.settings.estimator == Estimator::Auto && computeFeatures(flat, bidirectional).bdpt) {
-        flat.lightVisibility = probeLightVisibility(context, flat, job.settings, job.camera, job.width, job.height);
-        if (!o.quiet && flat.lightVisibility)
-            std::fprintf(stderr,
-                "pt: %s: integrator auto: %.1f%% of light samples find their light (BDPT below %.0f%%)\n",
-                job.camera.name.c_str(), 100.0 * *flat.lightVisibility, 100.0 * kBdptBelowLightVisibility);
-    }
+    const std::string autoNote =
+        measureForAutoIntegrator(context, flat, job.settings, job.camera, job.width, job.height);
+    if (!o.quiet && !autoNote.empty()) std::fprintf(stderr, "pt: %s: %s\n", job.camera.name.c_str(), autoNote.c_str());
     // --all-features: the unspecialised kernel, for measuring what specialisation saves. Light
     // tracing and BDPT are estimators, not features: the scene decides them either way (each is
     // only correct where computeFeatures allows it), so both kernels render the same image.

@@ -3,6 +3,7 @@
 #include "app/context_options.h"
 #include "app/scene_setup.h"
 #include "gpu/vulkan_context.h"
+#include "render/light_visibility_probe.h"
 #include "viewer/script.h"
 #include "viewer/viewer.h"
 #include "viewer/window.h"
@@ -37,7 +38,7 @@ int runView(const ViewOptions& v) {
     if (course && !pick.camera && !scene.cameras.empty()) pick.camera = scene.cameras.front().id;
     const Camera camera = chooseCameras(scene, pick, course).front();
     config.job = makeJob(scene, camera, o, false, course);
-    const FlatScene flat = flattenWithNotes(scene, o);
+    FlatScene flat = flattenWithNotes(scene, o);
 
     config.sceneSource = scene.source;
     config.sceneStem = sceneStem(o.scene);
@@ -64,6 +65,10 @@ int runView(const ViewOptions& v) {
         std::fprintf(stderr, "pt: view: %s: %zu triangles, %zu spheres, %zu lights; device %s (%s)\n",
             scene.source.c_str(), flat.triangles.size(), flat.spheres.size(), flat.lights.lights.size(),
             context->info().name.c_str(), context->info().driver.c_str());
+        // --integrator auto decides as pt render does (the probe needs the device).
+        const std::string autoNote = measureForAutoIntegrator(
+            *context, flat, config.job.settings, config.job.camera, config.job.width, config.job.height);
+        if (!autoNote.empty()) std::fprintf(stderr, "pt: view: %s\n", autoNote.c_str());
         int status = viewer::runViewer(window, *context, flat, config);
         if (o.validation && context->validationMessageCount() > 0) {
             std::fprintf(stderr, "pt: error: Vulkan validation reported %u message(s); first: %s\n",

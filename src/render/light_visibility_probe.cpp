@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 namespace pt {
 
@@ -34,6 +35,20 @@ std::optional<float> probeLightVisibility(VulkanContext& context, const FlatScen
     }
     if (!(attempted > 0)) return std::nullopt;
     return float(visible / attempted);
+}
+
+std::string measureForAutoIntegrator(VulkanContext& context, FlatScene& scene, const IntegratorSettings& settings,
+    const Camera& camera, int width, int height) {
+    scene.lightVisibility.reset();
+    IntegratorSettings bidirectional = settings;
+    bidirectional.estimator = Estimator::Bidirectional;
+    if (settings.estimator != Estimator::Auto || !computeFeatures(scene, bidirectional).bdpt) return "";
+    scene.lightVisibility = probeLightVisibility(context, scene, settings, camera, width, height);
+    if (!scene.lightVisibility) return "";
+    char line[160];
+    std::snprintf(line, sizeof line, "integrator auto: %.1f%% of light samples find their light (BDPT below %.0f%%)",
+        100.0 * *scene.lightVisibility, 100.0 * kBdptBelowLightVisibility);
+    return line;
 }
 
 } // namespace pt

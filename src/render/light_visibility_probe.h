@@ -6,6 +6,7 @@
 #include "scene/scene.h"
 
 #include <optional>
+#include <string>
 
 namespace pt {
 
@@ -19,5 +20,12 @@ namespace pt {
 // `width` and `height`: the render's, whose aspect the probe keeps.
 std::optional<float> probeLightVisibility(VulkanContext& context, const FlatScene& scene,
     const IntegratorSettings& settings, const Camera& camera, int width, int height);
+
+// What `--integrator auto` needs before it decides (pt render and pt view alike): where BDPT could
+// render the scene, the probe's measurement, stored in scene.lightVisibility for computeFeatures;
+// otherwise scene.lightVisibility is cleared. Returns the line to log ("integrator auto: ..."),
+// empty where nothing was measured.
+std::string measureForAutoIntegrator(VulkanContext& context, FlatScene& scene, const IntegratorSettings& settings,
+    const Camera& camera, int width, int height);
 
 } // namespace pt

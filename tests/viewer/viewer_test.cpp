@@ -158,6 +158,26 @@ TEST_F(ViewerProcess, ScriptedSessionSavesResetsAndResizes) {
     EXPECT_GT(resized.mean, 10.0);
 }
 
+// `--integrator auto` decides in the viewer as in pt render: the probe runs, and the two rooms
+// lit through a door ajar get the bidirectional kernel, the Cornell box the path tracer's.
+TEST_F(ViewerProcess, AutoIntegratorTakesBdptWhereLightArrivesThroughAGap) {
+    SKIP_WITHOUT_XVFB();
+    const PtRun ajar = view(
+        "wait-spp 1\nquit\n", {std::string(PT_SCENES_DIR) + "/ajar/scene.gltf", "--width", "64", "--height", "36"});
+    ASSERT_EQ(ajar.status, 0) << ajar;
+    EXPECT_NE(ajar.err.find("pt: view: integrator auto: "), std::string::npos) << ajar;
+    const auto features = [](const std::string& err) {
+        const size_t at = err.find("kernel features: ");
+        return at == std::string::npos ? std::string() : err.substr(at, err.find(';', at) - at);
+    };
+    EXPECT_NE(features(ajar.err).find(" bdpt"), std::string::npos) << ajar;
+    const PtRun box = view("wait-spp 1\nquit\n", {"--width", "64", "--height", "64"});
+    ASSERT_EQ(box.status, 0) << box;
+    EXPECT_NE(box.err.find("pt: view: integrator auto: "), std::string::npos) << box;
+    EXPECT_FALSE(features(box.err).empty()) << box;
+    EXPECT_EQ(features(box.err).find(" bdpt"), std::string::npos) << box;
+}
+
 // Every debug view (each a pipeline specialisation), the switches, the biased clamp and the
 // tone mapping operators run with the validation layer silent and show something.
 TEST_F(ViewerProcess, DebugViewsSwitchesAndToneMappingRunClean) {
