@@ -71,6 +71,7 @@ const char* kHelp =
     "  left drag: orbit (fly mode: look)   middle or shift+left drag: pan   wheel or right drag: dolly\n"
     "  F: fly mode (W A S D move, Q E down/up)   [ ]: fly speed /2 x2   R: reset view   P: print the camera\n"
     "  N: NEE   M: MIS   L: Russian roulette   U: cosine/uniform sampling   - =: max depth\n"
+    "  B: integrator (auto, path, bidirectional)\n"
     "  , .: exposure -/+ 0.5 EV   T: tone mapping (srgb, photographic, aces)   C: firefly clamp (biased)\n"
     "  V (shift+V): debug view (albedo, normal, depth, bvh cost, nan mask)   space: pause\n"
     "  F5 or ctrl+S: save EXR + PNG   F6: window screenshot   F1 or H: this help   Esc: quit\n";
@@ -78,8 +79,11 @@ const char* kHelp =
 } // namespace
 
 std::string Session::settingsText() const {
-    std::string s = std::string(settings_.nee ? "nee" : "no-nee") + " " + (settings_.mis ? "mis" : "no-mis") + " " +
-                    (settings_.rr ? "rr" : "no-rr") + " " +
+    const char* integrator = settings_.estimator == Estimator::Path            ? "path "
+                             : settings_.estimator == Estimator::Bidirectional ? "bdpt "
+                                                                               : "auto ";
+    std::string s = std::string(settings_.classic ? "" : integrator) + (settings_.nee ? "nee" : "no-nee") + " " +
+                    (settings_.mis ? "mis" : "no-mis") + " " + (settings_.rr ? "rr" : "no-rr") + " " +
                     (settings_.sampling == DirectionSampling::Cosine ? "cosine" : "uniform") + " depth " +
                     std::to_string(settings_.maxDepth) + (settings_.classic ? " classic" : "");
     if (clamp_ > 0.0f) s += " | clamp " + fixed(clamp_, 0) + " (BIASED)";
@@ -127,6 +131,12 @@ void Session::handleKey(int key, int mods) {
     case GLFW_KEY_N: settings_.nee = !settings_.nee, integratorDirty_ = true; break;
     case GLFW_KEY_M: settings_.mis = !settings_.mis, integratorDirty_ = true; break;
     case GLFW_KEY_L: settings_.rr = !settings_.rr, integratorDirty_ = true; break;
+    case GLFW_KEY_B: // auto -> path -> bidirectional -> auto (auto decides by the probe's measurement)
+        settings_.estimator = settings_.estimator == Estimator::Auto   ? Estimator::Path
+                              : settings_.estimator == Estimator::Path ? Estimator::Bidirectional
+                                                                       : Estimator::Auto;
+        integratorDirty_ = true;
+        break;
     case GLFW_KEY_U:
         settings_.sampling =
             settings_.sampling == DirectionSampling::Cosine ? DirectionSampling::Uniform : DirectionSampling::Cosine;
@@ -261,7 +271,7 @@ void Session::runCommand(const ScriptCommand& c) {
         handleKey(key, mods);
     } else if (c.name == "toggle") {
         static const std::map<std::string, int> keys = {{"nee", GLFW_KEY_N}, {"mis", GLFW_KEY_M}, {"rr", GLFW_KEY_L},
-            {"sampling", GLFW_KEY_U}, {"fly", GLFW_KEY_F}};
+            {"sampling", GLFW_KEY_U}, {"fly", GLFW_KEY_F}, {"integrator", GLFW_KEY_B}};
         handleKey(keys.at(c.args[0]), 0);
     } else if (c.name == "view") {
         static const std::vector<std::string> views = {"none", "albedo", "normal", "depth", "bvh", "nan"};

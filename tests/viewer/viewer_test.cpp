@@ -159,13 +159,17 @@ TEST_F(ViewerProcess, ScriptedSessionSavesResetsAndResizes) {
 }
 
 // `--integrator auto` decides in the viewer as in pt render: the probe runs, and the two rooms
-// lit through a door ajar get the bidirectional kernel, the Cornell box the path tracer's.
+// lit through a door ajar get the bidirectional kernel, the Cornell box the path tracer's. B (here
+// `toggle integrator`) then switches to the path tracer and to BDPT.
 TEST_F(ViewerProcess, AutoIntegratorTakesBdptWhereLightArrivesThroughAGap) {
     SKIP_WITHOUT_XVFB();
-    const PtRun ajar = view(
-        "wait-spp 1\nquit\n", {std::string(PT_SCENES_DIR) + "/ajar/scene.gltf", "--width", "64", "--height", "36"});
+    const PtRun ajar = view("wait-spp 1\ntoggle integrator\nwait-spp 1\ntoggle integrator\nwait-spp 1\nquit\n",
+        {std::string(PT_SCENES_DIR) + "/ajar/scene.gltf", "--width", "64", "--height", "36"});
     ASSERT_EQ(ajar.status, 0) << ajar;
     EXPECT_NE(ajar.err.find("pt: view: integrator auto: "), std::string::npos) << ajar;
+    const size_t toPath = ajar.err.find("pt: view: path nee ");
+    EXPECT_NE(toPath, std::string::npos) << ajar;
+    EXPECT_NE(ajar.err.find("pt: view: bdpt nee ", toPath), std::string::npos) << ajar;
     const auto features = [](const std::string& err) {
         const size_t at = err.find("kernel features: ");
         return at == std::string::npos ? std::string() : err.substr(at, err.find(';', at) - at);
