@@ -29,14 +29,41 @@ namespace {
 
 // ---- The predicates the table's `decide` column uses ----
 
+// The materials some object uses (FlatScene::materialUsed; every one where it was not recorded).
+struct UsedMaterials {
+    const FlatScene& scene;
+    struct Iterator {
+        const FlatScene& scene;
+        size_t i;
+        void skipUnused() {
+            while (i < scene.materials.size() && !scene.materialUsed.empty() && !scene.materialUsed[i]) ++i;
+        }
+        const gpu::GpuMaterial& operator*() const { return scene.materials[i]; }
+        Iterator& operator++() {
+            ++i;
+            skipUnused();
+            return *this;
+        }
+        bool operator!=(const Iterator& other) const { return i != other.i; }
+    };
+    Iterator begin() const {
+        Iterator it{scene, 0};
+        it.skipUnused();
+        return it;
+    }
+    Iterator end() const { return Iterator{scene, scene.materials.size()}; }
+};
+
+UsedMaterials usedMaterials(const FlatScene& scene) { return UsedMaterials{scene}; }
+
 bool usesMaterialType(const FlatScene& scene, uint32_t type) {
-    for (const auto& m : scene.materials)
+    for (const auto& m : usedMaterials(scene))
         if (m.type == type) return true;
     return false;
 }
 
 bool usesMaterialFlag(const FlatScene& scene, uint32_t flag) {
-    for (const auto& m : scene.materials)
+    for (const auto& m : usedMaterials(scene))
         if ((m.flags & flag) != 0u) return true;
     return false;
 }
@@ -48,21 +75,21 @@ bool isMicrofacetCapable(const gpu::GpuMaterial& m) {
 }
 
 bool usesRoughConductorOrDielectric(const FlatScene& scene) {
-    for (const auto& m : scene.materials)
+    for (const auto& m : usedMaterials(scene))
         if (isMicrofacetCapable(m) && m.alpha > 0.0f) return true;
     return false;
 }
 
 // The specular chain's vertices (shaders/integrator/caustic_partition.glsl): every lobe a delta.
 bool usesDeltaMaterial(const FlatScene& scene) {
-    for (const auto& m : scene.materials)
+    for (const auto& m : usedMaterials(scene))
         if (isMicrofacetCapable(m) && m.alpha <= 0.0f) return true;
     return false;
 }
 
 // Where a light path meets the camera (caustic_partition.glsl's isCausticReceiver).
 bool usesCausticReceiver(const FlatScene& scene) {
-    for (const auto& m : scene.materials) {
+    for (const auto& m : usedMaterials(scene)) {
         if ((m.flags & MATERIAL_FLAG_UNLIT) != 0u) continue;
         if (m.type == MATERIAL_DIFFUSE || m.type == MATERIAL_GLOSSY) return true;
         if ((m.type == MATERIAL_MIRROR || m.type == MATERIAL_CONDUCTOR) && m.alpha > 0.0f) return true;
@@ -71,44 +98,44 @@ bool usesCausticReceiver(const FlatScene& scene) {
 }
 
 bool usesDiffuseTransmission(const FlatScene& scene) {
-    for (const auto& m : scene.materials)
+    for (const auto& m : usedMaterials(scene))
         if (m.type == MATERIAL_PBR && (m.diffuseTransmission > 0.0f || m.diffuseTransmissionTexture != NO_TEXTURE))
             return true;
     return false;
 }
 
 bool usesClearcoat(const FlatScene& scene) {
-    for (const auto& m : scene.materials)
+    for (const auto& m : usedMaterials(scene))
         if (m.type == MATERIAL_PBR && m.clearcoat > 0.0f) return true;
     return false;
 }
 
 bool usesSheen(const FlatScene& scene) {
-    for (const auto& m : scene.materials)
+    for (const auto& m : usedMaterials(scene))
         if (hasSheen(m)) return true;
     return false;
 }
 
 bool usesIridescence(const FlatScene& scene) {
-    for (const auto& m : scene.materials)
+    for (const auto& m : usedMaterials(scene))
         if (m.type == MATERIAL_PBR && m.iridescence > 0.0f) return true;
     return false;
 }
 
 bool usesAnisotropy(const FlatScene& scene) {
-    for (const auto& m : scene.materials)
+    for (const auto& m : usedMaterials(scene))
         if (m.type == MATERIAL_PBR && m.anisotropy > 0.0f) return true;
     return false;
 }
 
 bool usesDispersion(const FlatScene& scene) {
-    for (const auto& m : scene.materials)
+    for (const auto& m : usedMaterials(scene))
         if ((m.type == MATERIAL_DIELECTRIC || m.type == MATERIAL_PBR) && m.dispersion > 0.0f) return true;
     return false;
 }
 
 bool usesEmission(const FlatScene& scene) {
-    for (const auto& m : scene.materials) {
+    for (const auto& m : usedMaterials(scene)) {
         if (m.emissiveTexture != NO_TEXTURE || (m.flags & MATERIAL_FLAG_UNLIT) != 0u) return true;
         if (m.emission.x > 0 || m.emission.y > 0 || m.emission.z > 0) return true;
     }
@@ -129,14 +156,14 @@ bool usesTextureKind(const FlatScene& scene, bool image) {
     auto matches = [&](uint32_t slot) {
         return slot != NO_TEXTURE && (scene.textures[slot].type == TEXTURE_IMAGE) == image;
     };
-    for (const auto& m : scene.materials)
+    for (const auto& m : usedMaterials(scene))
         for (uint32_t slot : materialTextureSlots(m))
             if (matches(slot)) return true;
     return matches(scene.backgroundTexture);
 }
 
 bool usesNormalMaps(const FlatScene& scene) {
-    for (const auto& m : scene.materials)
+    for (const auto& m : usedMaterials(scene))
         if (m.normalTexture != NO_TEXTURE) return true;
     return false;
 }

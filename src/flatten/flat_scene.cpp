@@ -285,6 +285,9 @@ FlatScene flattenScene(const Scene& scene, const BvhBuildOptions& bvhOptions) {
         releaseVector(flat.nodes);
     }
     flattenSpheres(scene, bvhOptions, flat);
+    flat.materialUsed.assign(flat.materials.size(), false);
+    for (const gpu::GpuTriangle& t : flat.triangles) flat.materialUsed.at(t.materialIndex) = true;
+    for (const gpu::GpuSphere& s : flat.spheres) flat.materialUsed.at(s.materialIndex) = true;
     if (scene.environment) flat.environment = flattenEnvironment(*scene.environment, scene.source);
     // Emitters are weighed by their emission texture's light (lights/texture_emission.h).
     auto triangleEmission = [&](uint32_t i) {

@@ -56,6 +56,9 @@ struct FlatScene {
     std::vector<gpu::GpuSphere> spheres;       // BVH-ordered
     std::vector<gpu::GpuBvh4Node> sphereNodes; // a second BVH, over the spheres
     std::vector<gpu::GpuMaterial> materials;
+    // materialUsed[i]: some triangle or sphere has material i. The kernel is specialised to these
+    // only (flatten/feature_set.cpp): a material no object uses costs nothing. Empty: all count.
+    std::vector<bool> materialUsed;
     std::vector<gpu::GpuTexture> textures;
     std::vector<uint32_t> texels; // every image texture's texels, packed (see GpuTexture)
     uint32_t backgroundTexture = NO_TEXTURE;

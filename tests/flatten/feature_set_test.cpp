@@ -42,6 +42,35 @@ TEST(FeatureTable, TheCornellBoxNeedsTrianglesDiffuseAndEmitters) {
     EXPECT_EQ(computeFeatures(box, plain).describe(), "triangles diffuse emitters rr uniform-sampling");
 }
 
+// A material no object uses costs nothing: the Cornell box with an unused glass, an unused
+// emitter and an unused textured material compiles as the box alone; given to a triangle, each
+// brings its feature in.
+TEST(FeatureTable, MaterialsNoObjectUsesAreLeftOut) {
+    Scene scene = loadDefaultScene();
+    const std::string alone = computeFeatures(flattenScene(scene), IntegratorSettings{}).describe();
+    Material glass;
+    glass.type = MaterialType::Dielectric;
+    Material lamp;
+    lamp.emission = glm::vec3(5.0f);
+    scene.materials.push_back(glass);
+    scene.materials.push_back(lamp);
+    // The box's own lamp made black, so that "emitters" comes from the unused lamp alone.
+    for (Material& m : scene.materials)
+        if (&m != &scene.materials.back()) m.emission = glm::vec3(0.0f);
+    scene.punctualLights.push_back(PunctualLight{}); // the box still needs a light
+    const FlatScene unused = flattenScene(scene);
+    const std::string described = computeFeatures(unused, IntegratorSettings{}).describe();
+    EXPECT_EQ(described.find("dielectric"), std::string::npos) << described;
+    EXPECT_EQ(described.find("emitters"), std::string::npos) << described;
+    ASSERT_FALSE(scene.meshes.empty());
+    scene.meshes[0].material = static_cast<uint32_t>(scene.materials.size() - 2); // the glass
+    scene.meshes[1].material = static_cast<uint32_t>(scene.materials.size() - 1); // the lamp
+    const std::string used = computeFeatures(flattenScene(scene), IntegratorSettings{}).describe();
+    EXPECT_NE(used.find("dielectric"), std::string::npos) << used;
+    EXPECT_NE(used.find("emitters"), std::string::npos) << used;
+    EXPECT_NE(alone.find("emitters"), std::string::npos) << alone;
+}
+
 // Light tracing renders only caustics through delta surfaces: a box whose one specular surface is
 // rough has none, and the light paths would be traced for nothing.
 TEST(FeatureTable, LightTracingNeedsASmoothSpecularSurfaceAndAReceiver) {
