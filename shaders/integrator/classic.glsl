@@ -55,7 +55,7 @@ vec3 classicLight(SurfaceInteraction si, Frame frame, vec3 woLocal, GpuMaterial 
 vec3 classicDirect(SurfaceInteraction si, Frame frame, vec3 woLocal, GpuMaterial mat, Rng rng, uint depth) {
     vec2 uPoint = rng2(rng, bounceDimension(depth, DIM_LIGHT_POINT));
     if (scene.numLights > CLASSIC_ALL_LIGHTS) {
-        LightSample ls = sampleLight(si.p, rng1(rng, bounceDimension(depth, DIM_LIGHT_SELECT)), uPoint);
+        LightSample ls = sampleLight(si.p, si.ng, rng1(rng, bounceDimension(depth, DIM_LIGHT_SELECT)), uPoint);
         return classicLight(si, frame, woLocal, mat, ls, ls.pdf);
     }
     vec3 sum = vec3(0.0);

@@ -33,7 +33,7 @@ bool hasInteriorAbsorption(GpuMaterial mat) {
 vec3 estimateDirect(SurfaceInteraction si, Frame frame, vec3 woLocal, GpuMaterial mat, Rng rng, uint depth) {
     float uSelect = rng1(rng, bounceDimension(depth, DIM_LIGHT_SELECT));
     vec2 uPoint = rng2(rng, bounceDimension(depth, DIM_LIGHT_POINT));
-    LightSample ls = sampleLight(si.p, uSelect, uPoint);
+    LightSample ls = sampleLight(si.p, si.ng, uSelect, uPoint);
     if (ls.pdf <= 0.0 || maxComponent(ls.radiance) <= 0.0) return vec3(0.0);
     // An opaque surface is lit from its own side only, whatever a normal map says: light
     // below it would come through (si.nSurface faces wo here; smooth vertex normals count as
@@ -63,6 +63,7 @@ struct PathState {
     vec3 beta;         // throughput
     float etaScale;    // radiance scaling by refractions, undone for Russian roulette
     float prevPdfBsdf; // pdf of the BSDF sample that made this segment, for MIS
+    vec3 prevNormal;   // geometric normal where it left, for the light tree's pmf (lights/light_tree.glsl)
     uint depth;        // segments so far, this one included
     uint deltaRun;     // delta bounces the light-traceable path ends with
     bool prevDelta;    // the segment came from a delta bounce (or is the camera ray)
@@ -81,6 +82,7 @@ PathState pathStart(Ray ray, Rng rng) {
     st.beta = vec3(1.0);
     st.etaScale = 1.0;
     st.prevPdfBsdf = 0.0;
+    st.prevNormal = vec3(0.0);
     st.depth = 1u;
     st.deltaRun = 0u;
     st.prevDelta = true; // the camera ray counts as specular: emitters it sees are added fully
@@ -121,9 +123,9 @@ bool pathStep(inout PathState st) {
     bool lightTraced = st.lightTraceable && st.deltaRun > 0u && isLightTracedEmitter(si.lightIndex);
     if (HAS_EMITTERS && maxComponent(mat.emission) > 0.0 && !lightTraced) {
         vec3 Le = emittedRadiance(mat, si.frontFace);
-        float pdfLight = si.lightIndex != NO_LIGHT
-                             ? lightPdf(si.lightIndex, st.ray.origin, si.p, si.ng, hit.t, st.ray.direction)
-                             : 0.0;
+        float pdfLight = si.lightIndex != NO_LIGHT ? lightPdf(si.lightIndex, st.ray.origin, st.prevNormal, si.p, si.ng,
+                                                         hit.t, st.ray.direction)
+                                                   : 0.0;
         if (!USE_NEE || st.prevDelta || pdfLight == 0.0) {
             st.L += st.beta * Le;
         } else if (USE_MIS) {
@@ -205,6 +207,7 @@ bool pathStep(inout PathState st) {
     st.etaScale *= bs.etaScale;
     st.prevDelta = bs.isDelta || neeSkipped;
     st.prevPdfBsdf = bs.pdf;
+    st.prevNormal = si.ng;
 
     // Russian roulette on throughput with the radiance scaling of refractions undone, so a
     // path inside glass is not killed just for having entered it (pbrt-v4's etaScale).

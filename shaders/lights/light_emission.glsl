@@ -177,7 +177,8 @@ float directLightPdfInfinite(uint lightIndex, vec3 w) {
 }
 
 // The density per unit area (per unit "point" for point lights) with which light sampling from
-// x picks point p (normal n) of light lightIndex; 0 without light sampling.
+// x picks point p (normal n) of light lightIndex; 0 without light sampling. BDPT selects by the
+// power CDF (bdptLightSample), so its pmf is the table's.
 float directLightPdfArea(uint lightIndex, vec3 x, vec3 p, vec3 n) {
     if (!USE_NEE) return 0.0;
     GpuLight light = sceneLights.v[lightIndex];
@@ -188,7 +189,7 @@ float directLightPdfArea(uint lightIndex, vec3 x, vec3 p, vec3 n) {
     if (!(dist2 > 0.0)) return 0.0;
     float dist = sqrt(dist2);
     vec3 w = d / dist;
-    return lightPdf(lightIndex, x, p, n, dist, w) * abs(dot(n, w)) / dist2;
+    return lightPdfWithPmf(lightIndex, light.pmf, x, p, n, dist, w) * abs(dot(n, w)) / dist2;
 }
 
 #endif

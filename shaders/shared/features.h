@@ -101,6 +101,10 @@
     PT_FEATURE(lightTracing, module, LIGHT_TRACING, 31, false, false, lightTracingPays(scene, s, f),                   \
         v ? "light-tracing" : nullptr,                                                                                 \
         "caustics seen directly (camera, diffuse, specular chain, area light) by light tracing, splatted")             \
+    PT_FEATURE(lightTree, flag, LIGHT_TREE, 43, true,                                                                  \
+        s.nee && !s.classic && s.lightSelection != LightSelection::Power, lightTreeChosen(scene, s, f),                \
+        v ? "light-tree" : nullptr,                                                                                    \
+        "light sampling chooses among the bounded lights by a tree of their bounds, power and orientation")            \
     PT_FEATURE(cosineSampling, flag, COSINE_SAMPLING, 11, true, s.sampling == DirectionSampling::Cosine,               \
         s.sampling == DirectionSampling::Cosine, v ? "cosine-sampling" : "uniform-sampling",                           \
         "cosine-weighted rather than uniform hemisphere sampling of diffuse lobes")                                    \

@@ -400,6 +400,27 @@ struct GpuLight {
 };
 PT_CHECK_SIZE(GpuLight, 64);
 
+// One node of the light tree (src/lights/light_tree.h; Conty Estevez and Kulla 2018, as in
+// pbrt-v4's BVHLightSampler): the bounded lights under it, by where they are (box), how much
+// they emit (phi) and where to (a cone of normals around `axis` of half-angle acos(cosThetaO),
+// each emitting up to acos(cosThetaE) away from its normal). Light sampling descends from the
+// root by the children's importance at the shading point (shaders/lights/light_tree.glsl).
+struct GpuLightTreeNode {
+    vec3 boundsMin;
+    float phi; // emitted power (the light table's weight) of the lights below
+    vec3 boundsMax;
+    float cosThetaO;
+    vec3 axis;
+    float cosThetaE;
+    uint child; // interior: the second child's index (the first is the next node); leaf: the light's index
+    uint flags; // LIGHT_NODE_*
+    uint pad0;
+    uint pad1;
+};
+PT_CHECK_SIZE(GpuLightTreeNode, 64);
+#define LIGHT_NODE_LEAF 1u
+#define LIGHT_NODE_TWO_SIDED 2u // some light below emits from both sides
+
 struct GpuCamera {
     vec3 origin;
     float lensRadius; // thin lens; 0 = pinhole
@@ -461,8 +482,20 @@ struct GpuSceneParams {
     // A sphere around all geometry (xyz centre, w radius): light subpaths from the environment and
     // directional lights start on a disc of this radius outside it (lights/light_emission.glsl).
     vec4 sceneSphere;
+    // The light tree over the bounded lights (0: none; light selection is by the power CDF),
+    // and for each light its path from the root: bit k set where the (k+1)-th step goes to the
+    // second child (lights at infinity and those the tree leaves out: 0, unused).
+    uint64_t lightTreeNodes;  // GpuLightTreeNode[]
+    uint64_t lightTreeTrails; // uint64_t[numLights]
+    // The probability of choosing a bounded light: the tree's share. Lights at infinity (the
+    // environment, directional lights) come last in the light table and keep their power pmf,
+    // so the CDF above this value selects among them.
+    float lightTreeShare;
+    uint lightTreePad0;
+    uint lightTreePad1;
+    uint lightTreePad2;
 };
-PT_CHECK_SIZE(GpuSceneParams, 112 + 80 + 80 + 16 + 16 + 16 + 16 + 16);
+PT_CHECK_SIZE(GpuSceneParams, 112 + 80 + 80 + 16 + 16 + 16 + 16 + 16 + 32);
 
 // Push constants of the render kernel: which pixels and which sample indices this dispatch adds.
 struct GpuRenderPush {
@@ -492,6 +525,10 @@ PT_CHECK_SIZE(GpuRenderPush, 48);
 #define TEST_MODE_BSDF_SAMPLE 6u // outputs[i] = (wi local, pdf), outputs[count + i] = (weight, valid)
 #define TEST_MODE_BSDF_PDF 7u    // inputs: local wi; outputs[i] = (f cos, pdf)
 #define TEST_MODE_TEXTURE 8u     // texture materialIndex at inputs[i] = (u, v, _, _) or point (xyz); outputs[i] = value
+// The light that light sampling chooses at (point, normal): outputs[i] = (index as float bits, pmf, _, _);
+// and each light's pmf there: outputs[i] = (pmf of light i, _, _, _).
+#define TEST_MODE_LIGHT_CHOICE 10u
+#define TEST_MODE_LIGHT_SELECTION_PMF 11u
 #define TEST_MODE_SOBOL_POINTS 9u // outputs[i] = Sobol' sample i of pixel (0, 0) in dimensions 0-1 and 3-4, as floats
 
 struct GpuTestRay {

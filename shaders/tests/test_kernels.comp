@@ -24,7 +24,8 @@ void main() {
         float pdf = push.mode == TEST_MODE_COSINE_HEMISPHERE ? cosineHemispherePdf(w.z) : uniformHemispherePdf(w.z);
         outputs.v[i] = vec4(w, pdf);
     } else if (push.mode == TEST_MODE_LIGHT_SAMPLE) {
-        LightSample ls = sampleLight(push.point, rng1(rng, 2u), rng2(rng, 3u));
+        // push.normal: the shading point's normal, for the light tree (0: none).
+        LightSample ls = sampleLight(push.point, push.normal, rng1(rng, 2u), rng2(rng, 3u));
         outputs.v[i] = vec4(ls.wi, ls.pdf);
     } else if (push.mode == TEST_MODE_LIGHT_PDF) {
         // pdf of direction inputs[i] as the integrator computes it when a BSDF ray hits a light.
@@ -35,11 +36,17 @@ void main() {
         float pdf = 0.0;
         if (traceClosest(ray, FLOAT_MAX, hit)) {
             SurfaceInteraction si = makeInteraction(ray, hit);
-            if (si.lightIndex != NO_LIGHT) pdf = lightPdf(si.lightIndex, ray.origin, si.p, si.ng, hit.t, ray.direction);
+            if (si.lightIndex != NO_LIGHT)
+                pdf = lightPdf(si.lightIndex, ray.origin, push.normal, si.p, si.ng, hit.t, ray.direction);
         } else {
             pdf = environmentPdf(ray.direction);
         }
         outputs.v[i] = vec4(pdf);
+    } else if (push.mode == TEST_MODE_LIGHT_CHOICE) {
+        LightChoice c = chooseLight(push.point, push.normal, rng1(rng, 2u));
+        outputs.v[i] = vec4(uintBitsToFloat(c.index), c.pmf, 0.0, 0.0);
+    } else if (push.mode == TEST_MODE_LIGHT_SELECTION_PMF) {
+        outputs.v[i] = vec4(lightSelectionPmf(i, push.point, push.normal), 0.0, 0.0, 0.0);
     } else if (push.mode == TEST_MODE_BSDF_SAMPLE) {
         // The local frame is the canonical one: wo = push.normal, z = shading normal.
         GpuMaterial m = sceneMaterials.v[push.materialIndex];

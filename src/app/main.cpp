@@ -37,7 +37,7 @@ bool onOff(const std::string& v) { return v == "on"; }
 
 // Switches given as words on the command line, converted after parsing.
 struct SwitchWords {
-    std::string nee, mis, rr, sampling, integrator, sampler, lightTracing, instances;
+    std::string nee, mis, rr, sampling, integrator, sampler, lightTracing, instances, lightTree;
     std::vector<float> envColour;
 };
 
@@ -80,6 +80,11 @@ void addSceneOptions(CLI::App* cmd, pt::RenderOptions& o, SwitchWords& w) {
            "Caustics seen directly (camera, diffuse surface, mirrors or glass, area light) by light tracing, "
            "splatted, where the scene has them: on|off (default on; off leaves them to BSDF sampling)")
         ->check(CLI::IsMember({"on", "off"}));
+    cmd->add_option("--light-tree", w.lightTree,
+           "How light sampling chooses among lights with a place (emissive triangles and spheres, point, spot and "
+           "square lights): on (a tree over their bounds, power and orientation: near lights that face the point "
+           "first), off (by power alone) or auto (the tree wherever there are two or more); default auto")
+        ->check(CLI::IsMember({"auto", "on", "off"}));
     cmd->add_option("--instances", w.instances,
            "Meshes placed several times (glTF nodes sharing a mesh, the course's MeshInstances): keep (one copy "
            "each, under a tree over their placements), expand (copied into world space into one tree: more memory, "
@@ -118,6 +123,10 @@ void applySwitchWords(const SwitchWords& w, pt::RenderOptions& o) {
     if (!w.mis.empty()) o.mis = onOff(w.mis);
     if (!w.rr.empty()) o.rr = onOff(w.rr);
     if (!w.lightTracing.empty()) o.integrator.lightTracing = onOff(w.lightTracing);
+    if (!w.lightTree.empty())
+        o.integrator.lightSelection = w.lightTree == "on"    ? pt::LightSelection::Tree
+                                      : w.lightTree == "off" ? pt::LightSelection::Power
+                                                             : pt::LightSelection::Auto;
     if (!w.sampler.empty())
         o.integrator.sampler = w.sampler == "sobol" ? pt::SamplerKind::Sobol : pt::SamplerKind::Independent;
     if (!w.instances.empty())

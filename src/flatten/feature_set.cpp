@@ -21,7 +21,11 @@ std::string IntegratorSettings::describe() const {
       << " sampling=" << (sampling == DirectionSampling::Cosine ? "cosine" : "uniform")
       << " sampler=" << (sampler == SamplerKind::Sobol ? "sobol" : "independent") << " max-depth=" << maxDepth
       << " rr-start=" << rrStartDepth << " rr-threshold=" << rrThreshold
-      << " light-tracing=" << (lightTracing ? "on" : "off") << " seed=" << seed;
+      << " light-tracing=" << (lightTracing ? "on" : "off") << " light-tree="
+      << (lightSelection == LightSelection::Tree       ? "on"
+             : lightSelection == LightSelection::Power ? "off"
+                                                       : "auto")
+      << " seed=" << seed;
     return s.str();
 }
 
@@ -216,6 +220,14 @@ bool lightTracingPays(const FlatScene& scene, const IntegratorSettings& s, const
     return s.lightTracing && !f.classic && !f.bdpt && hasLightOfType(scene, {LIGHT_TRIANGLE, LIGHT_SPHERE}) &&
            usesDeltaMaterial(scene) && usesCausticReceiver(scene) && !f.absorption && !f.alpha && !f.motion &&
            !f.dispersion;
+}
+
+// The light tree chooses among the bounded lights wherever the scene has one (two or more of
+// them, FlatScene::lights.tree) and the path tracer samples lights. BDPT keeps the power CDF: its
+// MIS weights take light sampling's selection to be the light subpaths' (light_emission.glsl).
+bool lightTreeChosen(const FlatScene& scene, const IntegratorSettings& s, const FeatureSet& f) {
+    if (s.lightSelection == LightSelection::Power || !f.nee || f.classic || f.bdpt) return false;
+    return !scene.lights.tree.nodes.empty();
 }
 
 uint32_t nodeFormatOf(const FlatScene& scene) {

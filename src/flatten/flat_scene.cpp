@@ -300,6 +300,9 @@ FlatScene flattenScene(const Scene& scene, const BvhBuildOptions& bvhOptions) {
     };
     flat.lights = buildLightTable(flat.triangles, flat.spheres, scene.punctualLights, scene.materials,
         sceneRadius(flat), flat.environment.width > 0 ? flat.environment.averageRadiance : -1.0, triangleEmission);
+    flat.lights.tree = buildLightTree(lightBoundsOf(flat.lights.lights, flat.lights.power, flat.triangles, flat.spheres,
+                                          flat.materials, flat.motions),
+        boundedLightShare(flat.lights));
     return flat;
 }
 

@@ -14,6 +14,10 @@ enum class SamplerKind { Independent, Sobol };
 // or the one the scene calls for (src/flatten/feature_set.cpp, bdptChosen).
 enum class Estimator { Auto, Path, Bidirectional };
 
+// How light sampling chooses a light among the bounded ones (`--light-tree`): by the light tree,
+// by power alone, or the one the scene calls for (src/flatten/feature_set.cpp, lightTreeChosen).
+enum class LightSelection { Auto, Tree, Power };
+
 // The integrator switches (the course's RendererParams) and limits.
 struct IntegratorSettings {
     bool nee = true; // next event estimation (light sampling)
@@ -41,6 +45,7 @@ struct IntegratorSettings {
     // (computeFeatures). The image is the same in expectation, with far less noise there.
     bool lightTracing = true;
     Estimator estimator = Estimator::Auto;
+    LightSelection lightSelection = LightSelection::Auto;
 
     std::string describe() const;
 };

@@ -73,8 +73,10 @@ LightTable buildLightTable(std::span<gpu::GpuTriangle> triangles, std::span<gpu:
         },
         table, power);
     addPrimitiveEmitters(spheres, materials, sphereLight, table, power);
-    for (const PunctualLight& pl : punctual)
-        if (auto entry = punctualLight(pl, sceneRadius)) addEntry(*entry, table, power);
+    for (bool atInfinity : {false, true})
+        for (const PunctualLight& pl : punctual)
+            if ((pl.type == PunctualLight::Type::Directional) == atInfinity)
+                if (auto entry = punctualLight(pl, sceneRadius)) addEntry(*entry, table, power);
     if (environmentRadiance >= 0.0) {
         table.environmentIndex = static_cast<uint32_t>(table.lights.size());
         addEntry(environmentLight(environmentRadiance, sceneRadius), table, power);
@@ -91,7 +93,14 @@ LightTable buildLightTable(std::span<gpu::GpuTriangle> triangles, std::span<gpu:
     // The pmf is exactly what the kernel's CDF search selects with, so light-sampling pdfs and
     // the pdfs MIS computes for BSDF hits agree to the last bit.
     for (size_t k = 0; k < table.lights.size(); ++k) table.lights[k].pmf = table.cdf[k + 1] - table.cdf[k];
+    table.power = std::move(power);
     return table;
+}
+
+float boundedLightShare(const LightTable& table) {
+    for (size_t k = 0; k < table.lights.size(); ++k)
+        if (table.lights[k].type == LIGHT_DIRECTIONAL || table.lights[k].type == LIGHT_ENVIRONMENT) return table.cdf[k];
+    return 1.0f;
 }
 
 LightTable buildLightTable(std::span<gpu::GpuTriangle> triangles, std::span<const Material> materials) {

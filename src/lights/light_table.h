@@ -3,6 +3,7 @@
 // environment) in one list, chosen with probability proportional to its emitted power through a
 // CDF the kernel binary-searches. Each light type's entry and power: lights/light_entry.h.
 #include "lights/light_entry.h" // luminance, selectionWeight
+#include "lights/light_tree.h"
 #include "scene/scene.h"
 #include "shared/layout.h"
 
@@ -17,6 +18,10 @@ struct LightTable {
     std::vector<float> cdf; // lights.size() + 1 entries, cdf[0] = 0, cdf.back() = 1
     double totalPower = 0;  // sum of the power estimates (luminance-weighted watts)
     uint32_t environmentIndex = NO_LIGHT;
+    std::vector<double> power; // each light's weight (luminance-weighted watts)
+    // The tree over the bounded lights (empty: selection by the CDF alone), built by flattenScene
+    // once the geometry is final (lights/light_tree.h).
+    LightTree tree;
 };
 
 // Builds the table over the final (BVH-ordered) `triangles` and `spheres`, storing each
@@ -38,6 +43,10 @@ LightTable buildLightTable(std::span<gpu::GpuTriangle> triangles, std::span<gpu:
 // would never be chosen and its code is left out of the kernel.
 bool someReceiverSeesALargeTriangleLight(
     std::span<const gpu::GpuTriangle> triangles, size_t worldTriangles, size_t maxReceivers = 4096);
+
+// The probability that the power CDF selects a bounded light (one before the lights at infinity):
+// the light tree's share when it selects among them.
+float boundedLightShare(const LightTable& table);
 
 // Triangles only.
 LightTable buildLightTable(std::span<gpu::GpuTriangle> triangles, std::span<const Material> materials);

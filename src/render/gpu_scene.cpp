@@ -31,7 +31,8 @@ void requireDeviceMemory(VulkanContext& context, const FlatScene& scene, VkDevic
                          bytesOf(scene.instances) + bytesOf(scene.instanceNodes);
     const uint64_t textures = bytesOf(scene.texels) + bytesOf(scene.textures) + bytesOf(scene.environment.texels) +
                               bytesOf(scene.environment.marginal) + bytesOf(scene.environment.conditional);
-    const uint64_t other = bytesOf(scene.materials) + bytesOf(scene.lights.lights) + bytesOf(scene.lights.cdf);
+    const uint64_t other = bytesOf(scene.materials) + bytesOf(scene.lights.lights) + bytesOf(scene.lights.cdf) +
+                           bytesOf(scene.lights.tree.nodes) + bytesOf(scene.lights.tree.trails);
     const uint64_t need = geometry + bvh + textures + other + accumulationBytes;
     uint64_t heap = 0;
     const VkPhysicalDeviceMemoryProperties& memory = context.memoryProperties();
@@ -100,6 +101,8 @@ void GpuScene::build(VulkanContext& context, const FlatScene& scene, FlatScene* 
     materials_ = makeBuffer(context, scene.materials, "materials");
     lights_ = makeBuffer(context, scene.lights.lights, "lights");
     lightCdf_ = makeBuffer(context, scene.lights.cdf, "light cdf");
+    lightTreeNodes_ = makeBuffer(context, scene.lights.tree.nodes, "light tree");
+    lightTreeTrails_ = makeBuffer(context, scene.lights.tree.trails, "light tree trails");
     envTexels_ = makeBuffer(context, scene.environment.texels, "environment texels");
     envMarginal_ = makeBuffer(context, scene.environment.marginal, "environment marginal cdf");
     envConditional_ = makeBuffer(context, scene.environment.conditional, "environment conditional cdf");
@@ -120,6 +123,10 @@ void GpuScene::build(VulkanContext& context, const FlatScene& scene, FlatScene* 
     params.materials = materials_.address();
     params.lights = lights_.address();
     params.lightCdf = lightCdf_.address();
+    // No tree: address 0, and the kernel selects by the CDF.
+    params.lightTreeNodes = scene.lights.tree.nodes.empty() ? 0 : lightTreeNodes_.address();
+    params.lightTreeTrails = lightTreeTrails_.address();
+    params.lightTreeShare = scene.lights.tree.share;
     params.accumulation = accumulation_.address();
     params.envTexels = envTexels_.address();
     params.envMarginal = envMarginal_.address();

@@ -28,8 +28,8 @@ private:
         VkDeviceSize accumulationBytes);
 
     GpuBuffer triangles_, shading_, nodes_, spheres_, sphereNodes_, instances_, instanceNodes_, materials_, lights_,
-        lightCdf_, envTexels_, envMarginal_, envConditional_, textures_, texels_, motions_, tangents_, accumulation_,
-        params_;
+        lightCdf_, lightTreeNodes_, lightTreeTrails_, envTexels_, envMarginal_, envConditional_, textures_, texels_,
+        motions_, tangents_, accumulation_, params_;
 };
 
 } // namespace pt

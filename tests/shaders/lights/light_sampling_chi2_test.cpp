@@ -57,9 +57,12 @@ LightTestScene uploadScene(const pt::Scene& scene) {
     return s;
 }
 
-LightTestScene uploadLightScene(bool equalRadiance) {
+// `lightTree` false: selection by the power CDF alone (the light tree's own tests:
+// light_tree_test.cpp).
+LightTestScene uploadLightScene(bool equalRadiance, bool lightTree = true) {
     LightTestScene s;
     s.flat = pt::flattenScene(lightScene(equalRadiance));
+    if (!lightTree) s.flat.lights.tree = {};
     s.gpu = std::make_unique<pt::GpuScene>(pt::test::sharedContext(), s.flat, pt::gpu::GpuSceneParams{}, 0);
     return s;
 }
@@ -201,10 +204,14 @@ void checkLightSampling(const LightTestScene& scene) {
     }
 }
 
+// Chosen by the light tree (seven lights: it has one), and by power alone.
 TEST_F(SamplingTest, LightSamplingMatchesTheLightPdf) {
-    const LightTestScene scene = uploadLightScene(false);
-    ASSERT_EQ(scene.flat.lights.lights.size(), 7u);
-    checkLightSampling(scene);
+    for (bool lightTree : {true, false}) {
+        const LightTestScene scene = uploadLightScene(false, lightTree);
+        ASSERT_EQ(scene.flat.lights.lights.size(), 7u);
+        ASSERT_EQ(scene.flat.lights.tree.nodes.empty(), !lightTree);
+        checkLightSampling(scene);
+    }
 }
 
 pt::Sphere transformedSphere(glm::vec3 centre, float angle, glm::vec3 radii, uint32_t material) {
@@ -318,8 +325,8 @@ TEST_F(SamplingTest, EnvironmentSamplingMatchesItsPdf) {
 // Negative control for the light test: the same samples against the pdf of the same emitters with
 // equal radiance (so chosen by area instead of power) must be rejected; the test sees the CDF.
 TEST_F(SamplingTest, LightChiSquareRejectsTheWrongSelectionCdf) {
-    const LightTestScene scene = uploadLightScene(false);
-    const LightTestScene byArea = uploadLightScene(true);
+    const LightTestScene scene = uploadLightScene(false, false);
+    const LightTestScene byArea = uploadLightScene(true, false);
     const std::vector<glm::vec4> samples =
         pt::test::runTestKernel(TEST_MODE_LIGHT_SAMPLE, kSamples, scene.gpu.get(), {}, kShadingPoint);
     const double p = pValue(histogram(kSphere, samples), expectedFromLightPdf(*byArea.gpu, kSphere, kSamples),
