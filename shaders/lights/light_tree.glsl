@@ -49,9 +49,8 @@ float lightNodeImportance(GpuLightTreeNode node, vec3 p, vec3 n) {
     float cosW = dot(node.axis, wi);
     if ((node.flags & LIGHT_NODE_TWO_SIDED) != 0u) cosW = abs(cosW);
     float sinW = sqrt(max(0.0, 1.0 - cosW * cosW));
-    float sinO = sqrt(max(0.0, 1.0 - node.cosThetaO * node.cosThetaO));
-    float cosX = cosSubClamped(sinW, cosW, sinO, node.cosThetaO);
-    float sinX = sinSubClamped(sinW, cosW, sinO, node.cosThetaO);
+    float cosX = cosSubClamped(sinW, cosW, node.sinThetaO, node.cosThetaO);
+    float sinX = sinSubClamped(sinW, cosW, node.sinThetaO, node.cosThetaO);
     float cosP = cosSubClamped(sinX, cosX, sinB, cosB);
     if (cosP <= node.cosThetaE) return 0.0;
     // The distance is at least the bounding sphere's radius: a point among the lights is not
@@ -65,12 +64,10 @@ float lightNodeImportance(GpuLightTreeNode node, vec3 p, vec3 n) {
     return max(importance, 0.0);
 }
 
-// The probability of the first child of interior node `node` at p, or -1 where neither child
-// can light p.
-float firstChildProbability(uint node, GpuLightTreeNode parent, vec3 p, vec3 n) {
-    LightTreeRef nodes = LightTreeRef(scene.lightTreeNodes);
-    float i0 = lightNodeImportance(nodes.v[node + 1u], p, n);
-    float i1 = lightNodeImportance(nodes.v[parent.child], p, n);
+// The probability of choosing the first of two children at p, or -1 where neither can light p.
+float firstChildProbability(GpuLightTreeNode first, GpuLightTreeNode second, vec3 p, vec3 n) {
+    float i0 = lightNodeImportance(first, p, n);
+    float i1 = lightNodeImportance(second, p, n);
     float sum = i0 + i1;
     return sum > 0.0 ? i0 / sum : -1.0;
 }
@@ -90,21 +87,25 @@ LightChoice chooseLight(vec3 x, vec3 n, float u) {
     u = min(u / share, LIGHT_TREE_ONE_MINUS_EPSILON);
     float pmf = share;
     uint i = 0u;
+    GpuLightTreeNode node = nodes.v[0];
     for (uint step = 0u; step <= LIGHT_TREE_MAX_DEPTH; ++step) {
-        GpuLightTreeNode node = nodes.v[i];
         if ((node.flags & LIGHT_NODE_LEAF) != 0u) {
             c.index = node.child;
             c.pmf = pmf;
             return c;
         }
-        float p0 = firstChildProbability(i, node, x, n);
+        GpuLightTreeNode first = nodes.v[i + 1u];
+        GpuLightTreeNode second = nodes.v[node.child];
+        float p0 = firstChildProbability(first, second, x, n);
         if (p0 < 0.0) return c;
         if (u < p0) {
             i = i + 1u;
+            node = first;
             u = min(u / p0, LIGHT_TREE_ONE_MINUS_EPSILON);
             pmf *= p0;
         } else {
             i = node.child;
+            node = second;
             u = min((u - p0) / (1.0 - p0), LIGHT_TREE_ONE_MINUS_EPSILON);
             pmf *= 1.0 - p0;
         }
@@ -120,16 +121,20 @@ float lightSelectionPmf(uint index, vec3 x, vec3 n) {
     uint64_t trail = Uint64Ref(scene.lightTreeTrails).v[index];
     float pmf = scene.lightTreeShare;
     uint i = 0u;
+    GpuLightTreeNode node = nodes.v[0];
     for (uint step = 0u; step <= LIGHT_TREE_MAX_DEPTH; ++step) {
-        GpuLightTreeNode node = nodes.v[i];
         if ((node.flags & LIGHT_NODE_LEAF) != 0u) return node.child == index ? pmf : 0.0;
-        float p0 = firstChildProbability(i, node, x, n);
+        GpuLightTreeNode first = nodes.v[i + 1u];
+        GpuLightTreeNode second = nodes.v[node.child];
+        float p0 = firstChildProbability(first, second, x, n);
         if (p0 < 0.0) return 0.0;
         if ((trail & 1ul) != 0ul) {
             i = node.child;
+            node = second;
             pmf *= 1.0 - p0;
         } else {
             i = i + 1u;
+            node = first;
             pmf *= p0;
         }
         trail >>= 1u;

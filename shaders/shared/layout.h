@@ -412,10 +412,10 @@ struct GpuLightTreeNode {
     float cosThetaO;
     vec3 axis;
     float cosThetaE;
-    uint child; // interior: the second child's index (the first is the next node); leaf: the light's index
-    uint flags; // LIGHT_NODE_*
+    uint child;      // interior: the second child's index (the first is the next node); leaf: the light's index
+    uint flags;      // LIGHT_NODE_*
+    float sinThetaO; // of the cone of normals, so the kernel need not take it
     uint pad0;
-    uint pad1;
 };
 PT_CHECK_SIZE(GpuLightTreeNode, 64);
 #define LIGHT_NODE_LEAF 1u

@@ -83,7 +83,8 @@ void addSceneOptions(CLI::App* cmd, pt::RenderOptions& o, SwitchWords& w) {
     cmd->add_option("--light-tree", w.lightTree,
            "How light sampling chooses among lights with a place (emissive triangles and spheres, point, spot and "
            "square lights): on (a tree over their bounds, power and orientation: near lights that face the point "
-           "first), off (by power alone) or auto (the tree wherever there are two or more); default auto")
+           "first), off (by power alone) or auto (the tree where two or more lights spread over a quarter of the "
+           "scene or face more ways than a 30-degree cone); default auto")
         ->check(CLI::IsMember({"auto", "on", "off"}));
     cmd->add_option("--instances", w.instances,
            "Meshes placed several times (glTF nodes sharing a mesh, the course's MeshInstances): keep (one copy "

@@ -2,7 +2,9 @@
 
 #include "shared/layout.h"
 
+#include <cmath>
 #include <initializer_list>
+#include <numbers>
 #include <sstream>
 
 namespace pt {
@@ -222,12 +224,30 @@ bool lightTracingPays(const FlatScene& scene, const IntegratorSettings& s, const
            !f.dispersion;
 }
 
-// The light tree chooses among the bounded lights wherever the scene has one (two or more of
-// them, FlatScene::lights.tree) and the path tracer samples lights. BDPT keeps the power CDF: its
-// MIS weights take light sampling's selection to be the light subpaths' (light_emission.glsl).
+// The light tree pays where which light matters depends on where the shading point is: lights
+// spread over more than kLightTreeSpread of the scene's diagonal, or facing more ways than a cone
+// of kLightTreeConeDegrees. On the Cornell box (one quad light, two triangles side by side) it
+// cost 8% of the paths per second and gained nothing; in a hall of 184 lamps it had 2.8x lower
+// relMSE per sample (bench/RESULTS.md, "The light tree").
+constexpr float kLightTreeSpread = 0.25f;
+constexpr double kLightTreeConeDegrees = 30.0;
+
+bool lightTreePays(const FlatScene& scene) {
+    const gpu::GpuLightTreeNode& root = scene.lights.tree.nodes.at(0);
+    if (root.cosThetaO < std::cos(kLightTreeConeDegrees * std::numbers::pi / 180.0)) return true;
+    const Aabb box = sceneBounds(scene);
+    return !box.empty() &&
+           glm::length(root.boundsMax - root.boundsMin) > kLightTreeSpread * glm::length(box.hi - box.lo);
+}
+
+// The light tree chooses among the bounded lights where the scene has one (two or more of them,
+// FlatScene::lights.tree), the path tracer samples lights and (under auto) it pays. BDPT keeps
+// the power CDF: its MIS weights take light sampling's selection to be the light subpaths'
+// (light_emission.glsl).
 bool lightTreeChosen(const FlatScene& scene, const IntegratorSettings& s, const FeatureSet& f) {
     if (s.lightSelection == LightSelection::Power || !f.nee || f.classic || f.bdpt) return false;
-    return !scene.lights.tree.nodes.empty();
+    if (scene.lights.tree.nodes.empty()) return false;
+    return s.lightSelection == LightSelection::Tree || lightTreePays(scene);
 }
 
 uint32_t nodeFormatOf(const FlatScene& scene) {

@@ -103,6 +103,7 @@ private:
         n.phi = static_cast<float>(b.phi);
         n.axis = b.axis;
         n.cosThetaO = b.cosThetaO;
+        n.sinThetaO = static_cast<float>(std::sqrt(std::max(0.0, 1.0 - double(b.cosThetaO) * b.cosThetaO)));
         n.cosThetaE = b.cosThetaE;
         n.child = child;
         n.flags = flags | (b.twoSided ? LIGHT_NODE_TWO_SIDED : 0u);
@@ -210,7 +211,8 @@ std::vector<LightBounds> lightBoundsOf(std::span<const gpu::GpuLight> lights, st
             b.lo = b.hi = t.p0;
             growBox(b, t.p1);
             growBox(b, t.p2);
-            if ((t.flags & TRIANGLE_FLAG_MOVING) != 0u) addMotion(b, glm::vec3(motions[t.flags >> TRIANGLE_MOTION_SHIFT]));
+            if ((t.flags & TRIANGLE_FLAG_MOVING) != 0u)
+                addMotion(b, glm::vec3(motions[t.flags >> TRIANGLE_MOTION_SHIFT]));
             b.axis = glm::vec3(glm::normalize(glm::cross(glm::dvec3(t.p1 - t.p0), glm::dvec3(t.p2 - t.p0))));
             b.cosThetaO = 1.0f;
             b.twoSided = (materials[t.materialIndex].flags & MATERIAL_FLAG_DOUBLE_SIDED) != 0u;

@@ -19,11 +19,11 @@ namespace pt {
 // What the tree knows of one light (or of the lights under a node).
 struct LightBounds {
     glm::vec3 lo{0.0f}, hi{0.0f};
-    double phi = 0;             // power (the light table's weight)
-    glm::vec3 axis{0, 0, 1};    // the cone of the lights' normals: its axis...
-    float cosThetaO = 1.0f;     // ...and half-angle
-    float cosThetaE = 0.0f;     // how far from its normal a light emits (0: a hemisphere)
-    bool twoSided = false;      // emits from both sides of its normal
+    double phi = 0;          // power (the light table's weight)
+    glm::vec3 axis{0, 0, 1}; // the cone of the lights' normals: its axis...
+    float cosThetaO = 1.0f;  // ...and half-angle
+    float cosThetaE = 0.0f;  // how far from its normal a light emits (0: a hemisphere)
+    bool twoSided = false;   // emits from both sides of its normal
 };
 
 struct LightTree {

@@ -71,6 +71,35 @@ TEST(FeatureTable, MaterialsNoObjectUsesAreLeftOut) {
     EXPECT_NE(alone.find("emitters"), std::string::npos) << alone;
 }
 
+// The light tree under `--light-tree auto`: not for the box's one quad light (two triangles side by
+// side, facing one way: the power CDF does as well for less), but once a second light sits far
+// from it; `on` and `off` decide it, and BDPT keeps the power CDF its MIS weights assume.
+TEST(FeatureTable, LightTreeWhereLightsSpreadOverTheScene) {
+    Scene scene = loadDefaultScene();
+    auto hasTree = [](const Scene& sc, const IntegratorSettings& s) {
+        return computeFeatures(flattenScene(sc), s).describe().find("light-tree") != std::string::npos;
+    };
+    IntegratorSettings automatic, on, off, bdpt;
+    on.lightSelection = LightSelection::Tree;
+    off.lightSelection = LightSelection::Power;
+    bdpt.estimator = Estimator::Bidirectional;
+    EXPECT_FALSE(hasTree(scene, automatic));
+    EXPECT_TRUE(hasTree(scene, on));
+    glm::vec3 lo(1e30f), hi(-1e30f);
+    for (const Mesh& m : scene.meshes)
+        for (const glm::vec3& p : m.positions) {
+            lo = glm::min(lo, p);
+            hi = glm::max(hi, p);
+        }
+    PunctualLight corner;
+    corner.position = lo + 0.05f * (hi - lo);
+    corner.intensity = glm::vec3(1.0f);
+    scene.punctualLights.push_back(corner);
+    EXPECT_TRUE(hasTree(scene, automatic));
+    EXPECT_FALSE(hasTree(scene, off));
+    EXPECT_FALSE(hasTree(scene, bdpt));
+}
+
 // Light tracing renders only caustics through delta surfaces: a box whose one specular surface is
 // rough has none, and the light paths would be traced for nothing.
 TEST(FeatureTable, LightTracingNeedsASmoothSpecularSurfaceAndAReceiver) {

@@ -38,7 +38,9 @@ Scene manyLightsBox() {
             hi = glm::max(hi, p);
         }
     const glm::vec3 size = hi - lo;
-    auto inside = [&] { return lo + size * glm::vec3(0.1f + 0.8f * u(rng), 0.1f + 0.8f * u(rng), 0.1f + 0.8f * u(rng)); };
+    auto inside = [&] {
+        return lo + size * glm::vec3(0.1f + 0.8f * u(rng), 0.1f + 0.8f * u(rng), 0.1f + 0.8f * u(rng));
+    };
     for (int k = 0; k < 24; ++k) {
         Material m;
         m.name = "small light " + std::to_string(k);
@@ -62,7 +64,8 @@ Scene manyLightsBox() {
     scene.materials.push_back(glow);
     const uint32_t glowIndex = static_cast<uint32_t>(scene.materials.size() - 1);
     Sphere ball;
-    ball.objectToWorld = glm::translate(glm::mat4(1.0f), inside()) * glm::scale(glm::mat4(1.0f), glm::vec3(0.03f * size.x));
+    ball.objectToWorld =
+        glm::translate(glm::mat4(1.0f), inside()) * glm::scale(glm::mat4(1.0f), glm::vec3(0.03f * size.x));
     ball.material = glowIndex;
     Sphere ellipsoid;
     ellipsoid.objectToWorld = glm::translate(glm::mat4(1.0f), inside()) *
@@ -149,7 +152,8 @@ TEST_F(LightTree, ChoicesFollowThePmfOfEachLight) {
         {"tilted, among the lights", lo + size * glm::vec3(0.62f, 0.45f, 0.3f), glm::normalize(glm::vec3(1, 2, -1))},
     };
     for (const At& at : points) {
-        std::vector<glm::vec4> pmfOut = runTestKernel(TEST_MODE_LIGHT_SELECTION_PMF, numLights, scene.gpu.get(), {}, at.x, at.n);
+        std::vector<glm::vec4> pmfOut =
+            runTestKernel(TEST_MODE_LIGHT_SELECTION_PMF, numLights, scene.gpu.get(), {}, at.x, at.n);
         std::vector<double> pmf(numLights);
         double sum = 0;
         int never = 0;
@@ -158,7 +162,8 @@ TEST_F(LightTree, ChoicesFollowThePmfOfEachLight) {
             sum += pmf[i];
             if (pmf[i] == 0.0) {
                 ++never;
-                EXPECT_FALSE(couldLight(flat, i, at.x)) << at.what << ": light " << i << " has pmf 0 but can light the point";
+                EXPECT_FALSE(couldLight(flat, i, at.x))
+                    << at.what << ": light " << i << " has pmf 0 but can light the point";
             }
             if (flat.lights.lights[i].type == LIGHT_ENVIRONMENT) EXPECT_EQ(pmfOut[i].x, flat.lights.lights[i].pmf);
         }
@@ -167,7 +172,8 @@ TEST_F(LightTree, ChoicesFollowThePmfOfEachLight) {
         EXPECT_LE(sum, 1.0 + 1e-5) << at.what;
 
         const uint32_t n = 200000;
-        const std::vector<glm::vec4> choices = runTestKernel(TEST_MODE_LIGHT_CHOICE, n, scene.gpu.get(), {}, at.x, at.n, 3u);
+        const std::vector<glm::vec4> choices =
+            runTestKernel(TEST_MODE_LIGHT_CHOICE, n, scene.gpu.get(), {}, at.x, at.n, 3u);
         // The last bin: no light chosen.
         std::vector<double> observed(numLights + 1, 0.0), expected(numLights + 1);
         size_t wrongPmf = 0;
