@@ -1,6 +1,8 @@
 // Against an independent renderer: Mitsuba 3 references (mean and variance of the mean) of the
 // glTF Cornell boxes in tests/references/. Two checks: block means agree within their combined
 // noise (bias), and the relMSE is what the two images' variances predict (nothing extra).
+#include "flatten/feature_set.h"
+#include "flatten/flat_scene.h"
 #include "image/image_io.h"
 #include "film/metrics.h"
 #include "scene/gltf/gltf_loader.h"
@@ -18,7 +20,10 @@ protected:
     // missing from both the mean and the variance): its block z-scores are wider and lean negative.
     // A 512-spp render of cbox-glass-mirror agrees with the reference to 0.013% in total flux
     // (bench/RESULTS.md), so the wider thresholds there cover noise, not bias.
-    void check(const char* name, uint32_t spp, double maxChi2PerDof, double maxMeanZ) {
+    // `estimator`: what renders it (auto: the path tracer, with light tracing of caustics in the
+    // glass box; bidirectional: BDPT, an estimator of its own for the same image).
+    void check(
+        const char* name, uint32_t spp, double maxChi2PerDof, double maxMeanZ, Estimator estimator = Estimator::Auto) {
         const auto dir = testDataDir() / "references" / name;
         Scene scene = loadGltfFile(dir / "scene.gltf");
         const Image reference = readExr(dir / "reference.exr");
@@ -26,6 +31,11 @@ protected:
         IntegratorSettings settings = independentSettings();
         settings.maxDepth = static_cast<uint32_t>(scene.hints.maxDepth.value());
         settings.seed = 7;
+        settings.estimator = estimator;
+        if (estimator == Estimator::Bidirectional) {
+            const std::string features = computeFeatures(flattenScene(scene), settings).describe();
+            EXPECT_NE(features.find("bdpt"), std::string::npos) << features;
+        }
         auto r = renderScene(scene, settings, scene.cameras.at(0), reference.width, reference.height, spp);
         EXPECT_EQ(r.droppedSamples, 0u);
 
@@ -55,6 +65,11 @@ protected:
 
 TEST_F(MitsubaReference, CornellBoxDiffuse) { check("cbox-diffuse", 64, 1.5, 0.25); }
 TEST_F(MitsubaReference, CornellBoxGlassMirror) { check("cbox-glass-mirror", 96, 2.5, 0.5); }
+// Bidirectional path tracing against the same references (issue 19: BDPT agrees with Mitsuba).
+TEST_F(MitsubaReference, CornellBoxDiffuseByBdpt) { check("cbox-diffuse", 32, 1.5, 0.25, Estimator::Bidirectional); }
+TEST_F(MitsubaReference, CornellBoxGlassMirrorByBdpt) {
+    check("cbox-glass-mirror", 48, 2.5, 0.5, Estimator::Bidirectional);
+}
 
 } // namespace
 } // namespace pt::test
