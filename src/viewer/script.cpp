@@ -35,7 +35,7 @@ const std::map<std::string, int>& numericArity() {
 
 const std::map<std::string, std::vector<std::string>>& wordArguments() {
     static const std::map<std::string, std::vector<std::string>> m = {
-        {"toggle", {"nee", "mis", "rr", "sampling", "fly", "integrator"}},
+        {"toggle", {"nee", "mis", "rr", "sampling", "fly", "integrator", "light-tree"}},
         {"view", {"none", "albedo", "normal", "depth", "bvh", "nan"}},
         {"tonemap", {"srgb", "photographic", "aces"}},
     };

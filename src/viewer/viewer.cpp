@@ -132,7 +132,8 @@ void Session::applyChanges() {
         features.debugView = debugView_;
         const auto start = Clock::now();
         renderer_->setIntegrator(settings_, features);
-        std::fprintf(stderr, "pt: view: %s (%.3f s)\n", settingsText().c_str(), msSince(start) * 1e-3);
+        std::fprintf(stderr, "pt: view: %s (%.3f s; kernel features: %s)\n", settingsText().c_str(),
+            msSince(start) * 1e-3, features.describe().c_str());
         integratorDirty_ = false;
     }
     if (clampDirty_) {

@@ -71,7 +71,7 @@ const char* kHelp =
     "  left drag: orbit (fly mode: look)   middle or shift+left drag: pan   wheel or right drag: dolly\n"
     "  F: fly mode (W A S D move, Q E down/up)   [ ]: fly speed /2 x2   R: reset view   P: print the camera\n"
     "  N: NEE   M: MIS   L: Russian roulette   U: cosine/uniform sampling   - =: max depth\n"
-    "  B: integrator (auto, path, bidirectional)\n"
+    "  B: integrator (auto, path, bidirectional)   G: light selection (auto, light tree, power)\n"
     "  , .: exposure -/+ 0.5 EV   T: tone mapping (srgb, photographic, aces)   C: firefly clamp (biased)\n"
     "  V (shift+V): debug view (albedo, normal, depth, bvh cost, nan mask)   space: pause\n"
     "  F5 or ctrl+S: save EXR + PNG   F6: window screenshot   F1 or H: this help   Esc: quit\n";
@@ -86,6 +86,8 @@ std::string Session::settingsText() const {
                     (settings_.mis ? "mis" : "no-mis") + " " + (settings_.rr ? "rr" : "no-rr") + " " +
                     (settings_.sampling == DirectionSampling::Cosine ? "cosine" : "uniform") + " depth " +
                     std::to_string(settings_.maxDepth) + (settings_.classic ? " classic" : "");
+    if (settings_.lightSelection != LightSelection::Auto)
+        s += settings_.lightSelection == LightSelection::Tree ? " light-tree" : " power-lights";
     if (clamp_ > 0.0f) s += " | clamp " + fixed(clamp_, 0) + " (BIASED)";
     if (debugView_ != 0) s += " | view " + std::string(debugViewName(debugView_));
     return s;
@@ -135,6 +137,12 @@ void Session::handleKey(int key, int mods) {
         settings_.estimator = settings_.estimator == Estimator::Auto   ? Estimator::Path
                               : settings_.estimator == Estimator::Path ? Estimator::Bidirectional
                                                                        : Estimator::Auto;
+        integratorDirty_ = true;
+        break;
+    case GLFW_KEY_G: // auto -> light tree -> power CDF -> auto
+        settings_.lightSelection = settings_.lightSelection == LightSelection::Auto   ? LightSelection::Tree
+                                   : settings_.lightSelection == LightSelection::Tree ? LightSelection::Power
+                                                                                      : LightSelection::Auto;
         integratorDirty_ = true;
         break;
     case GLFW_KEY_U:
@@ -271,7 +279,7 @@ void Session::runCommand(const ScriptCommand& c) {
         handleKey(key, mods);
     } else if (c.name == "toggle") {
         static const std::map<std::string, int> keys = {{"nee", GLFW_KEY_N}, {"mis", GLFW_KEY_M}, {"rr", GLFW_KEY_L},
-            {"sampling", GLFW_KEY_U}, {"fly", GLFW_KEY_F}, {"integrator", GLFW_KEY_B}};
+            {"sampling", GLFW_KEY_U}, {"fly", GLFW_KEY_F}, {"integrator", GLFW_KEY_B}, {"light-tree", GLFW_KEY_G}};
         handleKey(keys.at(c.args[0]), 0);
     } else if (c.name == "view") {
         static const std::vector<std::string> views = {"none", "albedo", "normal", "depth", "bvh", "nan"};

@@ -189,7 +189,8 @@ TEST_F(ViewerProcess, DebugViewsSwitchesAndToneMappingRunClean) {
     std::string script;
     const std::vector<std::string> views = {"albedo", "normal", "depth", "bvh", "nan"};
     for (const auto& v : views) script += "view " + v + "\nwait-spp 1\nscreenshot out/" + v + ".png\n";
-    script += "view none\ntoggle nee\ntoggle rr\ntoggle sampling\nmax-depth 4\nclamp 10\nwait-spp 2\n"
+    script += "view none\ntoggle light-tree\nwait-spp 1\ntoggle light-tree\nwait-spp 1\ntoggle light-tree\n"
+              "toggle nee\ntoggle rr\ntoggle sampling\nmax-depth 4\nclamp 10\nwait-spp 2\n"
               "tonemap photographic\nwait 2\nscreenshot out/photographic.png\ntonemap aces\nexposure 1\nwait 2\n"
               "screenshot out/aces.png\nsave out/switched.exr\nquit\n";
     const PtRun r = view(script, {"--validation", "--width", "64", "--height", "64"});
@@ -204,6 +205,15 @@ TEST_F(ViewerProcess, DebugViewsSwitchesAndToneMappingRunClean) {
     EXPECT_EQ(meta["sample_clamp"], "10.000 (biased)");
     EXPECT_NE(meta["integrator"].find("nee=off"), std::string::npos) << meta["integrator"];
     EXPECT_NE(meta["integrator"].find("max-depth=4"), std::string::npos) << meta["integrator"];
+    EXPECT_NE(meta["integrator"].find("light-tree=auto"), std::string::npos) << meta["integrator"];
+    // G (here `toggle light-tree`) forces the tree on the box, whose one quad light keeps the power
+    // CDF under auto, then selection by power.
+    const size_t toTree = r.err.find(" light-tree (");
+    EXPECT_NE(toTree, std::string::npos) << r;
+    EXPECT_NE(r.err.find(" power-lights (", toTree), std::string::npos) << r;
+    const std::string treeLine = r.err.substr(toTree, r.err.find('\n', toTree) - toTree);
+    EXPECT_NE(treeLine.find("kernel features: triangles diffuse emitters nee mis rr light-tree"), std::string::npos)
+        << treeLine;
 }
 
 // The viewer's image of the untouched default camera against `pt render`: same camera and
