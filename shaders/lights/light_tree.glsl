@@ -14,6 +14,8 @@ layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer Li
 
 const float LIGHT_TREE_ONE_MINUS_EPSILON = 0.99999994;
 const uint LIGHT_TREE_MAX_DEPTH = 64u; // trails are 64-bit
+// A floor on the squared distance (in scene radii) for a point light the point sits on.
+const float LIGHT_TREE_MIN_DISTANCE2 = 1e-30;
 
 struct LightChoice {
     uint index; // NO_LIGHT: none can light the point
@@ -35,10 +37,12 @@ float sinSubClamped(float sinA, float cosA, float sinB, float cosB) {
 // An upper bound, up to a common factor, of what the node's lights can send to point p with
 // normal n (n = 0: no normal term). Zero only where none of them can light p.
 float lightNodeImportance(GpuLightTreeNode node, vec3 p, vec3 n) {
+    // Lengths in units of the scene's radius (a common factor of every node's importance).
+    float invScale = scene.lightTreeInvScale;
     vec3 centre = 0.5 * (node.boundsMin + node.boundsMax);
-    vec3 halfDiagonal = 0.5 * (node.boundsMax - node.boundsMin);
+    vec3 halfDiagonal = (0.5 * invScale) * (node.boundsMax - node.boundsMin);
     float r2 = dot(halfDiagonal, halfDiagonal);
-    vec3 d = p - centre; // from the lights to the point
+    vec3 d = (p - centre) * invScale; // from the lights to the point
     float dist2 = dot(d, d);
     vec3 wi = dist2 > 0.0 ? d * inversesqrt(dist2) : vec3(0.0, 0.0, 1.0);
     // The cone of directions from p that holds the box's bounding sphere (all of them inside it).
@@ -55,7 +59,7 @@ float lightNodeImportance(GpuLightTreeNode node, vec3 p, vec3 n) {
     if (cosP <= node.cosThetaE) return 0.0;
     // The distance is at least the bounding sphere's radius: a point among the lights is not
     // infinitely close to all of them.
-    float importance = node.phi * cosP / max(dist2, r2);
+    float importance = node.phi * cosP / max(max(dist2, r2), LIGHT_TREE_MIN_DISTANCE2);
     if (n != vec3(0.0)) {
         float cosI = abs(dot(wi, n));
         float sinI = sqrt(max(0.0, 1.0 - cosI * cosI));

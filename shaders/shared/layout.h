@@ -491,7 +491,9 @@ struct GpuSceneParams {
     // environment, directional lights) come last in the light table and keep their power pmf,
     // so the CDF above this value selects among them.
     float lightTreeShare;
-    uint lightTreePad0;
+    // 1 / sceneSphere's radius: the tree's importance measures distances in units of the scene, so
+    // that squared distances neither overflow nor underflow float at any scale.
+    float lightTreeInvScale;
     uint lightTreePad1;
     uint lightTreePad2;
 };

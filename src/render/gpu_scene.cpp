@@ -127,6 +127,7 @@ void GpuScene::build(VulkanContext& context, const FlatScene& scene, FlatScene* 
     params.lightTreeNodes = scene.lights.tree.nodes.empty() ? 0 : lightTreeNodes_.address();
     params.lightTreeTrails = lightTreeTrails_.address();
     params.lightTreeShare = scene.lights.tree.share;
+    params.lightTreeInvScale = 1.0f / params.sceneSphere.w;
     params.accumulation = accumulation_.address();
     params.envTexels = envTexels_.address();
     params.envMarginal = envMarginal_.address();

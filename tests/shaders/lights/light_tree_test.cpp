@@ -200,6 +200,55 @@ TEST_F(LightTree, ChoicesFollowThePmfOfEachLight) {
     }
 }
 
+// The box scaled by `s`: every position, sphere and square light; point and spot intensities by s^2,
+// so that every light's power scales alike and the lights' pmfs stay what they were.
+Scene scaled(Scene scene, float s) {
+    for (Mesh& m : scene.meshes)
+        for (glm::vec3& p : m.positions) p *= s;
+    for (Sphere& sphere : scene.spheres)
+        sphere.objectToWorld = glm::scale(glm::mat4(1.0f), glm::vec3(s)) * sphere.objectToWorld;
+    for (PunctualLight& l : scene.punctualLights) {
+        l.position *= s;
+        l.size *= s;
+        if (l.type == PunctualLight::Type::Point || l.type == PunctualLight::Type::Spot) l.intensity *= s * s;
+    }
+    return scene;
+}
+
+// Huge and tiny coordinates (a hard case): the box at 1e-6 and 1e6 of its size gives every light
+// the pmf it has at size 1, from the same points scaled: the importance measures distances in
+// units of the scene, where squared distances neither underflow nor overflow float.
+TEST_F(LightTree, PmfsAreTheSameAtEveryScale) {
+    const Scene box = manyLightsBox();
+    glm::vec3 lo(1e30f), hi(-1e30f);
+    for (const Mesh& m : box.meshes)
+        for (const glm::vec3& p : m.positions) {
+            lo = glm::min(lo, p);
+            hi = glm::max(hi, p);
+        }
+    const glm::vec3 x = lo + (hi - lo) * glm::vec3(0.3f, 0.01f, 0.6f), n = glm::normalize(glm::vec3(0.2f, 1.0f, 0.1f));
+    std::vector<float> atOne;
+    for (float s : {1.0f, 1e-6f, 1e6f}) {
+        const Uploaded scene = upload(scaled(box, s));
+        const uint32_t numLights = static_cast<uint32_t>(scene.flat.lights.lights.size());
+        ASSERT_EQ(numLights, 32u) << "scale " << s << ": every light kept";
+        ASSERT_FALSE(scene.flat.lights.tree.nodes.empty()) << s;
+        const std::vector<glm::vec4> out =
+            runTestKernel(TEST_MODE_LIGHT_SELECTION_PMF, numLights, scene.gpu.get(), {}, x * s, n);
+        double sum = 0, worst = 0;
+        for (uint32_t i = 0; i < numLights; ++i) {
+            sum += out[i].x;
+            if (s == 1.0f)
+                atOne.push_back(out[i].x);
+            else
+                worst = std::max(worst, double(std::abs(out[i].x - atOne.at(i))));
+        }
+        std::printf("[          ] scale %g: pmfs sum to %.7f, largest difference from scale 1: %.2e\n", s, sum, worst);
+        EXPECT_NEAR(sum, 1.0, 1e-4) << s;
+        EXPECT_LT(worst, 1e-5) << "scale " << s;
+    }
+}
+
 // The same box rendered with light selection by the tree and by power alone (other seeds), with
 // MIS against BSDF rays that hit the small lights: the images agree block by block.
 TEST_F(LightTree, RendersTheImageThePowerCdfRenders) {
