@@ -48,6 +48,10 @@ import json
 import math
 import os
 import struct
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from gltf_scene import merge  # noqa: E402
 
 # ---- layout ----
 X0, X1 = -2.0, 2.0          # side walls
@@ -91,14 +95,6 @@ def quad(corner, u, v):
     """Two triangles over corner, corner+u, corner+u+v, corner+v; front (counter-clockwise) side
     faces u x v."""
     return [corner, add(corner, u), add(add(corner, u), v), add(corner, v)], [0, 1, 2, 0, 2, 3]
-
-
-def merge(parts):
-    pos, idx = [], []
-    for p, i in parts:
-        idx += [len(pos) + k for k in i]
-        pos += p
-    return pos, idx
 
 
 def frame_box(o, ex, ey, ez, bottom=True):

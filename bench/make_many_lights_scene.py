@@ -8,38 +8,13 @@ the power CDF does not know.
 
     python3 bench/make_many_lights_scene.py OUT_DIR
 """
-import base64
-import json
 import math
 import os
 import random
-import struct
 import sys
 
-
-def quad(corner, u, v):
-    p = [corner, [corner[i] + u[i] for i in range(3)], [corner[i] + u[i] + v[i] for i in range(3)],
-         [corner[i] + v[i] for i in range(3)]]
-    return p, [0, 1, 2, 0, 2, 3]
-
-
-def box(lo, hi):
-    x0, y0, z0 = lo
-    x1, y1, z1 = hi
-    faces = [quad([x0, y1, z1], [x1 - x0, 0, 0], [0, 0, z0 - z1]),   # top (+y)
-             quad([x0, y0, z1], [x1 - x0, 0, 0], [0, y1 - y0, 0]),   # front (+z)
-             quad([x1, y0, z0], [x0 - x1, 0, 0], [0, y1 - y0, 0]),   # back (-z)
-             quad([x1, y0, z1], [0, 0, z0 - z1], [0, y1 - y0, 0]),   # right (+x)
-             quad([x0, y0, z0], [0, 0, z1 - z0], [0, y1 - y0, 0])]   # left (-x)
-    return merge(faces)
-
-
-def merge(parts):
-    pos, idx = [], []
-    for p, i in parts:
-        idx += [len(pos) + k for k in i]
-        pos += p
-    return pos, idx
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from gltf_scene import box, merge, quad, write_gltf  # noqa: E402
 
 
 def icosphere(centre, radius, subdivisions):
@@ -107,36 +82,13 @@ def main():
                           "emissiveFactor": colour,
                           "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": strength}}})
         meshes.append(("lamp %d" % k, pos_idx, len(materials) - 1))
-    blob = bytearray()
-    views, accessors, gmeshes, nodes = [], [], [], []
-    for name, (pos, idx), material in meshes:
-        off = len(blob)
-        blob += b"".join(struct.pack("<3f", *p) for p in pos)
-        views.append({"buffer": 0, "byteOffset": off, "byteLength": 12 * len(pos)})
-        lo = [min(p[i] for p in pos) for i in range(3)]
-        hi = [max(p[i] for p in pos) for i in range(3)]
-        accessors.append({"bufferView": len(views) - 1, "componentType": 5126, "count": len(pos), "type": "VEC3",
-                          "min": lo, "max": hi})
-        off = len(blob)
-        blob += b"".join(struct.pack("<I", i) for i in idx)
-        views.append({"buffer": 0, "byteOffset": off, "byteLength": 4 * len(idx)})
-        accessors.append({"bufferView": len(views) - 1, "componentType": 5125, "count": len(idx), "type": "SCALAR"})
-        gmeshes.append({"name": name, "primitives": [{"attributes": {"POSITION": len(accessors) - 2},
-                                                      "indices": len(accessors) - 1, "material": material}]})
-        nodes.append({"name": name, "mesh": len(gmeshes) - 1})
     # Camera at (-1, 1.6, -0.5), looking down the hall and a little down.
-    nodes.append({"name": "camera", "camera": 0, "translation": [-1, 1.6, -0.5],
-                  "rotation": [-0.0436, -0.0436, -0.0019, 0.9981]})
-    gltf = {"asset": {"version": "2.0", "generator": "pt bench/make_many_lights_scene.py"}, "scene": 0,
-            "extensionsUsed": ["KHR_materials_emissive_strength"],
-            "scenes": [{"nodes": list(range(len(nodes))), "extras": {"width": 256, "height": 192, "max_depth": 8}}],
-            "nodes": nodes,
-            "cameras": [{"type": "perspective", "perspective": {"yfov": 0.9, "aspectRatio": 4 / 3, "znear": 0.01}}],
-            "materials": materials, "meshes": gmeshes, "accessors": accessors, "bufferViews": views,
-            "buffers": [{"byteLength": len(blob),
-                         "uri": "data:application/octet-stream;base64," + base64.b64encode(bytes(blob)).decode()}]}
-    with open(os.path.join(out, "scene.gltf"), "w") as f:
-        json.dump(gltf, f, indent=1)
+    camera_node = {"name": "camera", "camera": 0, "translation": [-1, 1.6, -0.5],
+                   "rotation": [-0.0436, -0.0436, -0.0019, 0.9981]}
+    camera = {"type": "perspective", "perspective": {"yfov": 0.9, "aspectRatio": 4 / 3, "znear": 0.01}}
+    write_gltf(os.path.join(out, "scene.gltf"), meshes, materials, camera_node, camera,
+               {"width": 256, "height": 192, "max_depth": 8}, "pt bench/make_many_lights_scene.py",
+               ["KHR_materials_emissive_strength"])
 
 
 if __name__ == "__main__":
