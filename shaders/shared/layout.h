@@ -527,6 +527,9 @@ PT_CHECK_SIZE(GpuRenderPush, 48);
 #define TEST_MODE_BSDF_SAMPLE 6u // outputs[i] = (wi local, pdf), outputs[count + i] = (weight, valid)
 #define TEST_MODE_BSDF_PDF 7u    // inputs: local wi; outputs[i] = (f cos, pdf)
 #define TEST_MODE_TEXTURE 8u     // texture materialIndex at inputs[i] = (u, v, _, _) or point (xyz); outputs[i] = value
+// The test kernel's specialization constant for the mode a pipeline runs (GpuTestPush::mode is
+// informational).
+#define TEST_MODE_CONSTANT_ID 63
 // The light that light sampling chooses at (point, normal): outputs[i] = (index as float bits, pmf, _, _);
 // and each light's pmf there: outputs[i] = (pmf of light i, _, _, _).
 #define TEST_MODE_LIGHT_CHOICE 10u
@@ -545,7 +548,7 @@ struct GpuTestPush {
     uint64_t sceneParams;
     uint64_t inputs;  // mode-dependent: GpuTestRay[] or vec4[] directions; 0 when the host gives none
     uint64_t outputs; // mode-dependent: vec4[]
-    uint mode;
+    uint mode;        // what the pipeline runs is its TEST_MODE constant; this says it again, for debugging
     uint count;
     vec3 point; // shading point for light tests
     uint seed;

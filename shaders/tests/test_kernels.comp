@@ -10,6 +10,10 @@
 
 layout(local_size_x = 64) in;
 layout(push_constant) uniform PushBlock { GpuTestPush push; };
+// The mode this pipeline runs (TEST_MODE_*), a specialization constant: a test process compiles
+// only the modes it uses, each without the others' code (lavapipe compiles every pipeline anew in
+// every process, and the whole kernel took 2 s of each test's time).
+layout(constant_id = TEST_MODE_CONSTANT_ID) const uint TEST_MODE = 0u;
 
 void main() {
     uint i = gl_GlobalInvocationID.x;
@@ -18,16 +22,16 @@ void main() {
     Vec4Ref outputs = Vec4Ref(push.outputs);
     Rng rng = rngCreate(uvec2(i, i >> 16u), 0u, push.seed);
     vec2 u = rng2(rng, 0u);
-    if (push.mode == TEST_MODE_COSINE_HEMISPHERE || push.mode == TEST_MODE_UNIFORM_HEMISPHERE) {
+    if (TEST_MODE == TEST_MODE_COSINE_HEMISPHERE || TEST_MODE == TEST_MODE_UNIFORM_HEMISPHERE) {
         if (push.inputs != 0ul) u = Vec4Ref(push.inputs).v[i].xy; // the host's own numbers
-        vec3 w = push.mode == TEST_MODE_COSINE_HEMISPHERE ? sampleCosineHemisphere(u) : sampleUniformHemisphere(u);
-        float pdf = push.mode == TEST_MODE_COSINE_HEMISPHERE ? cosineHemispherePdf(w.z) : uniformHemispherePdf(w.z);
+        vec3 w = TEST_MODE == TEST_MODE_COSINE_HEMISPHERE ? sampleCosineHemisphere(u) : sampleUniformHemisphere(u);
+        float pdf = TEST_MODE == TEST_MODE_COSINE_HEMISPHERE ? cosineHemispherePdf(w.z) : uniformHemispherePdf(w.z);
         outputs.v[i] = vec4(w, pdf);
-    } else if (push.mode == TEST_MODE_LIGHT_SAMPLE) {
+    } else if (TEST_MODE == TEST_MODE_LIGHT_SAMPLE) {
         // push.normal: the shading point's normal, for the light tree (0: none).
         LightSample ls = sampleLight(push.point, push.normal, rng1(rng, 2u), rng2(rng, 3u));
         outputs.v[i] = vec4(ls.wi, ls.pdf);
-    } else if (push.mode == TEST_MODE_LIGHT_PDF) {
+    } else if (TEST_MODE == TEST_MODE_LIGHT_PDF) {
         // pdf of direction inputs[i] as the integrator computes it when a BSDF ray hits a light.
         Ray ray;
         ray.origin = push.point;
@@ -42,12 +46,12 @@ void main() {
             pdf = environmentPdf(ray.direction);
         }
         outputs.v[i] = vec4(pdf);
-    } else if (push.mode == TEST_MODE_LIGHT_CHOICE) {
+    } else if (TEST_MODE == TEST_MODE_LIGHT_CHOICE) {
         LightChoice c = chooseLight(push.point, push.normal, rng1(rng, 2u));
         outputs.v[i] = vec4(uintBitsToFloat(c.index), c.pmf, 0.0, 0.0);
-    } else if (push.mode == TEST_MODE_LIGHT_SELECTION_PMF) {
+    } else if (TEST_MODE == TEST_MODE_LIGHT_SELECTION_PMF) {
         outputs.v[i] = vec4(lightSelectionPmf(i, push.point, push.normal), 0.0, 0.0, 0.0);
-    } else if (push.mode == TEST_MODE_BSDF_SAMPLE) {
+    } else if (TEST_MODE == TEST_MODE_BSDF_SAMPLE) {
         // The local frame is the canonical one: wo = push.normal, z = shading normal.
         GpuMaterial m = sceneMaterials.v[push.materialIndex];
         Frame frame = makeFrame(vec3(0.0, 0.0, 1.0));
@@ -55,17 +59,17 @@ void main() {
         BsdfSample bs = surfaceSample(m, frame, normalize(push.normal), rng1(rng, 2u), u);
         outputs.v[i] = vec4(bs.wi, bs.valid ? bs.pdf : 0.0);
         outputs.v[push.count + i] = vec4(bs.weight, bs.valid ? 1.0 : 0.0);
-    } else if (push.mode == TEST_MODE_SOBOL_POINTS) {
+    } else if (TEST_MODE == TEST_MODE_SOBOL_POINTS) {
         // One pixel's stream, sample index i: the points a render adds to that pixel in order.
         Rng pixelStream = rngCreate(uvec2(0u), i, push.seed);
         uvec2 a = sobolOwen2(i, sobolSeeds(pixelStream, 0u));
         uvec2 b = sobolOwen2(i, sobolSeeds(pixelStream, 3u));
         outputs.v[i] = vec4(uintToUnitFloat(a.x), uintToUnitFloat(a.y), uintToUnitFloat(b.x), uintToUnitFloat(b.y));
-    } else if (push.mode == TEST_MODE_TEXTURE) {
+    } else if (TEST_MODE == TEST_MODE_TEXTURE) {
         // Texture push.materialIndex at uv = inputs[i].xy (images) or point inputs[i].xyz.
         vec4 at = Vec4Ref(push.inputs).v[i];
         outputs.v[i] = evalTexture(push.materialIndex, at.xy, at.xyz);
-    } else if (push.mode == TEST_MODE_BSDF_PDF) {
+    } else if (TEST_MODE == TEST_MODE_BSDF_PDF) {
         GpuMaterial m = sceneMaterials.v[push.materialIndex];
         Frame frame = makeFrame(vec3(0.0, 0.0, 1.0));
         orientMaterialFrame(frame, m);
@@ -75,14 +79,14 @@ void main() {
         float pdf;
         vec3 f = surfaceEvalPdf(m, wo, wi, pdf);
         outputs.v[i] = vec4(f.x, surfaceEval(m, wo, wi).x, surfacePdf(m, wo, wi), pdf);
-    } else if (push.mode == TEST_MODE_TRACE_BVH || push.mode == TEST_MODE_TRACE_BRUTE_FORCE) {
+    } else if (TEST_MODE == TEST_MODE_TRACE_BVH || TEST_MODE == TEST_MODE_TRACE_BRUTE_FORCE) {
         GpuTestRay tr = TestRayRef(push.inputs).v[i];
         Ray ray;
         ray.origin = tr.origin;
         ray.direction = tr.direction;
         Hit hit;
         bool found = false;
-        if (push.mode == TEST_MODE_TRACE_BVH) {
+        if (TEST_MODE == TEST_MODE_TRACE_BVH) {
             found = traceClosest(ray, tr.tMax, hit);
             // The any-hit query must agree with the closest-hit one about whether anything is there.
             bool any = traceAny(ray, tr.tMax);

@@ -16,6 +16,9 @@ VulkanContext& sharedContext() {
     static std::unique_ptr<VulkanContext> context = [] {
         ContextOptions options;
         options.validation = true;
+#ifdef PT_TEST_PIPELINE_CACHE
+        options.pipelineCacheDirectory = PT_TEST_PIPELINE_CACHE;
+#endif
         return std::make_unique<VulkanContext>(options);
     }();
     return *context;
@@ -31,9 +34,15 @@ void GpuTest::TearDown() {
 std::vector<glm::vec4> runTestKernel(uint32_t mode, uint32_t count, const GpuScene* scene,
     std::span<const std::byte> inputs, glm::vec3 point, glm::vec3 normal, uint32_t seed, uint32_t materialIndex) {
     VulkanContext& ctx = sharedContext();
-    static std::unique_ptr<ComputePipeline> pipeline = std::make_unique<ComputePipeline>(ctx,
-        std::span<const uint32_t>(pt_test_kernels_spv), static_cast<uint32_t>(sizeof(gpu::GpuTestPush)),
-        FeatureSet::all(IntegratorSettings{}).constants(8, 8), "test kernels");
+    // One pipeline per mode, specialised to it: a process compiles only the code of the modes it runs.
+    static std::map<uint32_t, std::unique_ptr<ComputePipeline>> pipelines;
+    std::unique_ptr<ComputePipeline>& pipeline = pipelines[mode];
+    if (!pipeline) {
+        std::vector<SpecializationConstant> constants = FeatureSet::all(IntegratorSettings{}).constants(8, 8);
+        constants.push_back({TEST_MODE_CONSTANT_ID, mode});
+        pipeline = std::make_unique<ComputePipeline>(ctx, std::span<const uint32_t>(pt_test_kernels_spv),
+            static_cast<uint32_t>(sizeof(gpu::GpuTestPush)), constants, "test kernels");
+    }
     GpuBuffer input(ctx, std::max<size_t>(inputs.size(), 16), "test input");
     input.upload(inputs.data(), inputs.size());
     // Two vec4 per item: most modes write only the first half (BSDF sampling writes both).
