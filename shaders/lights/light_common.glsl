@@ -2,6 +2,7 @@
 #ifndef PT_LIGHTS_LIGHT_COMMON_GLSL
 #define PT_LIGHTS_LIGHT_COMMON_GLSL
 #include "common/buffers.glsl"
+#include "shared/features.glsl"
 
 struct LightSample {
     vec3 point;     // on the emitter (point lights: their position)
@@ -37,6 +38,13 @@ uint selectLight(float u) {
             hi = mid;
     }
     return lo;
+}
+
+// The environment or a directional light: no place, so no bounds (the light tree leaves them to
+// the power CDF) and light subpaths start on a disc outside the scene.
+bool isInfiniteLight(GpuLight light) {
+    return (HAS_ENVIRONMENT && light.type == LIGHT_ENVIRONMENT) ||
+           (HAS_PUNCTUAL_LIGHTS && light.type == LIGHT_DIRECTIONAL);
 }
 
 vec3 emittedRadiance(GpuMaterial mat, bool frontFace) {

@@ -27,11 +27,6 @@ struct LightEmission {
     bool valid;
 };
 
-bool isInfiniteLight(GpuLight light) {
-    return (HAS_ENVIRONMENT && light.type == LIGHT_ENVIRONMENT) ||
-           (HAS_PUNCTUAL_LIGHTS && light.type == LIGHT_DIRECTIONAL);
-}
-
 // Density per unit area of the disc the paths of a light at infinity start on.
 float infiniteLightDiscPdf() { return 1.0 / (PI * scene.sceneSphere.w * scene.sceneSphere.w); }
 
@@ -189,7 +184,7 @@ float directLightPdfArea(uint lightIndex, vec3 x, vec3 p, vec3 n) {
     if (!(dist2 > 0.0)) return 0.0;
     float dist = sqrt(dist2);
     vec3 w = d / dist;
-    return lightPdfWithPmf(lightIndex, light.pmf, x, p, n, dist, w) * abs(dot(n, w)) / dist2;
+    return lightPdfOf(light, x, p, n, dist, w) * abs(dot(n, w)) / dist2;
 }
 
 #endif

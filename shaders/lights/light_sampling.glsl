@@ -10,10 +10,9 @@
 #include "lights/punctual_light.glsl"
 #include "lights/environment_light.glsl"
 
-// A point on light `index` as seen from x; the pdf includes `pmf`, the light's selection pmf.
-LightSample sampleLightIndex(uint index, float pmf, vec3 x, vec2 uPoint) {
-    GpuLight light = sceneLights.v[index];
-    light.pmf = pmf;
+// A point on `light` (its table entry, with `pmf` its selection pmf) as seen from x; the pdf
+// includes the pmf.
+LightSample sampleLightEntry(GpuLight light, vec3 x, vec2 uPoint) {
     if (HAS_SPHERES && light.type == LIGHT_SPHERE) return sampleSphereLight(light, x, uPoint);
     if (HAS_PUNCTUAL_LIGHTS && light.type == LIGHT_POINT) return samplePointLight(light, x);
     if (HAS_PUNCTUAL_LIGHTS && light.type == LIGHT_DIRECTIONAL) return sampleDirectionalLight(light, x);
@@ -23,26 +22,27 @@ LightSample sampleLightIndex(uint index, float pmf, vec3 x, vec2 uPoint) {
     return sampleTriangleLight(light, x, uPoint);
 }
 
-// The same, chosen by the power CDF alone (BDPT's light sampling, whose MIS weights assume it;
-// the classic ray tracer's sum over lights).
+// The same for light `index` chosen by the power CDF (BDPT's light sampling, whose MIS weights
+// assume it; the classic ray tracer's sum over lights).
 LightSample sampleLightIndex(uint index, vec3 x, vec2 uPoint) {
-    return sampleLightIndex(index, sceneLights.v[index].pmf, x, uPoint);
+    return sampleLightEntry(sceneLights.v[index], x, uPoint);
 }
 
 // A light sample for shading point x with normal n (0 where there is none): the light chosen
 // by the tree where the scene uses one.
 LightSample sampleLight(vec3 x, vec3 n, float uSelect, vec2 uPoint) {
-    LightChoice c = chooseLight(x, n, uSelect);
+    if (!choosesInTree(uSelect)) return sampleLightIndex(selectLight(uSelect), x, uPoint);
+    LightChoice c = chooseTreeLight(x, n, uSelect);
     if (c.index == NO_LIGHT) return noLightSample();
-    return sampleLightIndex(c.index, c.pmf, x, uPoint);
+    GpuLight light = sceneLights.v[c.index];
+    light.pmf = c.pmf;
+    return sampleLightEntry(light, x, uPoint);
 }
 
-// Solid-angle pdf with which light sampling from x would have produced the point p on emitter
-// lightIndex, reached at distance t along unit direction dir with geometric normal ng there,
-// for a selection pmf `pmf`.
-float lightPdfWithPmf(uint lightIndex, float pmf, vec3 x, vec3 p, vec3 ng, float t, vec3 dir) {
-    GpuLight light = sceneLights.v[lightIndex];
-    light.pmf = pmf;
+// Solid-angle pdf with which light sampling from x would have produced the point p on `light`
+// (its table entry, with `pmf` its selection pmf), reached at distance t along unit direction dir
+// with geometric normal ng there.
+float lightPdfOf(GpuLight light, vec3 x, vec3 p, vec3 ng, float t, vec3 dir) {
     if (HAS_SPHERES && light.type == LIGHT_SPHERE) return sphereLightPdf(light, x, p);
     if (!SPHERICAL_TRIANGLE_LIGHTS) return areaSampledPdf(light, t, dot(ng, dir));
     return triangleLightPdf(light, placedTriangle(loadTriangle(light.primitive)), x, t, dot(ng, dir));
@@ -50,7 +50,9 @@ float lightPdfWithPmf(uint lightIndex, float pmf, vec3 x, vec3 p, vec3 ng, float
 
 // The same for sampleLight from x with normal n (its selection included).
 float lightPdf(uint lightIndex, vec3 x, vec3 n, vec3 p, vec3 ng, float t, vec3 dir) {
-    return lightPdfWithPmf(lightIndex, lightSelectionPmf(lightIndex, x, n), x, p, ng, t, dir);
+    GpuLight light = sceneLights.v[lightIndex];
+    light.pmf = lightSelectionPmf(lightIndex, light, x, n);
+    return lightPdfOf(light, x, p, ng, t, dir);
 }
 
 // Solid-angle pdf of light sampling the environment in direction dir (0 without one).

@@ -24,8 +24,6 @@ struct LightChoice {
 
 bool lightTreeActive() { return LIGHT_TREE && scene.lightTreeNodes != 0ul; }
 
-bool isLightAtInfinity(uint type) { return type == LIGHT_DIRECTIONAL || type == LIGHT_ENVIRONMENT; }
-
 // cos(a - b) and sin(a - b) for angles a, b in [0, pi], clamped to 0 where a < b.
 float cosSubClamped(float sinA, float cosA, float sinB, float cosB) {
     return cosA > cosB ? 1.0 : cosA * cosB + sinA * sinB;
@@ -76,17 +74,16 @@ float firstChildProbability(GpuLightTreeNode first, GpuLightTreeNode second, vec
     return sum > 0.0 ? i0 / sum : -1.0;
 }
 
-LightChoice chooseLight(vec3 x, vec3 n, float u) {
+// Whether light selection with random number u descends the tree: otherwise it takes the power
+// CDF (with a tree, its tail above the tree's share: the lights at infinity).
+bool choosesInTree(float u) { return lightTreeActive() && u < scene.lightTreeShare; }
+
+// The light the tree chooses at x with normal n (choosesInTree(u)), with its pmf.
+LightChoice chooseTreeLight(vec3 x, vec3 n, float u) {
     LightChoice c;
     c.index = NO_LIGHT;
     c.pmf = 0.0;
     float share = scene.lightTreeShare;
-    if (!lightTreeActive() || u >= share) {
-        // The power CDF; with a tree, its tail above the tree's share: the lights at infinity.
-        c.index = selectLight(u);
-        c.pmf = sceneLights.v[c.index].pmf;
-        return c;
-    }
     LightTreeRef nodes = LightTreeRef(scene.lightTreeNodes);
     u = min(u / share, LIGHT_TREE_ONE_MINUS_EPSILON);
     float pmf = share;
@@ -117,10 +114,18 @@ LightChoice chooseLight(vec3 x, vec3 n, float u) {
     return c;
 }
 
-// The probability that chooseLight(x, n, .) picks light `index`.
-float lightSelectionPmf(uint index, vec3 x, vec3 n) {
-    GpuLight light = sceneLights.v[index];
-    if (!lightTreeActive() || isLightAtInfinity(light.type)) return light.pmf;
+// The light light sampling chooses at x with normal n, by the tree or the power CDF.
+LightChoice chooseLight(vec3 x, vec3 n, float u) {
+    if (choosesInTree(u)) return chooseTreeLight(x, n, u);
+    LightChoice c;
+    c.index = selectLight(u);
+    c.pmf = sceneLights.v[c.index].pmf;
+    return c;
+}
+
+// The probability that chooseLight(x, n, .) picks light `index` (`light`, its table entry).
+float lightSelectionPmf(uint index, GpuLight light, vec3 x, vec3 n) {
+    if (!lightTreeActive() || isInfiniteLight(light)) return light.pmf;
     LightTreeRef nodes = LightTreeRef(scene.lightTreeNodes);
     uint64_t trail = Uint64Ref(scene.lightTreeTrails).v[index];
     float pmf = scene.lightTreeShare;

@@ -50,7 +50,7 @@ void main() {
         LightChoice c = chooseLight(push.point, push.normal, rng1(rng, 2u));
         outputs.v[i] = vec4(uintBitsToFloat(c.index), c.pmf, 0.0, 0.0);
     } else if (TEST_MODE == TEST_MODE_LIGHT_SELECTION_PMF) {
-        outputs.v[i] = vec4(lightSelectionPmf(i, push.point, push.normal), 0.0, 0.0, 0.0);
+        outputs.v[i] = vec4(lightSelectionPmf(i, sceneLights.v[i], push.point, push.normal), 0.0, 0.0, 0.0);
     } else if (TEST_MODE == TEST_MODE_BSDF_SAMPLE) {
         // The local frame is the canonical one: wo = push.normal, z = shading normal.
         GpuMaterial m = sceneMaterials.v[push.materialIndex];
