@@ -2,7 +2,9 @@
 // emitter and a camera subpath from the pixel, and adds every way of forming a path from them:
 //   s = 0: the camera path hits an emitter;
 //   s = 1: light sampling at a camera vertex (next event estimation);
-//   s >= 2: a camera vertex connected to light subpath vertex s - 1 by a shadow ray;
+//   s >= 2: a camera vertex connected to light subpath vertex s - 1 by a shadow ray: one light
+//           vertex per camera vertex, chosen uniformly among those that make a path no longer
+//           than the maximum depth, its contribution times their count;
 //   t = 1: a light subpath vertex connected to the camera, splatted to the pixel it lands in
 //          (integrator/splat.glsl; one light subpath per pixel and sample, as the caustic light
 //          tracer does).
@@ -11,6 +13,14 @@
 // connection and merging", without the merging terms), so no subpath is walked twice. Strategies
 // that cannot make a path (hitting a light no ray can hit, sampling through a delta bounce, a
 // light that starts no light subpath) have density 0 there and drop out of the sums.
+//
+// One connection per camera vertex instead of all of them (as the light vertex cache of
+// Davidovic et al. 2014 does) halves the shadow rays of a deep path, and where light arrives
+// through a gap most connections are occluded anyway. MIS then weighs each connection strategy
+// as a sampler of its density times the share of connections a sample takes (connectionShare,
+// the same whichever strategy evaluates the weights, so they still sum to one); the sums carry
+// the terms of connections and of the strategies a sample takes whole (s = 0, s = 1, t = 1)
+// apart for this.
 //
 // Light subpaths carry importance, not radiance (Veach 1997, ch. 5): refraction does not scale
 // them by 1/eta^2, and shading normals get the adjoint's correction |wL.ns| |wC.ng| /
@@ -40,9 +50,62 @@
 #include "integrator/bdpt_vertex.glsl"
 #include "integrator/ray_counts.glsl"
 
+// Which light vertex each camera vertex connects to: a block of dimensions of its own (as the
+// light subpath's, lights/emitter_sampling.glsl), so that the camera path's numbers stay the path
+// tracer's.
+const uint DIM_CONNECTION = 0x20000000u;
+
 // The power heuristic's square; without MIS, 1 for every strategy that can make the path, so
 // the weights become 1 / (number of such strategies).
 float misPower(float x) { return USE_MIS ? x * x : (x > 0.0 ? 1.0 : 0.0); }
+
+// The MIS sums of a subpath (file comment), split by the kind of strategy each term stands for:
+// c for connections of a camera and a light vertex (s >= 2, t >= 2), e for the strategies every
+// sample takes whole: an emitter hit (s = 0), light sampling (s = 1) and light tracing (t = 1).
+// The endpoint terms only enter at a subpath's start; every later bounce adds a connection's.
+struct MisSums {
+    float cVCM;
+    float cVC;
+    float eVCM;
+    float eVC;
+};
+
+// The share of the connections at a camera vertex one sample takes: one over the light vertices
+// it could connect to, on average over a path's camera vertices. Without roulette a light subpath
+// reaches the depth, and a camera vertex at depth d has maxDepth - d - 1 of them, half of
+// maxDepth - 2 on average; with roulette most light subpaths end soon after it starts, after the
+// rrStartDepth - 1 vertices it leaves. A constant for the whole render, so that every strategy
+// computes the same weights (the Ajar scenes measured it: bench/RESULTS.md).
+float connectionShare() {
+    float expected = 0.5 * float(scene.maxDepth - 2u);
+    if (USE_RR) expected = min(expected, float(max(scene.rrStartDepth, 2u) - 1u));
+    return 1.0 / clamp(expected, 1.0, float(BDPT_MAX_LIGHT_VERTICES));
+}
+
+// The power heuristic's sum of the other strategies over the one evaluated: `connections` and
+// `endpoints` the terms of each kind at their own densities, the evaluated strategy a connection
+// or not.
+float otherStrategies(float connections, float endpoints, bool evaluatedIsConnection) {
+    float share = misPower(connectionShare());
+    return evaluatedIsConnection ? connections + endpoints / share : endpoints + connections * share;
+}
+
+// A subpath's sums as the evaluated strategy sees them: the terms of the strategy that takes this
+// vertex from the other side (atVertex, the density of that side's making it) and those further
+// back (times furtherBack, the density of the reverse sampling at this vertex).
+vec2 sideTerms(MisSums m, float atVertex, float furtherBack) {
+    float a = misPower(atVertex), b = misPower(furtherBack);
+    return vec2(a * (m.cVCM + m.cVC * b), a * (m.eVCM + m.eVC * b));
+}
+
+// The sums across a surface hit at distance `dist` with geometric cosine cosIn.
+void arriveMisSums(inout MisSums m, float dist, float cosIn) {
+    float toArea = misPower(dist * dist) / misPower(cosIn), cosOnly = 1.0 / misPower(cosIn);
+    m.cVCM *= toArea;
+    m.eVCM *= toArea;
+    m.cVC *= cosOnly;
+    m.eVC *= cosOnly;
+}
 
 // The weight of strategy s for a path of `segments` segments: `mis`, or in a kernel that keeps
 // one strategy alone (BDPT_STRATEGY, tests), 1 for it and 0 for every other.
@@ -55,13 +118,18 @@ float strategyWeight(uint s, uint segments, float mis) {
 // the same): cosOut, the new direction's geometric cosine here; pdfReverse, the density of the
 // other subpath's sampling the direction this one arrived from. A delta bounce's forward and
 // reverse lobe probabilities are equal and cancel, and no strategy connects at it.
-void advanceMisSums(BsdfSample bs, float cosOut, float pdfReverse, inout float dVCM, inout float dVC) {
+void advanceMisSums(BsdfSample bs, float cosOut, float pdfReverse, inout MisSums m) {
     if (bs.isDelta) {
-        dVCM = 0.0;
-        dVC *= misPower(cosOut);
+        m.cVCM = 0.0;
+        m.eVCM = 0.0;
+        m.cVC *= misPower(cosOut);
+        m.eVC *= misPower(cosOut);
     } else {
-        dVC = misPower(cosOut / bs.pdf) * (dVC * misPower(pdfReverse) + dVCM);
-        dVCM = misPower(1.0 / bs.pdf);
+        float scale = misPower(cosOut / bs.pdf), reverse = misPower(pdfReverse);
+        m.cVC = scale * (m.cVC * reverse + m.cVCM);
+        m.eVC = scale * (m.eVC * reverse + m.eVCM);
+        m.cVCM = misPower(1.0 / bs.pdf);
+        m.eVCM = 0.0;
     }
 }
 
@@ -70,10 +138,9 @@ void advanceMisSums(BsdfSample bs, float cosOut, float pdfReverse, inout float d
 struct LightVertex {
     Ray ray;
     Hit hit;
-    vec3 p;     // the hit point, to reject connections before rebuilding the rest
-    vec3 beta;  // emitted radiance over the density of the light subpath up to here
-    float dVCM; // MIS sums at this vertex (file comment)
-    float dVC;
+    vec3 p;        // the hit point, to reject connections before rebuilding the rest
+    vec3 beta;     // emitted radiance over the density of the light subpath up to here
+    MisSums mis;   // at this vertex
     uint segments; // light subpath segments up to this vertex
 };
 
@@ -102,7 +169,7 @@ bool entersAbsorbingInterior(SurfaceInteraction si, GpuMaterial mat, vec3 d) {
 // ---- t = 1: a light subpath vertex seen by the camera ----
 
 void connectLightVertexToCamera(
-    SurfaceInteraction si, GpuMaterial mat, vec3 wLight, vec3 beta, float dVCM, float dVC, uint segments) {
+    SurfaceInteraction si, GpuMaterial mat, vec3 wLight, vec3 beta, MisSums mis, uint segments) {
     CameraView view;
     if (!viewFromPinhole(scene.camera, scene.imageSize, si.p, view)) return;
     VertexEval e;
@@ -111,8 +178,9 @@ void connectLightVertexToCamera(
     if (cosLightIn < 1e-7) return;
     float cosCamera = abs(dot(view.wCamera, si.ng));
     float cameraPdfArea = view.importance * cosCamera; // over the pixel count
-    float others = misPower(cameraPdfArea) * (dVCM + dVC * misPower(e.pdfTowardsLight));
-    float weight = strategyWeight(segments + 1u, segments + 1u, 1.0 / (1.0 + others));
+    vec2 lightSide = sideTerms(mis, cameraPdfArea, e.pdfTowardsLight);
+    float weight =
+        strategyWeight(segments + 1u, segments + 1u, 1.0 / (1.0 + otherStrategies(lightSide.x, lightSide.y, false)));
     if (weight == 0.0) return;
     vec3 contribution = beta * e.fCos * (weight * view.importance * cosCamera / cosLightIn);
     if (entersAbsorbingInterior(si, mat, view.wCamera)) contribution *= exp(-mat.sigmaA * view.distance);
@@ -137,8 +205,7 @@ void traceLightSubpath(Rng rng, bool cameraConnects) {
     vec3 beta = em.beta;
     vec3 throughput = vec3(1.0); // bounce weights alone, for Russian roulette
     // The first vertex's sums need the density of sampling the light from it, known at the hit.
-    float dVC = em.hittable ? misPower(em.cosLight / em.pdfEmit) : 0.0;
-    float dVCM = 0.0;
+    MisSums mis = MisSums(0.0, 0.0, 0.0, em.hittable ? misPower(em.cosLight / em.pdfEmit) : 0.0);
     uint segments = 1u;
     while (true) {
         Hit hit;
@@ -150,17 +217,17 @@ void traceLightSubpath(Rng rng, bool cameraConnects) {
         if (HAS_ABSORPTION && !si.frontFace && hasInteriorAbsorption(mat)) beta *= exp(-mat.sigmaA * hit.t);
         vec3 wLight = -ray.direction;
         float cosIn = max(abs(dot(wLight, si.ng)), 1e-12);
+        // The first hit's term is light sampling's (s = 1); it and the emitter hit's (s = 0) are the
+        // only endpoint terms of a light subpath.
+        arriveMisSums(mis, hit.t, cosIn);
         if (segments == 1u && em.infinite) {
             // Both densities are of directions, so the first segment's length does not enter.
-            dVCM = misPower(directLightPdfInfinite(lightIndex, ray.direction) / (em.pdfEmit * cosIn));
+            mis.eVCM = misPower(directLightPdfInfinite(lightIndex, ray.direction) / (em.pdfEmit * cosIn));
         } else if (segments == 1u) {
             vec3 d = si.p - em.p;
             float dist2 = dot(d, d);
-            dVCM = misPower(directLightPdfArea(lightIndex, si.p, em.p, em.normal) * dist2 / (em.pdfEmit * cosIn));
-        } else {
-            dVCM *= misPower(hit.t * hit.t) / misPower(cosIn);
+            mis.eVCM = misPower(directLightPdfArea(lightIndex, si.p, em.p, em.normal) * dist2 / (em.pdfEmit * cosIn));
         }
-        dVC /= misPower(cosIn);
         if (HAS_UNLIT && (mat.flags & MATERIAL_FLAG_UNLIT) != 0u) break;
 
         bool connectible = isSurfaceBsdf(mat);
@@ -171,13 +238,12 @@ void traceLightSubpath(Rng rng, bool cameraConnects) {
                 v.hit = hit;
                 v.p = si.p;
                 v.beta = beta;
-                v.dVCM = dVCM;
-                v.dVC = dVC;
+                v.mis = mis;
                 v.segments = segments;
                 lightVertices[lightVertexCount++] = v;
             }
             if (cameraConnects && segments + 1u <= scene.maxDepth)
-                connectLightVertexToCamera(si, mat, wLight, beta, dVCM, dVC, segments);
+                connectLightVertexToCamera(si, mat, wLight, beta, mis, segments);
         }
         // Another bounce needs one more segment before the camera's.
         if (segments + 2u > scene.maxDepth) break;
@@ -224,7 +290,7 @@ void traceLightSubpath(Rng rng, bool cameraConnects) {
             weight = bs.weight * bs.etaScale * (abs(dot(wLight, si.ns)) * abs(dot(wCamera, si.ng)) / denominator);
         }
         if (!allFinite(weight) || maxComponent(weight) <= 0.0) break;
-        advanceMisSums(bs, abs(dot(wCamera, si.ng)), pdfReverse, dVCM, dVC);
+        advanceMisSums(bs, abs(dot(wCamera, si.ng)), pdfReverse, mis);
         beta *= weight;
         throughput *= weight;
         if (USE_RR && segments + 1u >= scene.rrStartDepth) {
@@ -245,7 +311,7 @@ void traceLightSubpath(Rng rng, bool cameraConnects) {
 
 // s = 1: light sampling at camera vertex si, weighted against every other strategy.
 vec3 bdptLightSample(
-    SurfaceInteraction si, Frame frame, vec3 woLocal, GpuMaterial mat, Rng rng, uint depth, float dVCM, float dVC) {
+    SurfaceInteraction si, Frame frame, vec3 woLocal, GpuMaterial mat, Rng rng, uint depth, MisSums mis) {
     uint lightIndex = selectLight(rng1(rng, bounceDimension(depth, DIM_LIGHT_SELECT)));
     LightSample ls = sampleLightIndex(lightIndex, si.p, rng2(rng, bounceDimension(depth, DIM_LIGHT_POINT)));
     if (ls.pdf <= 0.0 || maxComponent(ls.radiance) <= 0.0) return vec3(0.0);
@@ -254,7 +320,8 @@ vec3 bdptLightSample(
     float pdfForward;
     vec3 fCos = surfaceEvalPdf(mat, woLocal, wiLocal, pdfForward);
     if (maxComponent(fCos) <= 0.0) return vec3(0.0);
-    float others = ls.isDelta ? 0.0 : misPower(pdfForward / ls.pdf); // s = 0: a BSDF ray hits it
+    float hitTerm = ls.isDelta ? 0.0 : misPower(pdfForward / ls.pdf); // s = 0: a BSDF ray hits it
+    vec2 cameraSide = vec2(0.0);
     float pdfEmit = emissionPdf(lightIndex, ls.point, ls.normal, -ls.wi);
     if (pdfEmit > 0.0) {
         // s >= 2: the light subpath starts here and reaches si.
@@ -264,8 +331,9 @@ vec3 bdptLightSample(
         float directPdfW = positionDelta ? ls.pdf * ls.distance * ls.distance : ls.pdf;
         float cosHere = abs(dot(ls.wi, si.ng));
         float pdfReverse = surfacePdf(mat, wiLocal, woLocal);
-        others += misPower(pdfEmit * cosHere / (directPdfW * cosAtLight)) * (dVCM + dVC * misPower(pdfReverse));
+        cameraSide = sideTerms(mis, pdfEmit * cosHere / (directPdfW * cosAtLight), pdfReverse);
     }
+    float others = otherStrategies(cameraSide.x, cameraSide.y + hitTerm, false);
     float weight = strategyWeight(1u, depth + 1u, 1.0 / (1.0 + others));
     if (weight == 0.0 || lightOccluded(si, ls)) return vec3(0.0);
     if (HAS_ABSORPTION && ls.distance != FLOAT_MAX && entersAbsorbingInterior(si, mat, ls.wi))
@@ -276,7 +344,7 @@ vec3 bdptLightSample(
 // s >= 2: camera vertex si (shading in `frame`, reached from direction wo, MIS sums dVCM and
 // dVC, `depth` segments) connected to light subpath vertex lv.
 vec3 connectToLightVertex(
-    SurfaceInteraction si, GpuMaterial mat, Frame frame, vec3 wo, uint depth, float dVCM, float dVC, LightVertex lv) {
+    SurfaceInteraction si, GpuMaterial mat, Frame frame, vec3 wo, uint depth, MisSums mis, LightVertex lv) {
     vec3 d = lv.p - si.p;
     float dist2 = dot(d, d);
     if (!(dist2 > 0.0)) return vec3(0.0);
@@ -293,10 +361,11 @@ vec3 connectToLightVertex(
     // Densities of each side's path making the other side's vertex, per unit area.
     float cameraMakesLightVertex = c.pdfTowardsLight * cosLight / dist2;
     float lightMakesCameraVertex = l.pdfTowardsCamera * cosCamera / dist2;
-    float lightSide = misPower(cameraMakesLightVertex) * (lv.dVCM + lv.dVC * misPower(l.pdfTowardsLight));
-    float cameraSide = misPower(lightMakesCameraVertex) * (dVCM + dVC * misPower(c.pdfTowardsCamera));
+    vec2 lightSide = sideTerms(lv.mis, cameraMakesLightVertex, l.pdfTowardsLight);
+    vec2 cameraSide = sideTerms(mis, lightMakesCameraVertex, c.pdfTowardsCamera);
+    vec2 others = lightSide + cameraSide;
     uint s = lv.segments + 1u;
-    float weight = strategyWeight(s, depth + s, 1.0 / (lightSide + 1.0 + cameraSide));
+    float weight = strategyWeight(s, depth + s, 1.0 / (1.0 + otherStrategies(others.x, others.y, true)));
     if (weight == 0.0) return vec3(0.0);
     // The light vertex's adjoint correction |wC.ng| / |wL.ng| with the geometry term's |wC.ns|
     // leaves cosLight / cosLightIn; the camera vertex's cosine is in c.fCos.
@@ -315,8 +384,9 @@ vec3 traceBdptCameraPath(Ray ray, Rng rng, bool cameraConnects) {
     vec3 L = vec3(0.0), beta = vec3(1.0);
     float etaScale = 1.0;
     uint depth = 1u;
-    float dVCM = cameraConnects ? misPower(cameraDirectionWeight(scene.camera, ray.direction)) : 0.0;
-    float dVC = 0.0;
+    // The camera's first term is light tracing's (t = 1), its only endpoint term.
+    MisSums mis =
+        MisSums(0.0, 0.0, cameraConnects ? misPower(cameraDirectionWeight(scene.camera, ray.direction)) : 0.0, 0.0);
     while (true) {
         Hit hit;
         countClosestRay();
@@ -325,8 +395,10 @@ vec3 traceBdptCameraPath(Ray ray, Rng rng, bool cameraConnects) {
             // start from it (s >= 2; at infinity the sums take no last segment's length).
             if (HAS_ENVIRONMENT && scene.envWidth > 0u) {
                 float pdfDirection = environmentPdf(ray.direction);
-                float others = depth > 1u && USE_NEE ? misPower(pdfDirection) * dVCM : 0.0;
-                others += misPower(pdfDirection * infiniteLightDiscPdf()) * dVC;
+                // The last camera vertex's term is light sampling's (s = 1), an endpoint's.
+                float lightSampling = depth > 1u && USE_NEE ? misPower(pdfDirection) * (mis.cVCM + mis.eVCM) : 0.0;
+                float fromDisc = misPower(pdfDirection * infiniteLightDiscPdf());
+                float others = otherStrategies(fromDisc * mis.cVC, lightSampling + fromDisc * mis.eVC, false);
                 L += beta * envRadiance(ray.direction) * strategyWeight(0u, depth, 1.0 / (1.0 + others));
             } else {
                 L += beta * backgroundRadiance(ray.direction, depth == 1u) * strategyWeight(0u, depth, 1.0);
@@ -339,16 +411,18 @@ vec3 traceBdptCameraPath(Ray ray, Rng rng, bool cameraConnects) {
         bool doubleSided = (mat.flags & MATERIAL_FLAG_DOUBLE_SIDED) != 0u;
         if (HAS_ABSORPTION && !si.frontFace && hasInteriorAbsorption(mat)) beta *= exp(-mat.sigmaA * hit.t);
         float cosIn = max(abs(dot(ray.direction, si.ng)), 1e-12);
-        dVCM *= misPower(hit.t * hit.t) / misPower(cosIn);
-        dVC /= misPower(cosIn);
+        arriveMisSums(mis, hit.t, cosIn);
 
         // s = 0: an emitter found by the camera path.
         if (HAS_EMITTERS && maxComponent(mat.emission) > 0.0) {
             vec3 Le = emittedRadiance(mat, si.frontFace);
             float others = 0.0;
             if (depth > 1u && si.lightIndex != NO_LIGHT) {
-                others = misPower(directLightPdfArea(si.lightIndex, ray.origin, si.p, si.ng)) * dVCM +
-                         misPower(emissionPdf(si.lightIndex, si.p, si.ng, -ray.direction)) * dVC;
+                // The last camera vertex's term is light sampling's (s = 1), an endpoint's.
+                float lightSampling =
+                    misPower(directLightPdfArea(si.lightIndex, ray.origin, si.p, si.ng)) * (mis.cVCM + mis.eVCM);
+                float fromEmitter = misPower(emissionPdf(si.lightIndex, si.p, si.ng, -ray.direction));
+                others = otherStrategies(fromEmitter * mis.cVC, lightSampling + fromEmitter * mis.eVC, false);
             }
             L += beta * Le * strategyWeight(0u, depth, 1.0 / (1.0 + others));
         }
@@ -374,11 +448,15 @@ vec3 traceBdptCameraPath(Ray ray, Rng rng, bool cameraConnects) {
                 bs = smoothReflectorSample(mat, frame, woLocal);
             } else if (isSurfaceBsdf(mat)) {
                 if (USE_NEE && scene.numLights > 0u)
-                    L += beta * bdptLightSample(si, frame, woLocal, mat, rng, depth, dVCM, dVC);
-                for (uint i = 0u; i < lightVertexCount; ++i) {
-                    LightVertex lv = lightVertices[i];
-                    if (depth + lv.segments + 1u > scene.maxDepth) break;
-                    L += beta * connectToLightVertex(si, mat, frame, wo, depth, dVCM, dVC, lv);
+                    L += beta * bdptLightSample(si, frame, woLocal, mat, rng, depth, mis);
+                // The light vertices that make a path no longer than the depth: a prefix.
+                uint eligible = 0u;
+                while (eligible < lightVertexCount && depth + lightVertices[eligible].segments + 1u <= scene.maxDepth)
+                    eligible += 1u;
+                if (eligible > 0u) {
+                    float u = rng1(rng, DIM_CONNECTION + depth);
+                    LightVertex lv = lightVertices[min(uint(u * float(eligible)), eligible - 1u)];
+                    L += beta * float(eligible) * connectToLightVertex(si, mat, frame, wo, depth, mis, lv);
                 }
                 bs = surfaceSample(mat, frame, woLocal, rng1(rng, bounceDimension(depth, DIM_BSDF_LOBE)),
                     rng2(rng, bounceDimension(depth, DIM_BSDF_DIRECTION)));
@@ -387,7 +465,7 @@ vec3 traceBdptCameraPath(Ray ray, Rng rng, bool cameraConnects) {
             if (HAS_NORMAL_MAPS && !transmissive && dot(bs.wi, si.nSurface) <= 0.0) break;
         }
         if (!bs.valid || maxComponent(bs.weight) <= 0.0 || !(bs.pdf > 0.0)) break;
-        advanceMisSums(bs, abs(dot(bs.wi, si.ng)), pdfReverse, dVCM, dVC);
+        advanceMisSums(bs, abs(dot(bs.wi, si.ng)), pdfReverse, mis);
         beta *= bs.weight;
         etaScale *= bs.etaScale;
         if (USE_RR && depth >= scene.rrStartDepth) {
