@@ -226,7 +226,8 @@ void traceLightSubpath(Rng rng, bool cameraConnects) {
         } else if (segments == 1u) {
             vec3 d = si.p - em.p;
             float dist2 = dot(d, d);
-            mis.eVCM = misPower(directLightPdfArea(lightIndex, si.p, em.p, em.normal) * dist2 / (em.pdfEmit * cosIn));
+            mis.eVCM =
+                misPower(directLightPdfArea(lightIndex, si.p, si.ng, em.p, em.normal) * dist2 / (em.pdfEmit * cosIn));
         }
         if (HAS_UNLIT && (mat.flags & MATERIAL_FLAG_UNLIT) != 0u) break;
 
@@ -312,8 +313,14 @@ void traceLightSubpath(Rng rng, bool cameraConnects) {
 // s = 1: light sampling at camera vertex si, weighted against every other strategy.
 vec3 bdptLightSample(
     SurfaceInteraction si, Frame frame, vec3 woLocal, GpuMaterial mat, Rng rng, uint depth, MisSums mis) {
-    uint lightIndex = selectLight(rng1(rng, bounceDimension(depth, DIM_LIGHT_SELECT)));
-    LightSample ls = sampleLightIndex(lightIndex, si.p, rng2(rng, bounceDimension(depth, DIM_LIGHT_POINT)));
+    // Chosen as the path tracer chooses (by the light tree where the scene has one); the light
+    // subpaths start from lights chosen by power (emissionPdf).
+    LightChoice choice = chooseLight(si.p, si.ng, rng1(rng, bounceDimension(depth, DIM_LIGHT_SELECT)));
+    if (choice.index == NO_LIGHT) return vec3(0.0);
+    uint lightIndex = choice.index;
+    GpuLight chosen = sceneLights.v[lightIndex];
+    chosen.pmf = choice.pmf;
+    LightSample ls = sampleLightEntry(chosen, si.p, rng2(rng, bounceDimension(depth, DIM_LIGHT_POINT)));
     if (ls.pdf <= 0.0 || maxComponent(ls.radiance) <= 0.0) return vec3(0.0);
     if (!isTransmissiveSurface(mat) && dot(ls.wi, si.nSurface) <= 0.0) return vec3(0.0);
     vec3 wiLocal = toLocal(frame, ls.wi);
@@ -325,9 +332,8 @@ vec3 bdptLightSample(
     float pdfEmit = emissionPdf(lightIndex, ls.point, ls.normal, -ls.wi);
     if (pdfEmit > 0.0) {
         // s >= 2: the light subpath starts here and reaches si.
-        GpuLight light = sceneLights.v[lightIndex];
-        bool positionDelta = isPositionDeltaLight(light);
-        float cosAtLight = positionDelta || isInfiniteLight(light) ? 1.0 : abs(dot(ls.normal, ls.wi));
+        bool positionDelta = isPositionDeltaLight(chosen);
+        float cosAtLight = positionDelta || isInfiniteLight(chosen) ? 1.0 : abs(dot(ls.normal, ls.wi));
         float directPdfW = positionDelta ? ls.pdf * ls.distance * ls.distance : ls.pdf;
         float cosHere = abs(dot(ls.wi, si.ng));
         float pdfReverse = surfacePdf(mat, wiLocal, woLocal);
@@ -384,6 +390,7 @@ vec3 traceBdptCameraPath(Ray ray, Rng rng, bool cameraConnects) {
     vec3 L = vec3(0.0), beta = vec3(1.0);
     float etaScale = 1.0;
     uint depth = 1u;
+    vec3 prevNormal = vec3(0.0); // where the ray left, for the light tree's pmf
     // The camera's first term is light tracing's (t = 1), its only endpoint term.
     MisSums mis =
         MisSums(0.0, 0.0, cameraConnects ? misPower(cameraDirectionWeight(scene.camera, ray.direction)) : 0.0, 0.0);
@@ -419,8 +426,8 @@ vec3 traceBdptCameraPath(Ray ray, Rng rng, bool cameraConnects) {
             float others = 0.0;
             if (depth > 1u && si.lightIndex != NO_LIGHT) {
                 // The last camera vertex's term is light sampling's (s = 1), an endpoint's.
-                float lightSampling =
-                    misPower(directLightPdfArea(si.lightIndex, ray.origin, si.p, si.ng)) * (mis.cVCM + mis.eVCM);
+                float lightSampling = misPower(directLightPdfArea(si.lightIndex, ray.origin, prevNormal, si.p, si.ng)) *
+                                      (mis.cVCM + mis.eVCM);
                 float fromEmitter = misPower(emissionPdf(si.lightIndex, si.p, si.ng, -ray.direction));
                 others = otherStrategies(fromEmitter * mis.cVC, lightSampling + fromEmitter * mis.eVC, false);
             }
@@ -478,6 +485,7 @@ vec3 traceBdptCameraPath(Ray ray, Rng rng, bool cameraConnects) {
         }
         ray.origin = spawnOrigin(si.p, si.ng, bs.wi, si.magnitude);
         ray.direction = bs.wi;
+        prevNormal = si.ng;
         depth += 1u;
     }
     return L;

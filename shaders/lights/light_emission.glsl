@@ -172,11 +172,12 @@ float directLightPdfInfinite(uint lightIndex, vec3 w) {
 }
 
 // The density per unit area (per unit "point" for point lights) with which light sampling from
-// x picks point p (normal n) of light lightIndex; 0 without light sampling. BDPT selects by the
-// power CDF (bdptLightSample), so its pmf is the table's.
-float directLightPdfArea(uint lightIndex, vec3 x, vec3 p, vec3 n) {
+// x (geometric normal xNormal, for the light tree) picks point p (normal n) of light lightIndex;
+// 0 without light sampling.
+float directLightPdfArea(uint lightIndex, vec3 x, vec3 xNormal, vec3 p, vec3 n) {
     if (!USE_NEE) return 0.0;
     GpuLight light = sceneLights.v[lightIndex];
+    light.pmf = lightSelectionPmf(lightIndex, light, x, xNormal);
     if (isPositionDeltaLight(light)) return light.pmf;
     if (HAS_PUNCTUAL_LIGHTS && light.type == LIGHT_SQUARE) return light.pmf / light.area;
     vec3 d = p - x;

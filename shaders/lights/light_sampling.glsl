@@ -22,8 +22,8 @@ LightSample sampleLightEntry(GpuLight light, vec3 x, vec2 uPoint) {
     return sampleTriangleLight(light, x, uPoint);
 }
 
-// The same for light `index` chosen by the power CDF (BDPT's light sampling, whose MIS weights
-// assume it; the classic ray tracer's sum over lights).
+// The same for light `index` of the table, with the table's (power) pmf: the classic ray
+// tracer's sum over lights, the light-visibility probe.
 LightSample sampleLightIndex(uint index, vec3 x, vec2 uPoint) {
     return sampleLightEntry(sceneLights.v[index], x, uPoint);
 }

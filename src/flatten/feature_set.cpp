@@ -241,11 +241,10 @@ bool lightTreePays(const FlatScene& scene) {
 }
 
 // The light tree chooses among the bounded lights where the scene has one (two or more of them,
-// FlatScene::lights.tree), the path tracer samples lights and (under auto) it pays. BDPT keeps
-// the power CDF: its MIS weights take light sampling's selection to be the light subpaths'
-// (light_emission.glsl).
+// FlatScene::lights.tree), light sampling is on and (under auto) it pays. In BDPT it chooses for
+// light sampling at camera vertices; light subpaths start from lights chosen by power.
 bool lightTreeChosen(const FlatScene& scene, const IntegratorSettings& s, const FeatureSet& f) {
-    if (s.lightSelection == LightSelection::Power || !f.nee || f.classic || f.bdpt) return false;
+    if (s.lightSelection == LightSelection::Power || !f.nee || f.classic) return false;
     if (scene.lights.tree.nodes.empty()) return false;
     return s.lightSelection == LightSelection::Tree || lightTreePays(scene);
 }

@@ -73,7 +73,7 @@ TEST(FeatureTable, MaterialsNoObjectUsesAreLeftOut) {
 
 // The light tree under `--light-tree auto`: not for the box's one quad light (two triangles side by
 // side, facing one way: the power CDF does as well for less), but once a second light sits far
-// from it; `on` and `off` decide it, and BDPT keeps the power CDF its MIS weights assume.
+// from it; `on` and `off` decide it, and BDPT's light sampling takes it as the path tracer's does.
 TEST(FeatureTable, LightTreeWhereLightsSpreadOverTheScene) {
     Scene scene = loadDefaultScene();
     auto hasTree = [](const Scene& sc, const IntegratorSettings& s) {
@@ -97,6 +97,8 @@ TEST(FeatureTable, LightTreeWhereLightsSpreadOverTheScene) {
     scene.punctualLights.push_back(corner);
     EXPECT_TRUE(hasTree(scene, automatic));
     EXPECT_FALSE(hasTree(scene, off));
+    EXPECT_TRUE(hasTree(scene, bdpt));
+    bdpt.lightSelection = LightSelection::Power;
     EXPECT_FALSE(hasTree(scene, bdpt));
 }
 
