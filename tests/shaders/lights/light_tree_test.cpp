@@ -249,6 +249,16 @@ TEST_F(LightTree, PmfsAreTheSameAtEveryScale) {
     }
 }
 
+// Two renders of one scene agree block by block (8x8-pixel means, z-tests).
+void expectSameImage(const char* what, const Renderer::Readback& a, const Renderer::Readback& b) {
+    const AgreementResult r =
+        compareBlocks(blockStats(a.mean, &a.varianceOfMean, 8), blockStats(b.mean, &b.varianceOfMean, 8));
+    std::printf("[          ] %s: chi2/dof %.3f, mean z %+.3f, max |z| %.2f, mean rel diff %.4f\n", what, r.chi2PerDof,
+        r.meanZ, r.maxAbsZ, r.meanRelDiff);
+    EXPECT_LT(r.chi2PerDof, 1.6);
+    EXPECT_LT(std::abs(r.meanZ), 0.5);
+}
+
 // The same box rendered with light selection by the tree and by power alone (other seeds), with
 // MIS against BSDF rays that hit the small lights: the images agree block by block.
 TEST_F(LightTree, RendersTheImageThePowerCdfRenders) {
@@ -265,12 +275,7 @@ TEST_F(LightTree, RendersTheImageThePowerCdfRenders) {
     s.seed = 17;
     ASSERT_FALSE(computeFeatures(flat, s).lightTree);
     const Renderer::Readback power = renderScene(scene, s, camera, 32, 32, 512);
-    const AgreementResult r =
-        compareBlocks(blockStats(tree.mean, &tree.varianceOfMean, 8), blockStats(power.mean, &power.varianceOfMean, 8));
-    std::printf("[          ] tree vs power: chi2/dof %.3f, mean z %+.3f, max |z| %.2f, mean rel diff %.4f\n",
-        r.chi2PerDof, r.meanZ, r.maxAbsZ, r.meanRelDiff);
-    EXPECT_LT(r.chi2PerDof, 1.6);
-    EXPECT_LT(std::abs(r.meanZ), 0.5);
+    expectSameImage("tree vs power", tree, power);
 }
 
 // BDPT's light sampling chooses by the tree while its light subpaths start from lights chosen by
@@ -292,13 +297,7 @@ TEST_F(LightTree, BidirectionalWithTheTreeRendersThePathTracersImage) {
     s.lightSelection = LightSelection::Power;
     s.seed = 23;
     const Renderer::Readback path = renderScene(scene, s, camera, 32, 32, 1024);
-    const AgreementResult r =
-        compareBlocks(blockStats(bdpt.mean, &bdpt.varianceOfMean, 8), blockStats(path.mean, &path.varianceOfMean, 8));
-    std::printf(
-        "[          ] bdpt with the tree vs path: chi2/dof %.3f, mean z %+.3f, max |z| %.2f, mean rel diff %.4f\n",
-        r.chi2PerDof, r.meanZ, r.maxAbsZ, r.meanRelDiff);
-    EXPECT_LT(r.chi2PerDof, 1.6);
-    EXPECT_LT(std::abs(r.meanZ), 0.5);
+    expectSameImage("bdpt with the tree vs path", bdpt, path);
 }
 
 } // namespace
