@@ -315,11 +315,10 @@ vec3 bdptLightSample(
     SurfaceInteraction si, Frame frame, vec3 woLocal, GpuMaterial mat, Rng rng, uint depth, MisSums mis) {
     // Chosen as the path tracer chooses (by the light tree where the scene has one); the light
     // subpaths start from lights chosen by power (emissionPdf).
-    LightChoice choice = chooseLight(si.p, si.ng, rng1(rng, bounceDimension(depth, DIM_LIGHT_SELECT)));
-    if (choice.index == NO_LIGHT) return vec3(0.0);
-    uint lightIndex = choice.index;
-    GpuLight chosen = sceneLights.v[lightIndex];
-    chosen.pmf = choice.pmf;
+    uint lightIndex;
+    GpuLight chosen;
+    if (!chooseLightEntry(si.p, si.ng, rng1(rng, bounceDimension(depth, DIM_LIGHT_SELECT)), lightIndex, chosen))
+        return vec3(0.0);
     LightSample ls = sampleLightEntry(chosen, si.p, rng2(rng, bounceDimension(depth, DIM_LIGHT_POINT)));
     if (ls.pdf <= 0.0 || maxComponent(ls.radiance) <= 0.0) return vec3(0.0);
     if (!isTransmissiveSurface(mat) && dot(ls.wi, si.nSurface) <= 0.0) return vec3(0.0);
@@ -347,8 +346,8 @@ vec3 bdptLightSample(
     return fCos * ls.radiance * (weight / ls.pdf);
 }
 
-// s >= 2: camera vertex si (shading in `frame`, reached from direction wo, MIS sums dVCM and
-// dVC, `depth` segments) connected to light subpath vertex lv.
+// s >= 2: camera vertex si (shading in `frame`, reached from direction wo, MIS sums `mis`,
+// `depth` segments) connected to light subpath vertex lv.
 vec3 connectToLightVertex(
     SurfaceInteraction si, GpuMaterial mat, Frame frame, vec3 wo, uint depth, MisSums mis, LightVertex lv) {
     vec3 d = lv.p - si.p;

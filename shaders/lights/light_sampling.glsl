@@ -28,14 +28,28 @@ LightSample sampleLightIndex(uint index, vec3 x, vec2 uPoint) {
     return sampleLightEntry(sceneLights.v[index], x, uPoint);
 }
 
-// A light sample for shading point x with normal n (0 where there is none): the light chosen
-// by the tree where the scene uses one.
-LightSample sampleLight(vec3 x, vec3 n, float uSelect, vec2 uPoint) {
-    if (!choosesInTree(uSelect)) return sampleLightIndex(selectLight(uSelect), x, uPoint);
+// The light that light sampling chooses for shading point x with normal n (by the tree where the
+// scene uses one, else by power): its index and its table entry with `pmf` the probability of
+// the choice, each loaded once. False where the tree finds no light that can reach x.
+bool chooseLightEntry(vec3 x, vec3 n, float uSelect, out uint index, out GpuLight light) {
+    if (!choosesInTree(uSelect)) {
+        index = selectLight(uSelect);
+        light = sceneLights.v[index];
+        return true;
+    }
     LightChoice c = chooseTreeLight(x, n, uSelect);
-    if (c.index == NO_LIGHT) return noLightSample();
-    GpuLight light = sceneLights.v[c.index];
+    index = c.index;
+    if (c.index == NO_LIGHT) return false;
+    light = sceneLights.v[c.index];
     light.pmf = c.pmf;
+    return true;
+}
+
+// A light sample for shading point x with normal n (0 where there is none).
+LightSample sampleLight(vec3 x, vec3 n, float uSelect, vec2 uPoint) {
+    uint index;
+    GpuLight light;
+    if (!chooseLightEntry(x, n, uSelect, index, light)) return noLightSample();
     return sampleLightEntry(light, x, uPoint);
 }
 
