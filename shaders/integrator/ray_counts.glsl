@@ -1,6 +1,7 @@
-// Ray counts for `pt bench` (COUNT_RAYS): each invocation counts the closest-hit and
-// shadow rays of its own samples in private variables and adds them to its pixel's counters
-// once at the end of a pass. Without the constant every increment is removed.
+// Ray counts: each invocation counts the closest-hit and shadow rays of its own samples in
+// private variables and adds them to its pixel's counters once at the end of a pass: for
+// `pt bench` (COUNT_RAYS), and for adaptive sampling, which weighs a pixel's samples by their
+// cost (render/adaptive_sampling.h). An integer add per ray; unused, it is removed.
 #ifndef PT_INTEGRATOR_RAY_COUNTS_GLSL
 #define PT_INTEGRATOR_RAY_COUNTS_GLSL
 #include "shared/features.glsl"
@@ -9,11 +10,11 @@ uint closestRaysTraced = 0u; // camera rays and path continuations
 uint shadowRaysTraced = 0u;
 
 void countClosestRay() {
-    if (COUNT_RAYS) ++closestRaysTraced;
+    ++closestRaysTraced;
 }
 
 void countShadowRay() {
-    if (COUNT_RAYS) ++shadowRaysTraced;
+    ++shadowRaysTraced;
 }
 
 #endif

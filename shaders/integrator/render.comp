@@ -28,13 +28,30 @@ void main() {
     uint index = pixel.y * scene.imageSize.x + pixel.x;
     Vec4Ref accumulation = Vec4Ref(scene.accumulation);
     uint base = ACCUMULATION_VEC4S_PER_PIXEL * index;
+    uint first = push.sampleStart, count = push.sampleCount;
+    uvec4 adaptiveSamples;
+    if (push.adaptiveSamples != 0ul) {
+        // This pixel's share of the epoch's rounds (GpuRenderPush::adaptiveSamples).
+        adaptiveSamples = UVec4Ref(push.adaptiveSamples).v[index];
+        uint64_t allocation = uint64_t(adaptiveSamples.y);
+        uint64_t roundsEnd = uint64_t(push.sampleStart) + uint64_t(push.sampleCount);
+        first = adaptiveSamples.x;
+        count = uint(allocation * roundsEnd / uint64_t(push.epochRounds) -
+                     allocation * uint64_t(push.sampleStart) / uint64_t(push.epochRounds));
+    }
     PixelSums sums = loadPixelSums(accumulation, base);
-    addPixelSamples(pixel, push.sampleStart, push.sampleCount, push.sampleClamp, sums);
+    addPixelSamples(pixel, first, count, push.sampleClamp, sums);
     storePixelSums(accumulation, base, sums);
     // One light path per pixel and sample, splatted wherever it lands.
 #ifdef PT_LIGHT_TRACING
-    if (lightTracingActive()) traceLightPaths(pixel, push.sampleStart, push.sampleCount);
+    if (lightTracingActive()) traceLightPaths(pixel, first, count);
 #endif
+    if (push.adaptiveSamples != 0ul) {
+        uint rays = closestRaysTraced + shadowRaysTraced;
+        adaptiveSamples.x = first + count;
+        adaptiveSamples.z = adaptiveSamples.z + min(rays, 0xffffffffu - adaptiveSamples.z); // saturating
+        UVec4Ref(push.adaptiveSamples).v[index] = adaptiveSamples;
+    }
     if (COUNT_RAYS) {
         UVec4Ref counts = UVec4Ref(push.rayCounts);
         counts.v[index] += uvec4(closestRaysTraced, shadowRaysTraced, 0u, 0u);

@@ -165,6 +165,13 @@ int main(int argc, char** argv) {
     render->add_option("--error-log", o.errorLog, "CSV of spp, seconds, relMSE after every pass (needs --reference)");
     render->add_option("--tile", o.tileSize, "Split each pass into tiles of this many pixels square (same image)");
     render->add_option("--pass-spp", o.passSpp, "Samples per pass (default: passes of about two seconds; same image)");
+    render
+        ->add_option_function<std::string>(
+            "--adaptive", [&o](const std::string& v) { o.adaptive = v == "on"; },
+            "Adaptive sampling: more samples where the relative error is (spp and --pass-spp then count the mean "
+            "per pixel): on|off (default on; off for --samples parts, which merge only when every pixel has the "
+            "same samples)")
+        ->check(CLI::IsMember({"on", "off"}));
     render->add_flag("-q,--quiet", o.quiet, "Only print the summary line and errors");
     render->add_flag("--list-variants", o.listVariants,
         "Print the scene's glTF material variants (KHR_materials_variants), one per line, and stop");

@@ -96,11 +96,21 @@ int renderJob(VulkanContext& context, const Scene& scene, FlatScene& flat, bool 
     });
     session.finish(progress.seconds);
 
-    const Renderer::Readback result = renderer.read();
+    const AccumulationState state = renderer.readState();
+    const Renderer::Readback result = resolve(state);
     const uint32_t spp = renderer.samplesPerPixel();
     const uint32_t sppThisRun = spp - std::min(spp, session.resumedSpp());
-    const double mpaths = double(job.width) * job.height * sppThisRun / std::max(progress.seconds, 1e-9) * 1e-6;
+    // Adaptive epochs add about spp x pixels samples; the paths are counted exactly.
+    const double pathsThisRun = state.adaptive() && session.resumedSpp() == 0
+                                    ? state.totalSamples()
+                                    : double(job.width) * job.height * sppThisRun;
+    const double mpaths = pathsThisRun / std::max(progress.seconds, 1e-9) * 1e-6;
     meta["spp"] = std::to_string(spp);
+    if (job.target.adaptive) {
+        meta["adaptive_sampling"] = std::to_string(progress.adaptiveEpochs) + " of " + std::to_string(progress.epochs) +
+                                    " epochs adaptive, last predicted gain " + formatDouble(progress.predictedGain);
+        if (!o.quiet) std::fprintf(stderr, "pt: adaptive sampling: %s\n", meta["adaptive_sampling"].c_str());
+    }
     session.addMetadata(meta, progress.seconds);
     meta["dropped_samples"] = std::to_string(result.droppedSamples);
     meta["mpaths_per_second"] = formatDouble(mpaths);
@@ -109,7 +119,7 @@ int renderJob(VulkanContext& context, const Scene& scene, FlatScene& flat, bool 
     if (job.target.targetError > 0) meta["target_error"] = formatDouble(job.target.targetError);
     prepareOutputDirectory(job.output);
     if (session.outputIsState())
-        writeStateExr(job.output, renderer.readState(), result.mean, meta);
+        writeStateExr(job.output, state, result.mean, meta);
     else if (o.varianceAov)
         writeExr(job.output, result.mean, meta, varianceChannels(result.varianceOfMean));
     else

@@ -41,6 +41,7 @@ RenderIdentity renderIdentity(const RenderOptions& o, const Scene& scene, const 
     if (c.window) s << " window=" << exact(glm::vec3(*c.window)) << "," << exact(c.window->w);
     s << " aperture=" << exact(c.apertureSize) << " focus=" << exact(c.focusDistance) << " " << job.settings.describe()
       << " background=" << exact(scene.background);
+    if (job.target.adaptive) s << " adaptive=on";
     // The same file renders other materials under another KHR_materials_variants variant.
     if (!scene.variant.empty()) s << " variant=" << scene.variant;
     if (scene.environment) {

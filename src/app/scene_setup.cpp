@@ -302,6 +302,10 @@ Job makeJob(const Scene& scene, const Camera& camera, const RenderOptions& o, bo
     job.target.targetError = o.targetError.value_or(0.0);
     job.target.passSpp = o.passSpp;
     job.target.tileSize = o.tileSize;
+    if (o.adaptive.value_or(false) && !o.samples.empty())
+        throw std::runtime_error("--adaptive on cannot render a --samples part: parts merge only when every pixel "
+                                 "has the same samples");
+    job.target.adaptive = o.adaptive.value_or(o.samples.empty());
     job.tonemap = cs.tonemap.value_or(TonemapSettings{});
 
     // Output: -o FILE.exr names the file (one image only); any other -o is a folder for the

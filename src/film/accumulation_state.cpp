@@ -51,6 +51,13 @@ glm::dvec3 AccumulationState::splatSumSquares(size_t pixel) const {
     return glm::dvec3(double(w[0]), double(w[1]), double(w[2])) / SPLAT_SQUARE_SCALE;
 }
 
+double AccumulationState::totalSamples() const {
+    if (!adaptive()) return double(spp) * double(pixels());
+    double total = 0;
+    for (uint32_t n : pixelSamples) total += n;
+    return total;
+}
+
 AccumulatedImage resolve(const AccumulationState& state) {
     AccumulatedImage r;
     const size_t pixels = state.pixels();
@@ -58,8 +65,13 @@ AccumulatedImage resolve(const AccumulationState& state) {
     r.mean.height = r.varianceOfMean.height = state.height;
     r.mean.rgba.assign(pixels * 4, 0.0f);
     r.varianceOfMean.rgba.assign(pixels * 4, 0.0f);
-    const double n = state.spp;
+    // The light paths: one per sample, so N = totalSamples() of them over the image, and a
+    // pixel's splat mean is its splat sum / (N / pixels) (with adaptive sampling too, where
+    // pixels' own sample counts differ but the light paths land wherever they land).
+    const double lightPaths = state.totalSamples();
+    const double m = lightPaths / double(pixels);
     for (size_t i = 0; i < pixels; ++i) {
+        const double n = state.samplesOf(i);
         const glm::dvec3 s = state.sum(i);
         const glm::dvec3 s2 = state.sumSquares(i);
         const glm::dvec3 splat = state.splatSum(i);
@@ -69,12 +81,11 @@ AccumulatedImage resolve(const AccumulationState& state) {
             const double mean = n > 0 ? s[c] / n : 0.0;
             // Unbiased sample variance, divided by n for the variance of the mean.
             const double var = n > 1 ? std::max(0.0, (s2[c] / n - mean * mean) * n / (n - 1)) / n : 0.0;
-            // The light paths: N = n x pixels of them, each contributing X = pixels x Y where Y
-            // is what was splatted, so the mean is sum(Y) / n and the variance of that mean
-            // (E[X^2] - mean^2) / N = sum(Y^2) / n^2 - mean^2 / N.
-            const double splatMean = n > 0 ? splat[c] / n : 0.0;
-            const double splatVar =
-                n > 0 ? std::max(0.0, splat2[c] / (n * n) - splatMean * splatMean / (n * double(pixels))) : 0.0;
+            // Each light path contributes X = pixels x Y where Y is what was splatted, so the
+            // mean is sum(Y) / m and the variance of that mean (E[X^2] - mean^2) / N =
+            // sum(Y^2) / m^2 - mean^2 / N.
+            const double splatMean = m > 0 ? splat[c] / m : 0.0;
+            const double splatVar = m > 0 ? std::max(0.0, splat2[c] / (m * m) - splatMean * splatMean / lightPaths) : 0.0;
             r.mean.rgba[4 * i + c] = static_cast<float>(mean + splatMean);
             r.varianceOfMean.rgba[4 * i + c] = static_cast<float>(var + splatVar);
         }
@@ -105,6 +116,11 @@ AccumulationState mergeStates(std::vector<AccumulationState> parts) {
             throw std::runtime_error("sample ranges " + parts[k - 1].samples.describe() + " and " +
                                      parts[k].samples.describe() + " overlap");
     }
+    for (const AccumulationState& p : parts)
+        if (p.adaptive())
+            throw std::runtime_error("part " + p.samples.describe() +
+                                     " was rendered with adaptive sampling, whose pixels' sample counts differ: "
+                                     "parts to merge are rendered with --samples, which samples every pixel alike");
     for (const AccumulationState& p : parts)
         if (p.hasSplats() != parts[0].hasSplats())
             throw std::runtime_error("parts differ in light tracing (some have its splat sums, some do not)");

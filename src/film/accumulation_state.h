@@ -31,9 +31,21 @@ struct AccumulationState {
     // Light tracing's fixed-point splat sums (SPLAT_WORDS_PER_PIXEL per pixel, shared/layout.h),
     // or empty when the render had none.
     std::vector<uint64_t> splats;
+    // Adaptive sampling (render/adaptive_sampling.h), or empty when every pixel has spp samples:
+    // each pixel's own sample count, and the epoch in progress (its per-pixel allocation, the
+    // rays its samples traced so far, its length in rounds and the rounds done), so that a
+    // resumed render continues it exactly. spp then counts rounds: the mean samples per pixel.
+    std::vector<uint32_t> pixelSamples;
+    std::vector<uint32_t> allocation;
+    std::vector<uint32_t> epochRays;
+    uint32_t epochRounds = 0, epochRoundsDone = 0;
 
     size_t pixels() const { return size_t(width) * size_t(height); }
     bool hasSplats() const { return !splats.empty(); }
+    bool adaptive() const { return !pixelSamples.empty(); }
+    // Samples summed in `pixel`, and over the image (the light paths traced, with light tracing).
+    double samplesOf(size_t pixel) const { return adaptive() ? double(pixelSamples[pixel]) : double(spp); }
+    double totalSamples() const;
     // Per-pixel sum of radiance (hi + lo) and of its squares, and the dropped count.
     glm::dvec3 sum(size_t pixel) const;
     glm::dvec3 sumSquares(size_t pixel) const;

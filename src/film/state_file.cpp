@@ -38,6 +38,15 @@ std::string splatChannelName(uint32_t word, int piece) {
     return "state.splat." + std::to_string(word) + "." + std::to_string(piece);
 }
 
+// Adaptive sampling's per-pixel counts (samples so far, the epoch's allocation): 32-bit
+// integers as two 16-bit pieces, each exact in a float channel.
+constexpr const char* kAdaptiveChannels[] = {"state.adaptive.samples.0", "state.adaptive.samples.1",
+    "state.adaptive.allocation.0", "state.adaptive.allocation.1", "state.adaptive.rays.0", "state.adaptive.rays.1"};
+constexpr int kAdaptiveCounts = 3;
+template <class State> auto& adaptiveCounts(State& state, int k) {
+    return k < 2 ? state.pixelSamples : k < 4 ? state.allocation : state.epochRays;
+}
+
 uint32_t readIndex(const std::filesystem::path& path, const ImageMetadata& metadata, const char* key) {
     const auto it = metadata.find(key);
     uint64_t value = 0;
@@ -72,6 +81,17 @@ void writeStateExr(
                 channels.push_back(std::move(out));
             }
         metadata["splats"] = "1";
+    }
+    if (state.adaptive()) {
+        for (int k = 0; k < 2 * kAdaptiveCounts; ++k) {
+            const std::vector<uint32_t>& counts = adaptiveCounts(state, k);
+            ExrChannel out{kAdaptiveChannels[k], std::vector<float>(pixels)};
+            for (size_t i = 0; i < pixels; ++i) out.values[i] = static_cast<float>((counts[i] >> (16 * (k % 2))) & 0xffffu);
+            channels.push_back(std::move(out));
+        }
+        metadata["adaptive"] = "1";
+        metadata["epoch_rounds"] = std::to_string(state.epochRounds);
+        metadata["epoch_rounds_done"] = std::to_string(state.epochRoundsDone);
     }
     metadata["state"] = kStateFormat;
     metadata["sample_begin"] = std::to_string(state.samples.begin);
@@ -118,6 +138,28 @@ AccumulationState readStateExr(const std::filesystem::path& path, ImageMetadata&
                     state.splats[SPLAT_WORDS_PER_PIXEL * i + word] |= uint64_t(v) << (kSplatPieceBits * piece);
                 }
             }
+    }
+    if (metadata.count("adaptive") && metadata["adaptive"] == "1") {
+        ExrChannels adaptiveFile =
+            readExrChannels(path, std::vector<std::string>(std::begin(kAdaptiveChannels), std::end(kAdaptiveChannels)));
+        for (int k = 0; k < 2 * kAdaptiveCounts; k += 2) adaptiveCounts(state, k).assign(pixels, 0);
+        for (int k = 0; k < 2 * kAdaptiveCounts; ++k) {
+            std::vector<uint32_t>& counts = adaptiveCounts(state, k);
+            const std::vector<float>& values = adaptiveFile.channels[k].values;
+            for (size_t i = 0; i < pixels; ++i) {
+                const float v = values[i];
+                if (!(v >= 0.0f && v <= 65535.0f) || v != std::floor(v))
+                    throw std::runtime_error(path.string() + ": channel " + kAdaptiveChannels[k] +
+                                             " holds a value that is not a 16-bit integer");
+                counts[i] |= uint32_t(v) << (16 * (k % 2));
+            }
+        }
+        state.epochRounds = readIndex(path, metadata, "epoch_rounds");
+        state.epochRoundsDone = readIndex(path, metadata, "epoch_rounds_done");
+        if (state.epochRoundsDone > state.epochRounds || state.samples.begin != 0)
+            throw std::runtime_error(path.string() + ": inconsistent adaptive sampling epoch (" +
+                                     std::to_string(state.epochRoundsDone) + " of " +
+                                     std::to_string(state.epochRounds) + " rounds done)");
     }
     return state;
 }

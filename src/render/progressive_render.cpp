@@ -1,6 +1,7 @@
 #include "render/progressive_render.h"
 
 #include "film/metrics.h"
+#include "render/adaptive_sampling.h"
 #include "render/progress.h"
 
 #include <algorithm>
@@ -44,6 +45,21 @@ ProgressiveResult renderProgressively(Renderer& renderer, const ProgressiveTarge
             pass = static_cast<uint32_t>(std::clamp(needed - done, 1.0, double(pass)));
         }
         if (target.spp > 0) pass = std::min(pass, target.spp - done);
+        double allocationSeconds = 0;
+        if (target.adaptive) {
+            if (renderer.epochRoundsLeft() == 0) {
+                // A new epoch, its allocation from the image so far (counted as render time).
+                const auto start = Clock::now();
+                const uint32_t rounds = nextEpochRounds(done, target.spp);
+                const AdaptiveAllocation allocation = allocateSamples(renderer.readState(), rounds);
+                ++result.epochs;
+                if (!allocation.uniform) ++result.adaptiveEpochs;
+                if (result.epochs > 1) result.predictedGain = allocation.predictedGain;
+                renderer.startAdaptiveEpoch(allocation.samples, rounds);
+                allocationSeconds = std::chrono::duration<double>(Clock::now() - start).count();
+            }
+            pass = std::min(pass, renderer.epochRoundsLeft());
+        }
         if (target.seconds > 0 && doneHere > 0) {
             // Never start a pass that would overrun the budget.
             const double fits = std::floor((target.seconds - result.seconds) / std::max(secondsPerSpp, 1e-9));
@@ -52,7 +68,7 @@ ProgressiveResult renderProgressively(Renderer& renderer, const ProgressiveTarge
         }
         const auto passStart = Clock::now();
         renderer.addSamples(pass, target.tileSize);
-        result.seconds += std::chrono::duration<double>(Clock::now() - passStart).count();
+        result.seconds += std::chrono::duration<double>(Clock::now() - passStart).count() + allocationSeconds;
         const uint32_t spp = renderer.samplesPerPixel();
         if (reference) {
             lastRelMse = relMse(renderer.read().mean, *reference);

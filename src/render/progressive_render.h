@@ -22,6 +22,9 @@ struct ProgressiveTarget {
     double seconds = 0;    // or after this much render time
     uint32_t passSpp = 0;  // samples per pass; 0 chooses passes of about kPassSeconds
     uint32_t tileSize = 0; // split passes into tiles (same image)
+    // Adaptive sampling (render/adaptive_sampling.h): spp and the pass sizes count rounds, the
+    // mean samples per pixel. The renderer must be new or resumed from an adaptive state.
+    bool adaptive = false;
     // > 0: stop once the reference-free relMSE estimate (estimatedRelMse) is at most this;
     // spp and seconds, when set, are then caps.
     double targetError = 0;
@@ -35,6 +38,10 @@ struct ProgressiveResult {
     double lastRelMse = -1;
     double lastEstimate = -1;   // estimatedRelMse after the last pass (target-error renders)
     bool targetReached = false; // targetError was met (not a cap)
+    // Adaptive sampling: epochs started, how many of them were not uniform, and the last
+    // epoch's predicted gain (AdaptiveAllocation; 1 before the first estimate).
+    uint32_t epochs = 0, adaptiveEpochs = 0;
+    double predictedGain = 1.0;
 };
 
 // `errorLog` receives "spp,seconds,relmse" lines (without header) when `reference` is given.

@@ -121,8 +121,33 @@ VkDeviceSize Renderer::splatOffset() const {
     return VkDeviceSize(film_.width) * film_.height * kAccumulationBytesPerPixel;
 }
 
+void Renderer::startAdaptiveEpoch(const std::vector<uint32_t>& allocation, uint32_t rounds) {
+    const size_t pixels = size_t(film_.width) * film_.height;
+    if (allocation.size() != pixels) throw std::logic_error("adaptive allocation is not one count per pixel");
+    if (rounds == 0) throw std::logic_error("adaptive epoch of no rounds");
+    if (epochRoundsDone_ != epochRounds_) throw std::logic_error("adaptive epoch started before the last one ended");
+    if (firstSample_ != 0) throw std::runtime_error("adaptive sampling renders whole images, not --samples ranges");
+    std::vector<glm::uvec4> perPixel(pixels, glm::uvec4(0));
+    if (!adaptiveSamples_) {
+        if (samples_ != 0) throw std::logic_error("adaptive sampling switched on after uniform passes");
+        adaptiveSamples_ = std::make_unique<GpuBuffer>(context_, pixels * sizeof(glm::uvec4), "adaptive samples");
+    } else {
+        adaptiveSamples_->download(perPixel.data(), pixels * sizeof(glm::uvec4));
+    }
+    for (size_t i = 0; i < pixels; ++i) {
+        perPixel[i].y = allocation[i];
+        perPixel[i].z = 0; // the epoch's rays
+        if (uint64_t(perPixel[i].x) + allocation[i] > UINT32_MAX)
+            throw std::runtime_error("a pixel's sample index would exceed 2^32");
+    }
+    adaptiveSamples_->upload(perPixel.data(), pixels * sizeof(glm::uvec4));
+    epochRounds_ = rounds;
+    epochRoundsDone_ = 0;
+}
+
 void Renderer::addSamples(uint32_t count, uint32_t tileSize) {
     if (count == 0) return;
+    if (adaptive() && count > epochRoundsLeft()) throw std::logic_error("pass runs past its adaptive epoch");
     if (uint64_t(firstSample_) + samples_ + count > UINT32_MAX) throw std::runtime_error("sample index exceeds 2^32");
     context_.submitAndWait([&](VkCommandBuffer cmd) {
         recordTiles(cmd, count, tileSize, 0, tileCount(tileSize));
@@ -171,8 +196,10 @@ void Renderer::recordTiles(
         push.sceneParams = paramsAddress_;
         push.tileOrigin = glm::uvec2(x, y);
         push.tileSize = glm::uvec2(std::min(tw, w - x), std::min(th, h - y));
-        push.sampleStart = firstSample_ + samples_;
+        push.sampleStart = adaptive() ? epochRoundsDone_ : firstSample_ + samples_;
         push.sampleCount = count;
+        push.adaptiveSamples = adaptive() ? adaptiveSamples_->address() : 0;
+        push.epochRounds = epochRounds_;
         push.sampleClamp = sampleClamp_;
         push.rayCounts = rayCounts_ ? rayCounts_->address() : 0;
         pipeline_->bindAndPush(cmd, &push, sizeof(push));
@@ -184,12 +211,15 @@ void Renderer::recordTiles(
 void Renderer::completePass(uint32_t count) {
     if (uint64_t(firstSample_) + samples_ + count > UINT32_MAX) throw std::runtime_error("sample index exceeds 2^32");
     samples_ += count;
+    if (adaptive()) epochRoundsDone_ += count;
 }
 
 void Renderer::reset() {
     samples_ = 0;
     firstSample_ = 0;
     clearPending_ = true;
+    adaptiveSamples_.reset(); // the viewer's passes are uniform
+    epochRounds_ = epochRoundsDone_ = 0;
     if (rayCounts_) rayCounts_->fillZero(); // only headless renders count, with nothing in flight
 }
 
@@ -298,6 +328,20 @@ AccumulationState Renderer::readState() const {
         if (!state.splats.empty())
             accumulation().download(state.splats.data(), state.splats.size() * sizeof(uint64_t), splatOffset());
     }
+    if (adaptive()) {
+        std::vector<glm::uvec4> perPixel(state.pixels());
+        adaptiveSamples_->download(perPixel.data(), perPixel.size() * sizeof(glm::uvec4));
+        state.pixelSamples.resize(perPixel.size());
+        state.allocation.resize(perPixel.size());
+        state.epochRays.resize(perPixel.size());
+        for (size_t i = 0; i < perPixel.size(); ++i) {
+            state.pixelSamples[i] = perPixel[i].x;
+            state.allocation[i] = perPixel[i].y;
+            state.epochRays[i] = perPixel[i].z;
+        }
+        state.epochRounds = epochRounds_;
+        state.epochRoundsDone = epochRoundsDone_;
+    }
     return state; // zeros before the first pass, even if a reset left the buffer uncleared
 }
 
@@ -319,6 +363,21 @@ void Renderer::loadState(const AccumulationState& state) {
     firstSample_ = state.samples.begin;
     samples_ = state.spp;
     clearPending_ = false;
+    adaptiveSamples_.reset();
+    epochRounds_ = epochRoundsDone_ = 0;
+    if (state.adaptive()) {
+        const size_t pixels = state.pixels();
+        if (state.pixelSamples.size() != pixels || state.allocation.size() != pixels ||
+            state.epochRays.size() != pixels || state.epochRoundsDone > state.epochRounds || state.samples.begin != 0)
+            throw std::runtime_error("saved adaptive sampling state is inconsistent");
+        std::vector<glm::uvec4> perPixel(pixels);
+        for (size_t i = 0; i < pixels; ++i)
+            perPixel[i] = glm::uvec4(state.pixelSamples[i], state.allocation[i], state.epochRays[i], 0);
+        adaptiveSamples_ = std::make_unique<GpuBuffer>(context_, pixels * sizeof(glm::uvec4), "adaptive samples");
+        adaptiveSamples_->upload(perPixel.data(), pixels * sizeof(glm::uvec4));
+        epochRounds_ = state.epochRounds;
+        epochRoundsDone_ = state.epochRoundsDone;
+    }
 }
 
 void Renderer::setFirstSample(uint32_t index) {
@@ -328,7 +387,7 @@ void Renderer::setFirstSample(uint32_t index) {
 
 Renderer::RayCounts Renderer::rayCounts() const {
     RayCounts counts;
-    counts.camera = uint64_t(samples_) * film_.width * film_.height;
+    counts.camera = adaptive() ? uint64_t(readState().totalSamples()) : uint64_t(samples_) * film_.width * film_.height;
     if (!rayCounts_) return counts;
     std::vector<glm::uvec4> perPixel(size_t(film_.width) * film_.height);
     rayCounts_->download(perPixel.data(), perPixel.size() * sizeof(glm::uvec4));

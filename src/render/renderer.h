@@ -40,6 +40,15 @@ public:
     // that many pixels (one dispatch each); the image is identical either way.
     void addSamples(uint32_t count, uint32_t tileSize = 0);
 
+    // ---- Adaptive sampling (render/adaptive_sampling.h): pixels take different sample counts.
+    // Starts an epoch of `rounds` rounds in which pixel p adds allocation[p] samples (one per
+    // pixel and row-major); the first call switches the renderer to per-pixel counts, from zero.
+    // addSamples(count) then adds `count` rounds of the epoch (at most what is left of it), and
+    // samplesPerPixel() counts rounds: the mean samples per pixel.
+    void startAdaptiveEpoch(const std::vector<uint32_t>& allocation, uint32_t rounds);
+    bool adaptive() const { return adaptiveSamples_ != nullptr; }
+    uint32_t epochRoundsLeft() const { return epochRounds_ - epochRoundsDone_; }
+
     // ---- Interactive rendering (pt view): change what is rendered without reloading the scene.
     // Every change discards the samples so far (as reset() does) and applies from the next pass.
     void setCamera(const Camera& camera);
@@ -139,6 +148,9 @@ private:
     std::unique_ptr<GpuBuffer> ownParams_;
     std::unique_ptr<GpuBuffer> ownAccumulation_;
     std::unique_ptr<GpuBuffer> rayCounts_; // uvec4 per pixel when features_.countRays
+    // Adaptive sampling: uvec4 per pixel (samples so far, this epoch's allocation, its rays, 0).
+    std::unique_ptr<GpuBuffer> adaptiveSamples_;
+    uint32_t epochRounds_ = 0, epochRoundsDone_ = 0;
     VkDeviceAddress paramsAddress_ = 0;
 };
 

@@ -1,0 +1,60 @@
+#pragma once
+// Adaptive sampling: more samples where the image's relative error is, fewer where a pixel has
+// converged (the light itself, a flat wall in full light). The error measure pt reports and
+// compares by, relMSE, is the mean over pixels of (value - truth)^2 / (truth^2 + 0.01); a pixel
+// whose samples have variance s^2 contributes s^2 / (n (truth^2 + 0.01)) with n samples, and
+// for a fixed total the sum is least when n is proportional to s / sqrt(truth^2 + 0.01). That
+// is the allocation, estimated from the samples so far.
+//
+// The render runs in epochs of doubling length (8 rounds, then as many as so far), each with a
+// per-pixel allocation fixed at its start from the image at that point; an epoch is added in
+// passes of any size (Renderer::startAdaptiveEpoch), so the image does not depend on how the
+// work was split, only on the epochs, which depend on the sample count alone.
+//
+// Allocating by the samples' own variance correlates a pixel's sample count with its values,
+// which biases the mean by O(1/n) (a pixel whose first samples missed a rare bright path looks
+// converged). Two things bound that: every pixel keeps at least kMinShare of the mean rate, and
+// the estimate is smoothed over 3x3 pixels, so a rare path seen in one pixel raises its
+// neighbours' share too.
+#include "film/accumulation_state.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace pt {
+
+// Rounds of the first epoch, whose allocation is uniform: the variance needs a few samples.
+constexpr uint32_t kFirstEpochRounds = 8;
+// Pixels of a row that share one allocation: lavapipe runs 8 invocations (8 pixels of a row of
+// the kernel's 8x8 workgroup) as one SIMD vector, which runs until its busiest lane is done.
+// With a count per pixel, the lanes idled 15% of the time on the diffuse Cornell box.
+constexpr uint32_t kBlockWidth = 8;
+// The least share of the mean sampling rate a pixel gets in an epoch.
+constexpr double kMinShare = 0.25;
+// The most: a cap on what one pixel's estimate can claim.
+constexpr double kMaxShare = 16.0;
+
+// Length in rounds of the epoch that starts after `roundsDone` rounds; with `targetSpp` > 0 it
+// ends there at the latest.
+uint32_t nextEpochRounds(uint32_t roundsDone, uint32_t targetSpp);
+
+// Below this predicted gain (AdaptiveAllocation::predictedGain) the epoch is uniform: the
+// estimates are noisy, and Sobol' points lower a pixel's error by more than its samples' variance
+// says where the integrand is smooth, so a small predicted gain is none. Measured: the diffuse
+// Cornell box predicts G = 1.?? and renders worse adaptively; the rough box predicts ?? and
+// renders 1.?x better (bench/RESULTS.md, "Adaptive sampling").
+constexpr double kMinPredictedGain = 1.3;
+
+struct AdaptiveAllocation {
+    std::vector<uint32_t> samples; // per pixel, row-major
+    // relMSE x time of uniform sampling over that of this allocation's ideal, from the
+    // estimates (1 for the first epoch, which has none).
+    double predictedGain = 1.0;
+    bool uniform = true;
+};
+
+// Each pixel's samples for an epoch of `rounds` rounds, from the accumulated `state` (adaptive,
+// or empty): about rounds x pixels in all.
+AdaptiveAllocation allocateSamples(const AccumulationState& state, uint32_t rounds);
+
+} // namespace pt
