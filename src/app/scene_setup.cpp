@@ -250,6 +250,22 @@ std::vector<Camera> chooseCameras(const Scene& scene, const RenderOptions& o, bo
     return {scene.cameras[index]};
 }
 
+namespace {
+// A render resumed from a state whose pixels all have the same samples (a --samples part, or a
+// checkpoint of --adaptive off) continues that way unless --adaptive says otherwise. A file that
+// cannot be read is left to the resume's own error.
+bool resumesUniformState(const std::string& resume) {
+    if (resume.empty()) return false;
+    try {
+        ImageMetadata metadata;
+        readExrChannels(resume, {}, &metadata);
+        return metadata["adaptive"] != "1";
+    } catch (const std::exception&) {
+        return false;
+    }
+}
+} // namespace
+
 Job makeJob(const Scene& scene, const Camera& camera, const RenderOptions& o, bool severalImages, bool course) {
     Job job;
     job.camera = camera;
@@ -305,7 +321,7 @@ Job makeJob(const Scene& scene, const Camera& camera, const RenderOptions& o, bo
     if (o.adaptive.value_or(false) && !o.samples.empty())
         throw std::runtime_error("--adaptive on cannot render a --samples part: parts merge only when every pixel "
                                  "has the same samples");
-    job.target.adaptive = o.adaptive.value_or(o.samples.empty());
+    job.target.adaptive = o.adaptive.value_or(o.samples.empty() && !resumesUniformState(o.resume));
     job.tonemap = cs.tonemap.value_or(TonemapSettings{});
 
     // Output: -o FILE.exr names the file (one image only); any other -o is a folder for the

@@ -279,8 +279,10 @@ ExrChannels readExrChannelsImpl(
     for (ExrChannel& c : result.channels)
         fb.insert(c.name, Imf::Slice::Make(Imf::FLOAT, c.values.data(), dw, sizeof(float),
                               sizeof(float) * static_cast<std::size_t>(w)));
-    in.setFrameBuffer(fb);
-    in.readPixels(dw.min.y, dw.max.y);
+    if (!names.empty()) { // none: the header alone
+        in.setFrameBuffer(fb);
+        in.readPixels(dw.min.y, dw.max.y);
+    }
     if (metadata) readMetadata(header, *metadata);
     return result;
 }

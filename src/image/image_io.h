@@ -32,7 +32,8 @@ void writeExr(const std::filesystem::path& path, const Image& image, const Image
     const std::vector<ExrChannel>& extra);
 
 // Reads the named float channels of an EXR written by writeExr (exactly, as float32), the
-// metadata, and the image size. Throws "<path>: <problem>" naming the first missing channel.
+// metadata, and the image size (no names: the header alone). Throws "<path>: <problem>" naming
+// the first missing channel.
 struct ExrChannels {
     int width = 0, height = 0;
     std::vector<ExrChannel> channels; // in the order of `names`
