@@ -9,12 +9,8 @@
 uint closestRaysTraced = 0u; // camera rays and path continuations
 uint shadowRaysTraced = 0u;
 
-void countClosestRay() {
-    ++closestRaysTraced;
-}
+void countClosestRay() { ++closestRaysTraced; }
 
-void countShadowRay() {
-    ++shadowRaysTraced;
-}
+void countShadowRay() { ++shadowRaysTraced; }
 
 #endif

@@ -29,8 +29,8 @@ struct RenderOptions {
     std::string device;
     std::string reference;
     std::string errorLog;
-    uint32_t tileSize = 0; // 0: whole image per dispatch
-    uint32_t passSpp = 0;  // 0: choose passes of about two seconds
+    uint32_t tileSize = 0;        // 0: whole image per dispatch
+    uint32_t passSpp = 0;         // 0: choose passes of about two seconds
     std::optional<bool> adaptive; // --adaptive: per-pixel sample counts (default: on, except for --samples parts)
     bool validation = false;
     bool noPipelineCache = false;             // --no-pipeline-cache: nothing read from or written to the disk cache

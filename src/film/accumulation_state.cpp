@@ -85,7 +85,8 @@ AccumulatedImage resolve(const AccumulationState& state) {
             // mean is sum(Y) / m and the variance of that mean (E[X^2] - mean^2) / N =
             // sum(Y^2) / m^2 - mean^2 / N.
             const double splatMean = m > 0 ? splat[c] / m : 0.0;
-            const double splatVar = m > 0 ? std::max(0.0, splat2[c] / (m * m) - splatMean * splatMean / lightPaths) : 0.0;
+            const double splatVar =
+                m > 0 ? std::max(0.0, splat2[c] / (m * m) - splatMean * splatMean / lightPaths) : 0.0;
             r.mean.rgba[4 * i + c] = static_cast<float>(mean + splatMean);
             r.varianceOfMean.rgba[4 * i + c] = static_cast<float>(var + splatVar);
         }

@@ -43,7 +43,8 @@ std::string splatChannelName(uint32_t word, int piece) {
 constexpr const char* kAdaptiveChannels[] = {"state.adaptive.samples.0", "state.adaptive.samples.1",
     "state.adaptive.allocation.0", "state.adaptive.allocation.1", "state.adaptive.rays.0", "state.adaptive.rays.1"};
 constexpr int kAdaptiveCounts = 3;
-template <class State> auto& adaptiveCounts(State& state, int k) {
+template <class State>
+auto& adaptiveCounts(State& state, int k) {
     return k < 2 ? state.pixelSamples : k < 4 ? state.allocation : state.epochRays;
 }
 
@@ -86,7 +87,8 @@ void writeStateExr(
         for (int k = 0; k < 2 * kAdaptiveCounts; ++k) {
             const std::vector<uint32_t>& counts = adaptiveCounts(state, k);
             ExrChannel out{kAdaptiveChannels[k], std::vector<float>(pixels)};
-            for (size_t i = 0; i < pixels; ++i) out.values[i] = static_cast<float>((counts[i] >> (16 * (k % 2))) & 0xffffu);
+            for (size_t i = 0; i < pixels; ++i)
+                out.values[i] = static_cast<float>((counts[i] >> (16 * (k % 2))) & 0xffffu);
             channels.push_back(std::move(out));
         }
         metadata["adaptive"] = "1";

@@ -5,12 +5,10 @@
 
 namespace pt {
 
-uint32_t nextEpochRounds(uint32_t roundsDone, uint32_t targetSpp) {
+uint32_t nextEpochRounds(uint32_t roundsDone) {
     // Doubling keeps the number of allocations logarithmic in the render's length, and each
     // allocation sees at least as many samples as its epoch will add.
-    const uint64_t length = roundsDone == 0 ? kFirstEpochRounds : std::min<uint64_t>(roundsDone, uint64_t(1) << 20);
-    if (targetSpp > 0) return uint32_t(std::min<uint64_t>(length, targetSpp > roundsDone ? targetSpp - roundsDone : 0));
-    return uint32_t(length);
+    return roundsDone == 0 ? kFirstEpochRounds : std::min<uint32_t>(roundsDone, uint32_t(1) << 20);
 }
 
 namespace {

@@ -8,8 +8,8 @@
 //
 // The render runs in epochs of doubling length (8 rounds, then as many as so far), each with a
 // per-pixel allocation fixed at its start from the image at that point; an epoch is added in
-// passes of any size (Renderer::startAdaptiveEpoch), so the image does not depend on how the
-// work was split, only on the epochs, which depend on the sample count alone.
+// passes of any size (Renderer::startAdaptiveEpoch), so the image depends on neither how the
+// work was split nor where it was stopped and continued, only on the sample count.
 //
 // Allocating by the samples' own variance correlates a pixel's sample count with its values,
 // which biases the mean by O(1/n) (a pixel whose first samples missed a rare bright path looks
@@ -34,9 +34,10 @@ constexpr double kMinShare = 0.25;
 // The most: a cap on what one pixel's estimate can claim.
 constexpr double kMaxShare = 16.0;
 
-// Length in rounds of the epoch that starts after `roundsDone` rounds; with `targetSpp` > 0 it
-// ends there at the latest.
-uint32_t nextEpochRounds(uint32_t roundsDone, uint32_t targetSpp);
+// Length in rounds of the epoch that starts after `roundsDone` rounds. Not cut to a render's
+// sample count: a render of N spp stops part-way through its last epoch, so that it is the
+// first N rounds of any longer render (and continuing it, to any count, is exact).
+uint32_t nextEpochRounds(uint32_t roundsDone);
 
 // Below this predicted gain (AdaptiveAllocation::predictedGain) the epoch is uniform: the
 // estimates are noisy, and Sobol' points lower a pixel's error by more than its samples' variance

@@ -50,7 +50,7 @@ ProgressiveResult renderProgressively(Renderer& renderer, const ProgressiveTarge
             if (renderer.epochRoundsLeft() == 0) {
                 // A new epoch, its allocation from the image so far (counted as render time).
                 const auto start = Clock::now();
-                const uint32_t rounds = nextEpochRounds(done, target.spp);
+                const uint32_t rounds = nextEpochRounds(done);
                 const AdaptiveAllocation allocation = allocateSamples(renderer.readState(), rounds);
                 ++result.epochs;
                 if (!allocation.uniform) ++result.adaptiveEpochs;
