@@ -117,4 +117,15 @@ AdaptiveAllocation allocateSamples(const AccumulationState& state, uint32_t roun
     return result;
 }
 
+AdaptiveEpoch planEpoch(const AccumulationState& state) {
+    AdaptiveEpoch epoch;
+    epoch.rounds = nextEpochRounds(state.spp);
+    epoch.allocation = allocateSamples(state, epoch.rounds);
+    if (epoch.allocation.uniform && state.spp >= kLastEpochAfter) {
+        epoch.rounds = kLastEpochRounds;
+        epoch.allocation.samples.assign(state.pixels(), kLastEpochRounds);
+    }
+    return epoch;
+}
+
 } // namespace pt

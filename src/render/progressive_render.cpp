@@ -50,12 +50,11 @@ ProgressiveResult renderProgressively(Renderer& renderer, const ProgressiveTarge
             if (renderer.epochRoundsLeft() == 0) {
                 // A new epoch, its allocation from the image so far (counted as render time).
                 const auto start = Clock::now();
-                const uint32_t rounds = nextEpochRounds(done);
-                const AdaptiveAllocation allocation = allocateSamples(renderer.readState(), rounds);
+                const AdaptiveEpoch epoch = planEpoch(renderer.readState());
                 ++result.epochs;
-                if (!allocation.uniform) ++result.adaptiveEpochs;
-                if (result.epochs > 1) result.predictedGain = allocation.predictedGain;
-                renderer.startAdaptiveEpoch(allocation.samples, rounds);
+                if (!epoch.allocation.uniform) ++result.adaptiveEpochs;
+                if (result.epochs > 1) result.predictedGain = epoch.allocation.predictedGain;
+                renderer.startAdaptiveEpoch(epoch.allocation.samples, epoch.rounds);
                 allocationSeconds = std::chrono::duration<double>(Clock::now() - start).count();
             }
             pass = std::min(pass, renderer.epochRoundsLeft());

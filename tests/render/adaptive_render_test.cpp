@@ -53,8 +53,8 @@ TEST_F(AdaptiveRender, AgreesWithUniformSampling) {
     settings_.seed = 77;
     const Renderer::Readback uniform = renderScene(scene_, settings_, scene_.cameras.at(0), 32, 32, 256);
     const Renderer::Readback image = resolve(state);
-    const AgreementResult r =
-        compareBlocks(blockStats(image.mean, &image.varianceOfMean, 4), blockStats(uniform.mean, &uniform.varianceOfMean, 4));
+    const AgreementResult r = compareBlocks(
+        blockStats(image.mean, &image.varianceOfMean, 4), blockStats(uniform.mean, &uniform.varianceOfMean, 4));
     std::printf("[          ] adaptive (%u of %u epochs) vs uniform: chi2/dof %.3f, mean z %+.3f, max |z| %.2f\n",
         result.adaptiveEpochs, result.epochs, r.chi2PerDof, r.meanZ, r.maxAbsZ);
     EXPECT_LT(r.chi2PerDof, 1.6);

@@ -22,7 +22,8 @@ constexpr int kWidth = 32, kHeight = 8;
 
 // An adaptive state after `n` samples per pixel of mean 0.5 whose per-sample variance and rays
 // per sample are variance(x) and rays(x).
-template <class Variance, class Rays> AccumulationState adaptiveState(uint32_t n, Variance variance, Rays rays) {
+template <class Variance, class Rays>
+AccumulationState adaptiveState(uint32_t n, Variance variance, Rays rays) {
     AccumulationState s;
     s.width = kWidth;
     s.height = kHeight;
@@ -61,7 +62,8 @@ TEST(AdaptiveSampling, EpochsDouble) {
 }
 
 TEST(AdaptiveSampling, AnEvenImageStaysUniform) {
-    const AccumulationState s = adaptiveState(16, [](int) { return 0.04; }, [](int) { return 5.0; });
+    const AccumulationState s = adaptiveState(
+        16, [](int) { return 0.04; }, [](int) { return 5.0; });
     const AdaptiveAllocation a = allocateSamples(s, 16);
     EXPECT_TRUE(a.uniform);
     EXPECT_NEAR(a.predictedGain, 1.0, 1e-9);
@@ -76,8 +78,8 @@ TEST(AdaptiveSampling, AnEvenImageStaysUniform) {
 // Left half 64x the relative variance of the right, the same cost: the optimum gives the left 8x
 // the right's rate, less what the first samples already gave each side alike.
 TEST(AdaptiveSampling, SamplesGoWhereTheRelativeVarianceIs) {
-    const AccumulationState s =
-        adaptiveState(16, [](int x) { return x < kWidth / 2 ? 0.64 : 0.01; }, [](int) { return 4.0; });
+    const AccumulationState s = adaptiveState(
+        16, [](int x) { return x < kWidth / 2 ? 0.64 : 0.01; }, [](int) { return 4.0; });
     const AdaptiveAllocation a = allocateSamples(s, 16);
     ASSERT_FALSE(a.uniform);
     // G = sum(v) sum(c) / sum(sqrt(v c))^2 with v 64:1 in halves: (65/2) / (9/2)^2 = 1.60, a
@@ -100,8 +102,8 @@ TEST(AdaptiveSampling, SamplesGoWhereTheRelativeVarianceIs) {
 // The same relative variance everywhere, but the left half's samples trace 16x the rays: the
 // optimum gives it sqrt(1/16) of the right's rate.
 TEST(AdaptiveSampling, SamplesGoWhereTheyCostLess) {
-    const AccumulationState s =
-        adaptiveState(64, [](int) { return 0.25; }, [](int x) { return x < kWidth / 2 ? 32.0 : 2.0; });
+    const AccumulationState s = adaptiveState(
+        64, [](int) { return 0.25; }, [](int x) { return x < kWidth / 2 ? 32.0 : 2.0; });
     const AdaptiveAllocation a = allocateSamples(s, 64);
     ASSERT_FALSE(a.uniform);
     const double left = pixelMean(a.samples, 0, 8), right = pixelMean(a.samples, 24, 32);
@@ -113,8 +115,32 @@ TEST(AdaptiveSampling, SamplesGoWhereTheyCostLess) {
     EXPECT_NEAR(right, 114.9, 1.0);
 }
 
+// The first epoch is uniform and short; an allocation not worth making early is a uniform epoch
+// of the usual length, and later it ends the epochs: the render is uniform from there on (no
+// more allocations, no more epoch ends to cut passes at).
+TEST(AdaptiveSampling, AnAllocationNotWorthMakingEndsTheEpochs) {
+    AccumulationState empty;
+    empty.width = kWidth;
+    empty.height = kHeight;
+    EXPECT_EQ(planEpoch(empty).rounds, kFirstEpochRounds);
+    const AdaptiveEpoch early = planEpoch(adaptiveState(
+        16, [](int) { return 0.04; }, [](int) { return 5.0; }));
+    EXPECT_EQ(early.rounds, 16u);
+    EXPECT_TRUE(early.allocation.uniform);
+    const AdaptiveEpoch even = planEpoch(adaptiveState(
+        kLastEpochAfter, [](int) { return 0.04; }, [](int) { return 5.0; }));
+    EXPECT_EQ(even.rounds, kLastEpochRounds);
+    EXPECT_TRUE(std::all_of(even.allocation.samples.begin(), even.allocation.samples.end(),
+        [](uint32_t n) { return n == kLastEpochRounds; }));
+    const AdaptiveEpoch uneven = planEpoch(adaptiveState(
+        16, [](int x) { return x < kWidth / 2 ? 0.64 : 0.01; }, [](int) { return 4.0; }));
+    EXPECT_EQ(uneven.rounds, 16u);
+    EXPECT_FALSE(uneven.allocation.uniform);
+}
+
 TEST(AdaptiveSampling, ResolveDividesEachPixelByItsOwnCount) {
-    AccumulationState s = adaptiveState(4, [](int) { return 0.0; }, [](int) { return 1.0; });
+    AccumulationState s = adaptiveState(
+        4, [](int) { return 0.0; }, [](int) { return 1.0; });
     for (size_t i = 0; i < s.pixels(); ++i) {
         s.pixelSamples[i] = 1 + uint32_t(i % 7);
         s.sums[ACCUMULATION_VEC4S_PER_PIXEL * i + ACCUM_SUM] = glm::vec4(glm::vec3(float(s.pixelSamples[i])), 0.0f);
@@ -128,7 +154,8 @@ TEST(AdaptiveSampling, ResolveDividesEachPixelByItsOwnCount) {
 }
 
 TEST(AdaptiveSampling, TheStateFileKeepsTheCountsAndMergeRefusesThem) {
-    AccumulationState s = adaptiveState(24, [](int x) { return 0.01 * x; }, [](int x) { return 3.0 + x; });
+    AccumulationState s = adaptiveState(
+        24, [](int x) { return 0.01 * x; }, [](int x) { return 3.0 + x; });
     for (size_t i = 0; i < s.pixels(); ++i) {
         s.pixelSamples[i] = 70000u * uint32_t(i) + 5u; // beyond 16 bits
         s.allocation[i] = uint32_t(3 * i + 1);
