@@ -60,9 +60,10 @@ AdaptiveAllocation allocateSamples(const AccumulationState& state, uint32_t roun
 
 // The length of the last epoch, which a render enters the first time an allocation is not
 // worth it after kLastEpochAfter rounds: uniform from there on, with no more allocations and no
-// more epoch ends to cut passes at (they cost 2% on the diffuse Cornell box). Far beyond any
-// render. Earlier estimates may not have seen the rare paths yet: the glass box's predicted gain
-// is 1.18 after 8 rounds, 1.30 after 16 and 1.49 after 32.
+// more epoch ends to cut passes at (four of them in the first 64 rounds cost 1-3% on the
+// scenes that stay uniform). Far beyond any render. An allocation not worth it before that is
+// a uniform epoch up to kLastEpochAfter rounds: earlier estimates may not have seen the rare
+// paths yet (the glass box's predicted gain is 1.18 after 8 rounds, 1.49 after 32).
 constexpr uint32_t kLastEpochRounds = uint32_t(1) << 31;
 constexpr uint32_t kLastEpochAfter = 64;
 

@@ -77,9 +77,10 @@ TEST_F(AdaptiveRender, AContinuedRenderIsBitIdentical) {
     auto straight = makeRenderer(24);
     ASSERT_GT(renderAdaptively(*straight, 80, 5).adaptiveEpochs, 0u);
     auto first = makeRenderer(24);
-    renderAdaptively(*first, 21, 5); // stops mid-epoch (8 + 8 + 5 of 16), as an interrupted render
+    renderAdaptively(*first, 21, 5); // stops mid-epoch, as an interrupted render
     const AccumulationState saved = first->readState();
-    ASSERT_EQ(saved.epochRoundsDone, 5u);
+    ASSERT_GT(saved.epochRoundsDone, 0u);
+    ASSERT_LT(saved.epochRoundsDone, saved.epochRounds);
     auto resumed = makeRenderer(24);
     resumed->loadState(saved);
     renderAdaptively(*resumed, 80, 5);
