@@ -121,10 +121,9 @@ AdaptiveEpoch planEpoch(const AccumulationState& state) {
     AdaptiveEpoch epoch;
     epoch.rounds = nextEpochRounds(state.spp);
     epoch.allocation = allocateSamples(state, epoch.rounds);
-    // A uniform epoch runs to kLastEpochAfter rounds, or for good after them: fewer epoch ends.
-    if (epoch.allocation.uniform && state.spp > 0) {
-        epoch.rounds = state.spp >= kLastEpochAfter ? kLastEpochRounds : kLastEpochAfter - state.spp;
-        epoch.allocation.samples.assign(state.pixels(), epoch.rounds);
+    if (epoch.allocation.uniform && state.spp >= kLastEpochAfter) {
+        epoch.rounds = kLastEpochRounds;
+        epoch.allocation.samples.assign(state.pixels(), kLastEpochRounds);
     }
     return epoch;
 }

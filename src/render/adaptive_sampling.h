@@ -42,8 +42,9 @@ uint32_t nextEpochRounds(uint32_t roundsDone);
 // Below this predicted gain (AdaptiveAllocation::predictedGain) the epoch is uniform: the
 // estimates are noisy, and Sobol' points lower a pixel's error by more than its samples' variance
 // says where the integrand is smooth, so a small predicted gain is none. Measured: the diffuse
-// Cornell box predicts G = 1.?? and renders worse adaptively; the rough box predicts ?? and
-// renders 1.?x better (bench/RESULTS.md, "Adaptive sampling").
+// Cornell box predicts 1.18-1.22 and rendered 1.07-1.17x worse adaptively; the rough box predicts
+// 1.6-1.8 and renders 1.3x better, the glass box 1.5 and 1.7x better (bench/RESULTS.md,
+// "Adaptive sampling").
 constexpr double kMinPredictedGain = 1.3;
 
 struct AdaptiveAllocation {
@@ -60,10 +61,9 @@ AdaptiveAllocation allocateSamples(const AccumulationState& state, uint32_t roun
 
 // The length of the last epoch, which a render enters the first time an allocation is not
 // worth it after kLastEpochAfter rounds: uniform from there on, with no more allocations and no
-// more epoch ends to cut passes at (four of them in the first 64 rounds cost 1-3% on the
-// scenes that stay uniform). Far beyond any render. An allocation not worth it before that is
-// a uniform epoch up to kLastEpochAfter rounds: earlier estimates may not have seen the rare
-// paths yet (the glass box's predicted gain is 1.18 after 8 rounds, 1.49 after 32).
+// more epoch ends to cut passes at (they cost 1-2% on the diffuse Cornell box). Far beyond any
+// render. Earlier estimates may not have seen the rare paths yet: the glass box's predicted gain
+// is 1.18 after 8 rounds, 1.30 after 16 and 1.49 after 32.
 constexpr uint32_t kLastEpochRounds = uint32_t(1) << 31;
 constexpr uint32_t kLastEpochAfter = 64;
 
