@@ -38,6 +38,7 @@ int runView(const ViewOptions& v) {
     if (course && !pick.camera && !scene.cameras.empty()) pick.camera = scene.cameras.front().id;
     const Camera camera = chooseCameras(scene, pick, course).front();
     config.job = makeJob(scene, camera, o, false, course);
+    config.job.target.adaptive = false; // the viewer's passes sample every pixel alike
     FlatScene flat = flattenWithNotes(scene, o);
 
     config.sceneSource = scene.source;
