@@ -3,8 +3,9 @@
 // converged (the light itself, a flat wall in full light). The error measure pt reports and
 // compares by, relMSE, is the mean over pixels of (value - truth)^2 / (truth^2 + 0.01); a pixel
 // whose samples have variance s^2 contributes s^2 / (n (truth^2 + 0.01)) with n samples, and
-// for a fixed total the sum is least when n is proportional to s / sqrt(truth^2 + 0.01). That
-// is the allocation, estimated from the samples so far.
+// if a sample costs c (the rays it traces), for a fixed time the sum is least when n is
+// proportional to s / sqrt((truth^2 + 0.01) c). That is the allocation, estimated from the
+// samples so far.
 //
 // The render runs in epochs of doubling length (8 rounds, then as many as so far), each with a
 // per-pixel allocation fixed at its start from the image at that point; an epoch is added in
