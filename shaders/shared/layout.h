@@ -513,10 +513,11 @@ struct GpuRenderPush {
     uint64_t rayCounts;
     // Adaptive sampling (render/adaptive_sampling.h), 0 when every pixel takes sampleCount
     // samples: device address of uvec4[pixels], each pixel's (samples summed so far, samples
-    // its current epoch gives it, rays its samples traced in the epoch, 0). The pass then adds rounds [sampleStart, sampleStart +
-    // sampleCount) of the epoch's epochRounds: pixel p takes its allocation a_p times those
-    // rounds over epochRounds, rounded down at both ends, from its own next sample index, so
-    // however an epoch is split into passes each pixel ends it with exactly a_p more samples.
+    // its current epoch gives it, rays its samples traced in the epoch, 0). The pass then adds
+    // rounds [sampleStart, sampleStart + sampleCount) of the epoch's epochRounds: pixel p takes
+    // its allocation a_p times those rounds over epochRounds, rounded down at both ends, from its
+    // own next sample index, so however an epoch is split into passes each pixel ends it with
+    // exactly a_p more samples.
     uint64_t adaptiveSamples;
     uint epochRounds;
     uint adaptivePad;

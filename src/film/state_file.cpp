@@ -38,8 +38,8 @@ std::string splatChannelName(uint32_t word, int piece) {
     return "state.splat." + std::to_string(word) + "." + std::to_string(piece);
 }
 
-// Adaptive sampling's per-pixel counts (samples so far, the epoch's allocation): 32-bit
-// integers as two 16-bit pieces, each exact in a float channel.
+// Adaptive sampling's per-pixel counts (samples so far, the epoch's allocation, the epoch's
+// rays): 32-bit integers as two 16-bit pieces, each exact in a float channel.
 constexpr const char* kAdaptiveChannels[] = {"state.adaptive.samples.0", "state.adaptive.samples.1",
     "state.adaptive.allocation.0", "state.adaptive.allocation.1", "state.adaptive.rays.0", "state.adaptive.rays.1"};
 constexpr int kAdaptiveCounts = 3;

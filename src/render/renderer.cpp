@@ -132,7 +132,7 @@ void Renderer::startAdaptiveEpoch(const std::vector<uint32_t>& allocation, uint3
         if (samples_ != 0) throw std::logic_error("adaptive sampling switched on after uniform passes");
         adaptiveSamples_ = std::make_unique<GpuBuffer>(context_, pixels * sizeof(glm::uvec4), "adaptive samples");
     } else {
-        adaptiveSamples_->download(perPixel.data(), pixels * sizeof(glm::uvec4));
+        perPixel = adaptivePixels();
     }
     for (size_t i = 0; i < pixels; ++i) {
         perPixel[i].y = allocation[i];
@@ -143,6 +143,12 @@ void Renderer::startAdaptiveEpoch(const std::vector<uint32_t>& allocation, uint3
     adaptiveSamples_->upload(perPixel.data(), pixels * sizeof(glm::uvec4));
     epochRounds_ = rounds;
     epochRoundsDone_ = 0;
+}
+
+std::vector<glm::uvec4> Renderer::adaptivePixels() const {
+    std::vector<glm::uvec4> perPixel(size_t(film_.width) * film_.height);
+    adaptiveSamples_->download(perPixel.data(), perPixel.size() * sizeof(glm::uvec4));
+    return perPixel;
 }
 
 void Renderer::addSamples(uint32_t count, uint32_t tileSize) {
@@ -329,8 +335,7 @@ AccumulationState Renderer::readState() const {
             accumulation().download(state.splats.data(), state.splats.size() * sizeof(uint64_t), splatOffset());
     }
     if (adaptive()) {
-        std::vector<glm::uvec4> perPixel(state.pixels());
-        adaptiveSamples_->download(perPixel.data(), perPixel.size() * sizeof(glm::uvec4));
+        const std::vector<glm::uvec4> perPixel = adaptivePixels();
         state.pixelSamples.resize(perPixel.size());
         state.allocation.resize(perPixel.size());
         state.epochRays.resize(perPixel.size());
@@ -387,7 +392,11 @@ void Renderer::setFirstSample(uint32_t index) {
 
 Renderer::RayCounts Renderer::rayCounts() const {
     RayCounts counts;
-    counts.camera = adaptive() ? uint64_t(readState().totalSamples()) : uint64_t(samples_) * film_.width * film_.height;
+    counts.camera = uint64_t(samples_) * film_.width * film_.height;
+    if (adaptive()) {
+        counts.camera = 0;
+        for (const glm::uvec4& p : adaptivePixels()) counts.camera += p.x;
+    }
     if (!rayCounts_) return counts;
     std::vector<glm::uvec4> perPixel(size_t(film_.width) * film_.height);
     rayCounts_->download(perPixel.data(), perPixel.size() * sizeof(glm::uvec4));

@@ -124,6 +124,8 @@ private:
     VkDeviceSize splatOffset() const; // bytes before the splat sums in the accumulation buffer
     // Interactive use: grows the accumulation buffer (our own) to at least `bytes`.
     void ensureAccumulationBytes(VkDeviceSize bytes);
+    // Adaptive sampling's buffer read back (adaptiveSamples_ must exist).
+    std::vector<glm::uvec4> adaptivePixels() const;
     // Lavapipe turns a compute pipeline into machine code at its first dispatch, not when it
     // is created (seconds for the light-tracing kernel with a cold Mesa cache): one empty
     // dispatch right after creation moves that into start-up, where the log counts it, so that
