@@ -97,6 +97,7 @@ HEADERS = {
     "unistd.h": [("build-essential", "/usr/include/unistd.h")],
     "fcntl.h": [("build-essential", "/usr/include/fcntl.h")],
     "signal.h": [("build-essential", "/usr/include/signal.h")],
+    "sched.h": [("build-essential", "/usr/include/sched.h")],
     "pthread.h": [("build-essential", "/usr/include/pthread.h")],
     "dirent.h": [("build-essential", "/usr/include/dirent.h")],
     "poll.h": [("build-essential", "/usr/include/poll.h")],
