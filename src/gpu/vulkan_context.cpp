@@ -40,9 +40,10 @@ int deviceTypeRank(VkPhysicalDeviceType type) {
 // Lavapipe runs a dispatch on one thread per core (LP_NUM_THREADS). Twice as many threads
 // traced 22-25% more paths per second in the glass box with adaptive sampling on a 2-core
 // machine (0.78x the error at equal time; the diffuse box level to +2%; bench/RESULTS.md,
-// "Lavapipe threads"): where pixels cost unevenly, a core whose thread has finished its share
-// of a pass keeps working on another's. Only where the user has not chosen; other drivers
-// ignore the variable. Before the instance, whose creation starts the driver.
+// "Lavapipe threads"). The gain follows how unevenly a pass's pixels cost, presumably because a
+// core whose thread has finished its share then works on another's (not checked in Mesa's
+// source). Only where the user has not chosen; other drivers ignore the variable. Before the
+// instance, whose creation starts the driver.
 void oversubscribeLavapipeThreads() {
     if (std::getenv("LP_NUM_THREADS")) return;
     cpu_set_t set;
