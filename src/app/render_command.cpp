@@ -203,7 +203,11 @@ int runRender(const RenderOptions& o) {
         std::fprintf(stderr, "pt: memory: resident %s once loaded, %s once flattened (peak %s), %s without the model\n",
             formatBytes(loadedBytes).c_str(), formatBytes(flattenedBytes).c_str(),
             formatBytes(peakResidentBytes()).c_str(), formatBytes(releasedBytes).c_str());
-        std::fprintf(stderr, "pt: device %s (%s)\n", context.info().name.c_str(), context.info().driver.c_str());
+        const std::string chosen = VulkanContext::lavapipeSettingsChosen();
+        const bool cpuDevice = context.properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
+        std::fprintf(stderr, "pt: device %s (%s)%s%s\n", context.info().name.c_str(), context.info().driver.c_str(),
+            cpuDevice && !chosen.empty() ? "; lavapipe settings pt chose (set them to choose yours): " : "",
+            cpuDevice ? chosen.c_str() : "");
     }
     for (size_t i = 0; i < jobs.size(); ++i)
         if (const int status = renderJob(context, scene, flat, i + 1 == jobs.size(), jobs[i], o, reference,

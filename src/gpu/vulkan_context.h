@@ -61,6 +61,9 @@ public:
     const VkPhysicalDeviceMemoryProperties& memoryProperties() const { return memoryProperties_; }
     // True for lavapipe older than Mesa 24, which runs our kernel about 3.5x slower.
     bool isSlowLavapipe() const { return slowLavapipe_; }
+    // The lavapipe settings pt chose in this process, as the environment variables it set where
+    // the user had not (e.g. "LP_NUM_THREADS=4 GALLIUM_OVERRIDE_CPU_CAPS=avx"); empty if none.
+    static std::string lavapipeSettingsChosen();
 
     // Validation messages (warnings and errors) seen so far; 0 when validation is off.
     uint32_t validationMessageCount() const { return validationMessages_; }

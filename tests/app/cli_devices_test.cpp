@@ -1,8 +1,11 @@
 // pt and the Vulkan devices: pt devices lists one, no driver and an unmatched --device are one
-// clear error line each.
+// clear error line each, and the lavapipe settings pt chooses are named and yield to the user's.
 #include "cli_fixture.h"
 #include "support/malformed_corpus.h"
 
+#include <sched.h>
+
+#include <algorithm>
 #include <cctype>
 #include <sstream>
 
@@ -42,6 +45,42 @@ TEST_F(CliTest, UnmatchedDeviceIsAClearError) {
     const std::string line = r.errorLine();
     EXPECT_NE(line.find("NoSuchGpu9000"), std::string::npos) << line;
     EXPECT_NE(line.find("pt devices"), std::string::npos) << line;
+}
+
+// The log's "pt: device ..." line.
+std::string deviceLine(const std::string& log) {
+    std::istringstream s(log);
+    for (std::string line; std::getline(s, line);)
+        if (line.rfind("pt: device ", 0) == 0) return line;
+    return "";
+}
+
+// Where the user has not set them, pt sets two lavapipe threads a core and, on Intel CPUs with
+// AVX-512, AVX2 code, and says so on the device line; variables the user set are left alone.
+TEST_F(CliTest, LavapipeSettingsAreNamedAndYieldToTheUsers) {
+    const std::vector<std::string> argv = {PT_BINARY, "render", kDiffuseScene.string(), "--spp", "1", "--width", "8",
+        "--height", "8", "-o", (dir_ / "x.exr").string()};
+    RunOptions options;
+    options.dir = dir_;
+    options.unset.insert({"LP_NUM_THREADS", "GALLIUM_OVERRIDE_CPU_CAPS"});
+    const PtRun chosen = runProcess(argv, options);
+    EXPECT_EXIT_STATUS(chosen, 0);
+    const std::string line = deviceLine(chosen.err);
+    if (line.find("llvmpipe") == std::string::npos) GTEST_SKIP() << "not lavapipe: " << line;
+    cpu_set_t set;
+    CPU_ZERO(&set);
+    ASSERT_EQ(sched_getaffinity(0, sizeof set, &set), 0);
+    const int threads = std::min(2 * CPU_COUNT(&set), 32);
+    EXPECT_NE(line.find("LP_NUM_THREADS=" + std::to_string(threads)), std::string::npos) << line;
+    __builtin_cpu_init();
+    const bool intelAvx512 = __builtin_cpu_is("intel") && __builtin_cpu_supports("avx512f");
+    EXPECT_EQ(line.find("GALLIUM_OVERRIDE_CPU_CAPS=avx") != std::string::npos, intelAvx512) << line;
+
+    options.env = {{"LP_NUM_THREADS", "3"}, {"GALLIUM_OVERRIDE_CPU_CAPS", "avx"}};
+    const PtRun users = runProcess(argv, options);
+    EXPECT_EXIT_STATUS(users, 0);
+    EXPECT_NE(deviceLine(users.err).find("llvmpipe"), std::string::npos) << users;
+    EXPECT_EQ(deviceLine(users.err).find("settings pt chose"), std::string::npos) << users;
 }
 
 } // namespace
