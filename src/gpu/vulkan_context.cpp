@@ -45,7 +45,7 @@ std::string& chosenLavapipeSettings() {
 
 void chooseLavapipeSetting(const char* variable, const std::string& value) {
     if (setenv(variable, value.c_str(), 0) != 0) return;
-    // Once set, the variable is the user's to a second context in this process: not chosen twice.
+    // A second context in this process finds the variable set and leaves it, so it is named once.
     std::string& chosen = chosenLavapipeSettings();
     chosen += (chosen.empty() ? "" : " ") + std::string(variable) + "=" + value;
 }
@@ -69,9 +69,10 @@ void oversubscribeLavapipeThreads() {
 // On an Intel CPU with AVX-512, lavapipe's kernels built for AVX2 traced 4-10% more paths per
 // second than the AVX-512 ones it builds by default (the diffuse box +4%, the 1 M-triangle mesh
 // +8-10%, the glass box and BDPT level; bench/RESULTS.md, "Lavapipe without AVX-512"). Why is not
-// known: the AVX-512 code loads through 512-bit gathers and may run the core at a lower clock. Mesa reads GALLIUM_OVERRIDE_CPU_CAPS when the driver
-// loads; "avx" clears AVX-512 and keeps AVX2 and FMA. Images do not change. AMD's AVX-512 CPUs
-// were not measured, so they keep the driver's choice; so does a user who set the variable.
+// known: the AVX-512 code loads through 512-bit gathers and may run the core at a lower clock.
+// Mesa reads GALLIUM_OVERRIDE_CPU_CAPS when the driver loads; "avx" clears AVX-512 and keeps AVX2
+// and FMA. Images do not change. AMD's AVX-512 CPUs were not measured, so they keep the driver's
+// choice; so does a user who set the variable.
 void preferLavapipeAvx2Code() {
 #if defined(__x86_64__) || defined(__i386__)
     if (std::getenv("GALLIUM_OVERRIDE_CPU_CAPS")) return;
