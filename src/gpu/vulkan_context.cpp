@@ -43,9 +43,10 @@ std::string& chosenLavapipeSettings() {
     return chosen;
 }
 
+// Sets `variable` unless it is set already: the user's value wins, and a second context in this
+// process finds pt's own and leaves it, so each setting is named once.
 void chooseLavapipeSetting(const char* variable, const std::string& value) {
-    if (setenv(variable, value.c_str(), 0) != 0) return;
-    // A second context in this process finds the variable set and leaves it, so it is named once.
+    if (std::getenv(variable) || setenv(variable, value.c_str(), 0) != 0) return;
     std::string& chosen = chosenLavapipeSettings();
     chosen += (chosen.empty() ? "" : " ") + std::string(variable) + "=" + value;
 }
@@ -58,7 +59,6 @@ void chooseLavapipeSetting(const char* variable, const std::string& value) {
 // source). Only where the user has not chosen; other drivers ignore the variable. Before the
 // instance, whose creation starts the driver.
 void oversubscribeLavapipeThreads() {
-    if (std::getenv("LP_NUM_THREADS")) return;
     cpu_set_t set;
     CPU_ZERO(&set);
     const int cores = sched_getaffinity(0, sizeof set, &set) == 0 ? CPU_COUNT(&set) : 0;
@@ -75,7 +75,6 @@ void oversubscribeLavapipeThreads() {
 // choice; so does a user who set the variable.
 void preferLavapipeAvx2Code() {
 #if defined(__x86_64__) || defined(__i386__)
-    if (std::getenv("GALLIUM_OVERRIDE_CPU_CAPS")) return;
     __builtin_cpu_init();
     if (__builtin_cpu_is("intel") && __builtin_cpu_supports("avx512f"))
         chooseLavapipeSetting("GALLIUM_OVERRIDE_CPU_CAPS", "avx");
