@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
-# Path tracing against bidirectional path tracing at equal time on one scene: one after the other
-# on the whole machine, each scored against the same reference (box-filtered down to the render's
-# size where it is a whole multiple of it, as `pt render --reference` does). Prints the CPU, a
-# Markdown row per integrator (spp, M paths/s, relMSE) and the relMSE ratio path / bdpt; keeps
-# both images (EXR and PNG) in OUT_DIR.
+# Path tracing against bidirectional path tracing, with and without vertex merging, at equal time
+# on one scene: one after the other on the whole machine, each scored against the same reference
+# (box-filtered down to the render's size where it is a whole multiple of it, as `pt render
+# --reference` does). Prints the CPU, a Markdown row per integrator (spp, M paths/s, relMSE,
+# estimated relMSE) and the relMSE ratios path / bdpt and path / vcm; keeps the images (EXR and
+# PNG) in OUT_DIR. INTEGRATORS (environment) chooses which run (default "path bdpt vcm").
 #
 #   bash bench/bench_bdpt.sh PT SCENE REFERENCE.exr SECONDS WIDTH HEIGHT OUT_DIR [pt options...]
 #
@@ -25,16 +26,21 @@ shift 7
 mkdir -p "$out"
 echo "CPU: $(sed -n 's/^model name[[:space:]]*: //p' /proc/cpuinfo | head -1), $(nproc) cores;" \
   "$(grep -o -w -m1 -E 'avx512f|avx2' /proc/cpuinfo | sort -r | head -1)"
-echo "| integrator | spp | M paths/s | relMSE |"
-echo "|---|---|---|---|"
+echo "| integrator | spp | M paths/s | relMSE | estimated relMSE |"
+echo "|---|---|---|---|---|"
 declare -A err
-for integrator in path bdpt; do
+for integrator in ${INTEGRATORS:-path bdpt vcm}; do
   "$pt" render "$scene" --integrator "$integrator" --time "$seconds" --width "$width" --height "$height" \
     --reference "$reference" -o "$out/$integrator.exr" "$@" 2>"$out/$integrator.log"
   line=$(grep ' spp in ' "$out/$integrator.log" | tail -1)
   spp=$(sed -n 's/.*: \([0-9]*\) spp in .*/\1/p' <<<"$line")
   rate=$(sed -n 's/.* \([0-9.]*\) M paths\/s.*/\1/p' <<<"$line")
   err[$integrator]=$(sed -n 's/.*, relMSE \([0-9.e+-]*\).*/\1/p' <<<"$line")
-  echo "| $integrator | $spp | $rate | ${err[$integrator]} |"
+  estimate=$(sed -n 's/.*estimated relMSE \([0-9.e+-]*\).*/\1/p' <<<"$line")
+  echo "| $integrator | $spp | $rate | ${err[$integrator]} | $estimate |"
 done
-echo "relMSE path / bdpt at ${seconds} s, ${width}x${height}: $(python3 -c "print(round(${err[path]} / ${err[bdpt]}, 2))")"
+for other in bdpt vcm; do
+  if [ -n "${err[path]:-}" ] && [ -n "${err[$other]:-}" ]; then
+    echo "relMSE path / $other at ${seconds} s, ${width}x${height}: $(python3 -c "print(round(${err[path]} / ${err[$other]}, 2))")"
+  fi
+done

@@ -54,6 +54,8 @@
 // light subpath's, lights/emitter_sampling.glsl), so that the camera path's numbers stay the path
 // tracer's.
 const uint DIM_CONNECTION = 0x20000000u;
+// Whether the merge grid keeps light vertex i (integrator/vcm.glsl, mergeKeep), likewise.
+const uint DIM_MERGE_KEEP = 0x30000000u;
 
 // The power heuristic's square; without MIS, 1 for every strategy that can make the path, so
 // the weights become 1 / (number of such strategies).
@@ -61,14 +63,27 @@ float misPower(float x) { return USE_MIS ? x * x : (x > 0.0 ? 1.0 : 0.0); }
 
 // The MIS sums of a subpath (file comment), split by the kind of strategy each term stands for:
 // c for connections of a camera and a light vertex (s >= 2, t >= 2), e for the strategies every
-// sample takes whole: an emitter hit (s = 0), light sampling (s = 1) and light tracing (t = 1).
-// The endpoint terms only enter at a subpath's start; every later bounce adds a connection's.
+// sample takes whole: an emitter hit (s = 0), light sampling (s = 1) and light tracing (t = 1);
+// m for merges at a vertex (integrator/vcm.glsl), 0 where the kernel does not merge.
+// The endpoint terms only enter at a subpath's start; every later bounce adds a connection's
+// and a merge's.
 struct MisSums {
     float cVCM;
     float cVC;
     float eVCM;
     float eVC;
+    float mVC;
 };
+
+// The kinds of strategy, each sampled at its own rate (otherStrategies).
+const uint STRATEGY_ENDPOINT = 0u;
+const uint STRATEGY_CONNECTION = 1u;
+const uint STRATEGY_MERGE = 2u;
+
+// A merge's density over a connection's at the same vertex, beside the density of the
+// direction that makes the merged vertex: pi r^2 times the light subpaths a round holds
+// (Georgiev et al. 2012's eta_VCM). 0 in a kernel or dispatch that does not merge.
+float mergeEta = 0.0;
 
 // The share of the connections at a camera vertex one sample takes: one over the light vertices
 // it could connect to, on average over a path's camera vertices. Without roulette a light subpath
@@ -82,20 +97,22 @@ float connectionShare() {
     return 1.0 / clamp(expected, 1.0, float(BDPT_MAX_LIGHT_VERTICES));
 }
 
-// The power heuristic's sum of the other strategies over the one evaluated: `connections` and
-// `endpoints` the terms of each kind at their own densities, the evaluated strategy a connection
-// or not.
-float otherStrategies(float connections, float endpoints, bool evaluatedIsConnection) {
-    float share = misPower(connectionShare());
-    return evaluatedIsConnection ? connections + endpoints / share : endpoints + connections * share;
+// The power heuristic's sum of the other strategies over the one evaluated: `terms` holds the
+// terms of each kind (connections, endpoints, merges) at their own densities, which the rate
+// each kind is taken at scales (a connection's share, a merge's eta), over the evaluated one's.
+float otherStrategies(vec3 terms, uint evaluated) {
+    float share = misPower(connectionShare()), merge = misPower(mergeEta);
+    float sum = terms.x * share + terms.y + terms.z * merge;
+    return sum / (evaluated == STRATEGY_CONNECTION ? share : evaluated == STRATEGY_MERGE ? merge : 1.0);
 }
 
 // A subpath's sums as the evaluated strategy sees them: the terms of the strategy that takes this
-// vertex from the other side (atVertex, the density of that side's making it) and those further
-// back (times furtherBack, the density of the reverse sampling at this vertex).
-vec2 sideTerms(MisSums m, float atVertex, float furtherBack) {
+// vertex from the other side (atVertex, the density of that side's making it), of merging at
+// this vertex (mergeHere, mergeTerm) and those further back (times furtherBack, the density of
+// the reverse sampling at this vertex).
+vec3 sideTerms(MisSums m, float atVertex, float furtherBack, float mergeHere) {
     float a = misPower(atVertex), b = misPower(furtherBack);
-    return vec2(a * (m.cVCM + m.cVC * b), a * (m.eVCM + m.eVC * b));
+    return a * vec3(m.cVCM + m.cVC * b, m.eVCM + m.eVC * b, m.mVC * b + mergeHere);
 }
 
 // The sums across a surface hit at distance `dist` with geometric cosine cosIn.
@@ -105,6 +122,7 @@ void arriveMisSums(inout MisSums m, float dist, float cosIn) {
     m.eVCM *= toArea;
     m.cVC *= cosOnly;
     m.eVC *= cosOnly;
+    m.mVC *= cosOnly;
 }
 
 // The weight of strategy s for a path of `segments` segments: `mis`, or in a kernel that keeps
@@ -116,18 +134,22 @@ float strategyWeight(uint s, uint segments, float mis) {
 
 // The MIS sums of a subpath carried across the bounce `bs` (either subpath's: the recursion is
 // the same): cosOut, the new direction's geometric cosine here; pdfReverse, the density of the
-// other subpath's sampling the direction this one arrived from. A delta bounce's forward and
+// other subpath's sampling the direction this one arrived from; mergeHere, the vertex's merge
+// term (mergeTerm). A delta bounce's forward and
 // reverse lobe probabilities are equal and cancel, and no strategy connects at it.
-void advanceMisSums(BsdfSample bs, float cosOut, float pdfReverse, inout MisSums m) {
+void advanceMisSums(BsdfSample bs, float cosOut, float pdfReverse, float mergeHere, inout MisSums m) {
     if (bs.isDelta) {
         m.cVCM = 0.0;
         m.eVCM = 0.0;
         m.cVC *= misPower(cosOut);
         m.eVC *= misPower(cosOut);
+        m.mVC *= misPower(cosOut);
     } else {
+        // The vertex left is one a merge can take (non-delta): its term joins the merges'.
         float scale = misPower(cosOut / bs.pdf), reverse = misPower(pdfReverse);
         m.cVC = scale * (m.cVC * reverse + m.cVCM);
         m.eVC = scale * (m.eVC * reverse + m.eVCM);
+        m.mVC = scale * (m.mVC * reverse + mergeHere);
         m.cVCM = misPower(1.0 / bs.pdf);
         m.eVCM = 0.0;
     }
@@ -146,6 +168,25 @@ struct LightVertex {
 
 LightVertex lightVertices[BDPT_MAX_LIGHT_VERTICES];
 uint lightVertexCount = 0u;
+#include "integrator/vcm.glsl"
+
+// This invocation's pixel, row-major (vertex merging's stored light subpaths are per pixel).
+uint bdptPixelIndex = 0u;
+
+bool mergingPhase(uint phase) { return MERGING && vcm.phase == phase; }
+
+// The merge term a non-delta vertex at p adds to the MIS sums: the probability that the grid
+// keeps a light vertex there (mergeKeep), through the heuristic; 0 in a dispatch that does not merge.
+float mergeTerm(vec3 p) {
+    return mergingPhase(VCM_PHASE_LIGHT) || mergingPhase(VCM_PHASE_CAMERA) ? misPower(mergeKeep(p)) : 0.0;
+}
+
+// Light vertex i of this sample's light subpath: kept in the invocation, or (vertex merging's
+// camera phase) stored by the light phase.
+LightVertex lightVertexAt(uint i) {
+    if (mergingPhase(VCM_PHASE_CAMERA)) return loadVcmVertex(bdptPixelIndex * vcm.verticesPerPixel + i);
+    return lightVertices[i];
+}
 
 struct ShadedVertex {
     SurfaceInteraction si;
@@ -178,9 +219,9 @@ void connectLightVertexToCamera(
     if (cosLightIn < 1e-7) return;
     float cosCamera = abs(dot(view.wCamera, si.ng));
     float cameraPdfArea = view.importance * cosCamera; // over the pixel count
-    vec2 lightSide = sideTerms(mis, cameraPdfArea, e.pdfTowardsLight);
+    vec3 lightSide = sideTerms(mis, cameraPdfArea, e.pdfTowardsLight, mergeTerm(si.p));
     float weight =
-        strategyWeight(segments + 1u, segments + 1u, 1.0 / (1.0 + otherStrategies(lightSide.x, lightSide.y, false)));
+        strategyWeight(segments + 1u, segments + 1u, 1.0 / (1.0 + otherStrategies(lightSide, STRATEGY_ENDPOINT)));
     if (weight == 0.0) return;
     vec3 contribution = beta * e.fCos * (weight * view.importance * cosCamera / cosLightIn);
     if (entersAbsorbingInterior(si, mat, view.wCamera)) contribution *= exp(-mat.sigmaA * view.distance);
@@ -205,7 +246,7 @@ void traceLightSubpath(Rng rng, bool cameraConnects) {
     vec3 beta = em.beta;
     vec3 throughput = vec3(1.0); // bounce weights alone, for Russian roulette
     // The first vertex's sums need the density of sampling the light from it, known at the hit.
-    MisSums mis = MisSums(0.0, 0.0, 0.0, em.hittable ? misPower(em.cosLight / em.pdfEmit) : 0.0);
+    MisSums mis = MisSums(0.0, 0.0, 0.0, em.hittable ? misPower(em.cosLight / em.pdfEmit) : 0.0, 0.0);
     uint segments = 1u;
     while (true) {
         Hit hit;
@@ -233,7 +274,11 @@ void traceLightSubpath(Rng rng, bool cameraConnects) {
 
         bool connectible = isSurfaceBsdf(mat);
         if (connectible) {
-            if (segments + 2u <= scene.maxDepth && lightVertexCount < BDPT_MAX_LIGHT_VERTICES) {
+            // Kept for connections (a camera segment and one more) or, when merging, for merges
+            // (the camera's segments end at it).
+            bool merging = mergingPhase(VCM_PHASE_LIGHT) || mergingPhase(VCM_PHASE_PILOT);
+            uint limit = merging ? min(vcm.verticesPerPixel, BDPT_MAX_LIGHT_VERTICES) : BDPT_MAX_LIGHT_VERTICES;
+            if (segments + (merging ? 1u : 2u) <= scene.maxDepth && lightVertexCount < limit) {
                 LightVertex v;
                 v.ray = ray;
                 v.hit = hit;
@@ -241,7 +286,12 @@ void traceLightSubpath(Rng rng, bool cameraConnects) {
                 v.beta = beta;
                 v.mis = mis;
                 v.segments = segments;
-                lightVertices[lightVertexCount++] = v;
+                if (merging)
+                    storeVcmVertex(bdptPixelIndex, lightVertexCount, v, dot(wLight, si.ng) >= 0.0 ? si.ng : -si.ng,
+                        rng1(rng, DIM_MERGE_KEEP + lightVertexCount));
+                else
+                    lightVertices[lightVertexCount] = v;
+                lightVertexCount += 1u;
             }
             if (cameraConnects && segments + 1u <= scene.maxDepth)
                 connectLightVertexToCamera(si, mat, wLight, beta, mis, segments);
@@ -291,7 +341,7 @@ void traceLightSubpath(Rng rng, bool cameraConnects) {
             weight = bs.weight * bs.etaScale * (abs(dot(wLight, si.ns)) * abs(dot(wCamera, si.ng)) / denominator);
         }
         if (!allFinite(weight) || maxComponent(weight) <= 0.0) break;
-        advanceMisSums(bs, abs(dot(wCamera, si.ng)), pdfReverse, mis);
+        advanceMisSums(bs, abs(dot(wCamera, si.ng)), pdfReverse, bs.isDelta ? 0.0 : mergeTerm(si.p), mis);
         beta *= weight;
         throughput *= weight;
         if (USE_RR && segments + 1u >= scene.rrStartDepth) {
@@ -327,7 +377,7 @@ vec3 bdptLightSample(
     vec3 fCos = surfaceEvalPdf(mat, woLocal, wiLocal, pdfForward);
     if (maxComponent(fCos) <= 0.0) return vec3(0.0);
     float hitTerm = ls.isDelta ? 0.0 : misPower(pdfForward / ls.pdf); // s = 0: a BSDF ray hits it
-    vec2 cameraSide = vec2(0.0);
+    vec3 cameraSide = vec3(0.0);
     float pdfEmit = emissionPdf(lightIndex, ls.point, ls.normal, -ls.wi);
     if (pdfEmit > 0.0) {
         // s >= 2: the light subpath starts here and reaches si.
@@ -336,9 +386,9 @@ vec3 bdptLightSample(
         float directPdfW = positionDelta ? ls.pdf * ls.distance * ls.distance : ls.pdf;
         float cosHere = abs(dot(ls.wi, si.ng));
         float pdfReverse = surfacePdf(mat, wiLocal, woLocal);
-        cameraSide = sideTerms(mis, pdfEmit * cosHere / (directPdfW * cosAtLight), pdfReverse);
+        cameraSide = sideTerms(mis, pdfEmit * cosHere / (directPdfW * cosAtLight), pdfReverse, mergeTerm(si.p));
     }
-    float others = otherStrategies(cameraSide.x, cameraSide.y + hitTerm, false);
+    float others = otherStrategies(cameraSide + vec3(0.0, hitTerm, 0.0), STRATEGY_ENDPOINT);
     float weight = strategyWeight(1u, depth + 1u, 1.0 / (1.0 + others));
     if (weight == 0.0 || lightOccluded(si, ls)) return vec3(0.0);
     if (HAS_ABSORPTION && ls.distance != FLOAT_MAX && entersAbsorbingInterior(si, mat, ls.wi))
@@ -366,11 +416,11 @@ vec3 connectToLightVertex(
     // Densities of each side's path making the other side's vertex, per unit area.
     float cameraMakesLightVertex = c.pdfTowardsLight * cosLight / dist2;
     float lightMakesCameraVertex = l.pdfTowardsCamera * cosCamera / dist2;
-    vec2 lightSide = sideTerms(lv.mis, cameraMakesLightVertex, l.pdfTowardsLight);
-    vec2 cameraSide = sideTerms(mis, lightMakesCameraVertex, c.pdfTowardsCamera);
-    vec2 others = lightSide + cameraSide;
+    vec3 lightSide = sideTerms(lv.mis, cameraMakesLightVertex, l.pdfTowardsLight, mergeTerm(lv.p));
+    vec3 cameraSide = sideTerms(mis, lightMakesCameraVertex, c.pdfTowardsCamera, mergeTerm(si.p));
     uint s = lv.segments + 1u;
-    float weight = strategyWeight(s, depth + s, 1.0 / (1.0 + otherStrategies(others.x, others.y, true)));
+    float weight =
+        strategyWeight(s, depth + s, 1.0 / (1.0 + otherStrategies(lightSide + cameraSide, STRATEGY_CONNECTION)));
     if (weight == 0.0) return vec3(0.0);
     // The light vertex's adjoint correction |wC.ng| / |wL.ng| with the geometry term's |wC.ns|
     // leaves cosLight / cosLightIn; the camera vertex's cosine is in c.fCos.
@@ -391,8 +441,8 @@ vec3 traceBdptCameraPath(Ray ray, Rng rng, bool cameraConnects) {
     uint depth = 1u;
     vec3 prevNormal = vec3(0.0); // where the ray left, for the light tree's pmf
     // The camera's first term is light tracing's (t = 1), its only endpoint term.
-    MisSums mis =
-        MisSums(0.0, 0.0, cameraConnects ? misPower(cameraDirectionWeight(scene.camera, ray.direction)) : 0.0, 0.0);
+    MisSums mis = MisSums(
+        0.0, 0.0, cameraConnects ? misPower(cameraDirectionWeight(scene.camera, ray.direction)) : 0.0, 0.0, 0.0);
     while (true) {
         Hit hit;
         countClosestRay();
@@ -404,7 +454,9 @@ vec3 traceBdptCameraPath(Ray ray, Rng rng, bool cameraConnects) {
                 // The last camera vertex's term is light sampling's (s = 1), an endpoint's.
                 float lightSampling = depth > 1u && USE_NEE ? misPower(pdfDirection) * (mis.cVCM + mis.eVCM) : 0.0;
                 float fromDisc = misPower(pdfDirection * infiniteLightDiscPdf());
-                float others = otherStrategies(fromDisc * mis.cVC, lightSampling + fromDisc * mis.eVC, false);
+                float others =
+                    otherStrategies(vec3(fromDisc * mis.cVC, lightSampling + fromDisc * mis.eVC, fromDisc * mis.mVC),
+                        STRATEGY_ENDPOINT);
                 L += beta * envRadiance(ray.direction) * strategyWeight(0u, depth, 1.0 / (1.0 + others));
             } else {
                 L += beta * backgroundRadiance(ray.direction, depth == 1u) * strategyWeight(0u, depth, 1.0);
@@ -428,7 +480,9 @@ vec3 traceBdptCameraPath(Ray ray, Rng rng, bool cameraConnects) {
                 float lightSampling = misPower(directLightPdfArea(si.lightIndex, ray.origin, prevNormal, si.p, si.ng)) *
                                       (mis.cVCM + mis.eVCM);
                 float fromEmitter = misPower(emissionPdf(si.lightIndex, si.p, si.ng, -ray.direction));
-                others = otherStrategies(fromEmitter * mis.cVC, lightSampling + fromEmitter * mis.eVC, false);
+                others = otherStrategies(
+                    vec3(fromEmitter * mis.cVC, lightSampling + fromEmitter * mis.eVC, fromEmitter * mis.mVC),
+                    STRATEGY_ENDPOINT);
             }
             L += beta * Le * strategyWeight(0u, depth, 1.0 / (1.0 + others));
         }
@@ -456,14 +510,17 @@ vec3 traceBdptCameraPath(Ray ray, Rng rng, bool cameraConnects) {
                 if (USE_NEE && scene.numLights > 0u)
                     L += beta * bdptLightSample(si, frame, woLocal, mat, rng, depth, mis);
                 // The light vertices that make a path no longer than the depth: a prefix.
+                // (Vertex i has at least i + 1 segments, so the count is bounded without a load.)
                 uint eligible = 0u;
-                while (eligible < lightVertexCount && depth + lightVertices[eligible].segments + 1u <= scene.maxDepth)
+                while (eligible < lightVertexCount && depth + eligible + 2u <= scene.maxDepth &&
+                       depth + lightVertexAt(eligible).segments + 1u <= scene.maxDepth)
                     eligible += 1u;
                 if (eligible > 0u) {
                     float u = rng1(rng, DIM_CONNECTION + depth);
-                    LightVertex lv = lightVertices[min(uint(u * float(eligible)), eligible - 1u)];
+                    LightVertex lv = lightVertexAt(min(uint(u * float(eligible)), eligible - 1u));
                     L += beta * float(eligible) * connectToLightVertex(si, mat, frame, wo, depth, mis, lv);
                 }
+                if (mergingPhase(VCM_PHASE_CAMERA)) L += beta * mergeAtVertex(si, mat, frame, wo, depth, mis);
                 bs = surfaceSample(mat, frame, woLocal, rng1(rng, bounceDimension(depth, DIM_BSDF_LOBE)),
                     rng2(rng, bounceDimension(depth, DIM_BSDF_DIRECTION)));
                 if (bs.valid && !bs.isDelta) pdfReverse = surfacePdf(mat, toLocal(frame, bs.wi), woLocal);
@@ -471,7 +528,7 @@ vec3 traceBdptCameraPath(Ray ray, Rng rng, bool cameraConnects) {
             if (HAS_NORMAL_MAPS && !transmissive && dot(bs.wi, si.nSurface) <= 0.0) break;
         }
         if (!bs.valid || maxComponent(bs.weight) <= 0.0 || !(bs.pdf > 0.0)) break;
-        advanceMisSums(bs, abs(dot(bs.wi, si.ng)), pdfReverse, mis);
+        advanceMisSums(bs, abs(dot(bs.wi, si.ng)), pdfReverse, bs.isDelta ? 0.0 : mergeTerm(si.p), mis);
         beta *= bs.weight;
         etaScale *= bs.etaScale;
         if (USE_RR && depth >= scene.rrStartDepth) {

@@ -56,7 +56,8 @@ vec3 nanMask(vec3 L) {
 // ajar they do not pay, bench/RESULTS.md): green 1 where it
 // could light the surface (it has radiance and lies above an opaque surface), red 1 where,
 // besides, nothing is in between. Mean red over mean green is the fraction of light samples
-// that find their light (src/render/light_visibility_probe.cpp).
+// that find their light (src/render/light_visibility_probe.cpp). Blue: the distance to that
+// surface, for vertex merging's radius.
 vec3 lightVisibility(Ray ray, Rng rng) {
     Hit hit;
     if (scene.numLights == 0u || !traceClosest(ray, FLOAT_MAX, hit)) return vec3(0.0);
@@ -64,18 +65,19 @@ vec3 lightVisibility(Ray ray, Rng rng) {
     GpuMaterial mat = sceneMaterials.v[si.materialIndex];
     applyTextures(mat, si);
     if (!isSurfaceBsdf(mat)) return vec3(0.0);
+    vec3 distance = vec3(0.0, 0.0, hit.t);
     bool transmissive = isTransmissiveSurface(mat);
     if (!transmissive && !si.frontFace) {
-        if ((mat.flags & MATERIAL_FLAG_DOUBLE_SIDED) == 0u) return vec3(0.0);
+        if ((mat.flags & MATERIAL_FLAG_DOUBLE_SIDED) == 0u) return distance;
         turnToBackSide(si);
     }
     uint index = selectLight(rng1(rng, bounceDimension(1u, DIM_LIGHT_SELECT)));
     uint type = sceneLights.v[index].type;
-    if (type == LIGHT_DIRECTIONAL || type == LIGHT_ENVIRONMENT) return vec3(0.0);
+    if (type == LIGHT_DIRECTIONAL || type == LIGHT_ENVIRONMENT) return distance;
     LightSample ls = sampleLightIndex(index, si.p, rng2(rng, bounceDimension(1u, DIM_LIGHT_POINT)));
-    if (ls.pdf <= 0.0 || maxComponent(ls.radiance) <= 0.0) return vec3(0.0);
-    if (!transmissive && dot(ls.wi, si.nSurface) <= 0.0) return vec3(0.0);
-    return vec3(lightOccluded(si, ls) ? 0.0 : 1.0, 1.0, 0.0);
+    if (ls.pdf <= 0.0 || maxComponent(ls.radiance) <= 0.0) return distance;
+    if (!transmissive && dot(ls.wi, si.nSurface) <= 0.0) return distance;
+    return vec3(lightOccluded(si, ls) ? 0.0 : 1.0, 1.0, hit.t);
 }
 
 // Albedo, normal, depth and BVH cost: what the camera ray's closest hit shows.

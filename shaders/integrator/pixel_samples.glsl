@@ -66,15 +66,33 @@ void addPathSamplesRegenerated(uvec2 pixel, uint first, uint count, float sample
 #ifdef PT_BDPT
 // The same by bidirectional path tracing: each sample's light subpath first (its connections
 // to the camera are splatted), then its camera path, connected to the light subpath's vertices.
+// With vertex merging's camera phase (integrator/vcm.glsl) the light subpath is the one the light
+// phase stored.
+bool bdptCameraConnects() { return scene.camera.lensRadius == 0.0; } // a thin lens would need the lens sampled
+
 void addBdptSamples(uvec2 pixel, uint first, uint count, float sampleClamp, inout PixelSums sums) {
-    bool cameraConnects = scene.camera.lensRadius == 0.0; // a thin lens would need the lens sampled
+    bool cameraConnects = bdptCameraConnects();
     for (uint s = 0u; s < count; ++s) {
         Rng rng = rngCreate(pixel, first + s, scene.seed);
         Ray ray = sampleCameraRay(pixel, rng);
-        traceLightSubpath(rng, cameraConnects);
+        if (mergingPhase(VCM_PHASE_CAMERA))
+            lightVertexCount = vcmVertexCount(bdptPixelIndex);
+        else
+            traceLightSubpath(rng, cameraConnects);
         addToPixelSums(sums, sampleValue(traceBdptCameraPath(ray, rng, cameraConnects), sampleClamp));
     }
 }
+
+// Vertex merging's light phase: this pixel's light subpath of sample `index`, its camera
+// connections splatted and its vertices stored for the camera phase.
+void storeBdptLightSubpath(uvec2 pixel, uint index) {
+    traceLightSubpath(rngCreate(pixel, index, scene.seed), bdptCameraConnects());
+    storeVcmVertexCount(bdptPixelIndex, lightVertexCount);
+}
+
+// Vertex merging's pilot: a light subpath of a sequence of its own, its vertices counted per
+// pilot cell (integrator/vcm.glsl, mergeKeep), nothing splatted.
+void countPilotLightSubpath(uvec2 pixel) { traceLightSubpath(rngCreate(pixel, 0u, scene.seed ^ 0x5bd1e995u), false); }
 #endif
 
 // Samples `first` to `first + count - 1` of `pixel`, added to `sums` in that order. (If-else on

@@ -39,6 +39,23 @@ void main() {
         count = uint(allocation * roundsEnd / uint64_t(push.epochRounds) -
                      allocation * uint64_t(push.sampleStart) / uint64_t(push.epochRounds));
     }
+#ifdef PT_BDPT
+    bdptPixelIndex = index;
+    if (MERGING) {
+        vcm = VcmDispatch(push.phase, push.mergeRadius, push.vcmCellMask, push.vcmVerticesPerPixel, push.vcmVertices,
+            push.vcmCells, push.vcmPilot, push.vcmPilotMask, push.vcmPilotCell, push.vcmKeepTarget);
+        if (push.phase != VCM_PHASE_WHOLE)
+            mergeEta = PI * push.mergeRadius * push.mergeRadius * float(scene.imageSize.x * scene.imageSize.y);
+        if (push.phase == VCM_PHASE_PILOT) {
+            countPilotLightSubpath(pixel);
+            return;
+        }
+        if (push.phase == VCM_PHASE_LIGHT) {
+            storeBdptLightSubpath(pixel, first);
+            return;
+        }
+    }
+#endif
     PixelSums sums = loadPixelSums(accumulation, base);
     addPixelSamples(pixel, first, count, push.sampleClamp, sums);
     storePixelSums(accumulation, base, sums);

@@ -95,6 +95,8 @@
     /* Estimators the scene decides, not compiled-in features: off in all(). */                                        \
     PT_FEATURE(bdpt, module, BDPT, 41, false, false, bdptChosen(scene, s, f), v ? "bdpt" : nullptr,                    \
         "bidirectional path tracing: light and camera subpaths joined by every strategy, weighted by MIS")             \
+    PT_FEATURE(merging, flag, MERGING, 44, false, false, mergingChosen(scene, s, f), v ? "merging" : nullptr,          \
+        "vertex merging: BDPT's camera vertices also gather every light subpath's vertices near them (VCM)")           \
     PT_FEATURE(bdptStrategy, choice, BDPT_STRATEGY, 42, BDPT_ALL_STRATEGIES, BDPT_ALL_STRATEGIES, BDPT_ALL_STRATEGIES, \
         v == BDPT_ALL_STRATEGIES ? nullptr : "bdpt-one-strategy",                                                      \
         "BDPT_ONE_STRATEGY: tests only, one bidirectional strategy alone, unweighted")                                 \

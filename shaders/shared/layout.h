@@ -149,6 +149,21 @@ using uint64_t = std::uint64_t;
 #define BDPT_ALL_STRATEGIES 0u
 #define BDPT_ONE_STRATEGY(segments, s) (((segments) << 8u) | ((s) + 1u))
 
+// ---- Vertex merging (MERGING in shared/features.h: BDPT with photon merging, Georgiev et al.
+// 2012's vertex connection and merging) ----
+// A round (one sample index for every pixel) is two dispatches: VCM_PHASE_LIGHT traces each
+// pixel's light subpath, splats its camera connections and stores its vertices, hashed by cell
+// into a grid; VCM_PHASE_CAMERA traces each pixel's camera path, connects it to its own light
+// subpath and merges it with the vertices of every pixel's near each of its own.
+#define VCM_PHASE_WHOLE 0u  // whole samples in one dispatch (path tracing, BDPT)
+#define VCM_PHASE_LIGHT 1u  // a round's light subpaths
+#define VCM_PHASE_CAMERA 2u // the round's camera paths
+#define VCM_PHASE_PILOT 3u  // before the first round: light subpaths of their own, counted per cell
+// A stored light vertex: VCM_VERTEX_VEC4S vec4 (integrator/vcm.glsl). The vertex buffer holds
+// them, pixels x verticesPerPixel, then one uint per pixel (its light subpath's vertex count).
+#define VCM_VERTEX_VEC4S 7u
+#define VCM_NO_VERTEX 0xffffffffu
+
 // ---- Samplers (SAMPLER in shared/features.h) ----
 #define SAMPLER_INDEPENDENT 0u // a hash of (pixel, sample index, dimension, seed)
 #define SAMPLER_SOBOL 1u       // Owen-scrambled Sobol' points, shuffled per pixel
@@ -520,9 +535,23 @@ struct GpuRenderPush {
     // exactly a_p more samples.
     uint64_t adaptiveSamples;
     uint epochRounds;
-    uint adaptivePad;
+    uint phase; // VCM_PHASE_*
+    // Vertex merging (VCM_PHASE_LIGHT and _CAMERA): this round's merge radius, the vertex buffer
+    // (VCM_VERTEX_VEC4S above), the grid's cell heads (uint[vcmCellMask + 1], VCM_NO_VERTEX
+    // where empty) and the vertices kept per pixel.
+    float mergeRadius;
+    uint vcmCellMask;
+    uint64_t vcmVertices;
+    uint64_t vcmCells;
+    // The pilot's vertex counts per cell (uint[vcmPilotMask + 1], cells vcmPilotCell wide), from
+    // which a vertex is kept in the grid with probability min(1, vcmKeepTarget / count).
+    uint64_t vcmPilot;
+    uint vcmVerticesPerPixel;
+    uint vcmPilotMask;
+    float vcmPilotCell;
+    float vcmKeepTarget;
 };
-PT_CHECK_SIZE(GpuRenderPush, 64);
+PT_CHECK_SIZE(GpuRenderPush, 112);
 
 // ---- Test kernels (shaders/tests) ----
 #define TEST_MODE_COSINE_HEMISPHERE 0u // outputs[i] = (w, pdf); inputs: optional vec4[] of (u1, u2, _, _)

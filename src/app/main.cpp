@@ -56,6 +56,13 @@ void addSceneOptions(CLI::App* cmd, pt::RenderOptions& o, SwitchWords& w) {
            "Russian roulette: paths with throughput at least this always continue, others survive with probability "
            "throughput / threshold (default 0.5; pbrt and Mitsuba use 1)")
         ->check(CLI::Range(1e-3, 1e3));
+    cmd->add_option("--merge-radius", o.integrator.mergeRadius,
+           "Vertex merging (--integrator vcm): the first round's merge radius in pixel footprints at the median "
+           "distance of the surfaces the camera sees (default 5)")
+        ->check(CLI::Range(0.01, 1000.0));
+    cmd->add_option("--merge-alpha", o.integrator.mergeAlpha,
+           "Vertex merging: the radius shrinks as round^((alpha - 1) / 2) (default 0.75; 1 keeps it)")
+        ->check(CLI::Range(0.01, 1.0));
     cmd->add_option("--seed", o.integrator.seed, "Random seed (default 0)");
     cmd->add_option("--nee", w.nee, "Next event estimation (light sampling): on|off (default on)")
         ->check(CLI::IsMember({"on", "off"}));
@@ -64,10 +71,12 @@ void addSceneOptions(CLI::App* cmd, pt::RenderOptions& o, SwitchWords& w) {
     cmd->add_option("--rr", w.rr, "Russian roulette: on|off (default on)")->check(CLI::IsMember({"on", "off"}));
     cmd->add_option("--integrator", w.integrator,
            "path: path tracing; bdpt: bidirectional path tracing (light and camera subpaths joined by every "
-           "strategy with MIS: for light that arrives through gaps, shades and caustics); auto: the one the scene "
-           "calls for; classic: the CENG795 course's classic ray tracer (ambient + direct light with its "
-           "Blinn-Phong, specular chains); default: course cameras without <Renderer> classic, else auto")
-        ->check(CLI::IsMember({"path", "bdpt", "auto", "classic"}));
+           "strategy with MIS: for light that arrives through gaps, shades and caustics); vcm: bdpt whose camera "
+           "vertices also merge with every light subpath's vertices near them (vertex connection and merging); "
+           "auto: the one the scene calls for; classic: the CENG795 course's classic ray tracer (ambient + direct "
+           "light with its Blinn-Phong, specular chains); default: course cameras without <Renderer> classic, else "
+           "auto")
+        ->check(CLI::IsMember({"path", "bdpt", "vcm", "auto", "classic"}));
     cmd->add_option("--sampling", w.sampling,
            "BSDF direction sampling: bsdf (importance sampling of every lobe, cosine-weighted for Lambert; "
            "'cosine' is the same) or uniform (uniform hemisphere / sphere); default bsdf")
@@ -120,6 +129,7 @@ void applySwitchWords(const SwitchWords& w, pt::RenderOptions& o) {
     if (!w.integrator.empty()) o.classic = w.integrator == "classic";
     if (w.integrator == "path") o.integrator.estimator = pt::Estimator::Path;
     if (w.integrator == "bdpt") o.integrator.estimator = pt::Estimator::Bidirectional;
+    if (w.integrator == "vcm") o.integrator.estimator = pt::Estimator::VertexMerging;
     if (!w.nee.empty()) o.nee = onOff(w.nee);
     if (!w.mis.empty()) o.mis = onOff(w.mis);
     if (!w.rr.empty()) o.rr = onOff(w.rr);

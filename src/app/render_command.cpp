@@ -50,8 +50,9 @@ std::vector<ExrChannel> varianceChannels(const Image& varianceOfMean) {
 }
 
 // `lastUse`: no job after this one needs `flat`, so its big arrays are freed as they are uploaded.
-int renderJob(VulkanContext& context, const Scene& scene, FlatScene& flat, bool lastUse, const Job& job,
+int renderJob(VulkanContext& context, const Scene& scene, FlatScene& flat, bool lastUse, const Job& planned,
     const RenderOptions& o, const std::optional<Image>& reference, std::ostream* errorLog) {
+    Job job = planned;
     // --integrator auto: measure how often light sampling finds the light, where BDPT could
     // render the scene (the rule is computeFeatures').
     const std::string autoNote =
@@ -61,11 +62,32 @@ int renderJob(VulkanContext& context, const Scene& scene, FlatScene& flat, bool 
     // tracing and BDPT are estimators, not features: the scene decides them either way (each is
     // only correct where computeFeatures allows it), so both kernels render the same image.
     FeatureSet features = computeFeatures(flat, job.settings);
+    const std::optional<float> flatHitDistance = flat.cameraHitDistance; // flat may be released below
+    if (features.merging && job.settings.estimator == Estimator::Auto) {
+        const VkDeviceSize bytes = mergingBufferSizes(job.width, job.height, job.settings.maxDepth).bytes;
+        if (bytes > kAutoMergingMaxBytes) {
+            features.merging = false;
+            if (!o.quiet)
+                std::fprintf(stderr,
+                    "pt: %s: BDPT without vertex merging: its light vertices would need %s at %dx%d, depth %u "
+                    "(--integrator vcm renders with them)\n",
+                    job.camera.name.c_str(), formatBytes(bytes).c_str(), job.width, job.height, job.settings.maxDepth);
+        }
+    }
+    // Vertex merging renders in rounds that every pixel takes alike (a round's light subpaths
+    // serve every pixel's merges): no adaptive sampling.
+    if (features.merging && job.target.adaptive) {
+        if (o.adaptive.value_or(false))
+            throw std::runtime_error("--adaptive on cannot be used with vertex merging (--integrator vcm): its rounds "
+                                     "give every pixel the same samples");
+        job.target.adaptive = false;
+    }
     if (o.allFeatures) {
-        const bool lightTracing = features.lightTracing, bdpt = features.bdpt;
+        const bool lightTracing = features.lightTracing, bdpt = features.bdpt, merging = features.merging;
         features = FeatureSet::all(job.settings);
         features.lightTracing = lightTracing;
         features.bdpt = bdpt;
+        features.merging = merging;
     }
     const FilmSettings film{job.width, job.height, scene.background};
     std::optional<Renderer> made;
@@ -79,6 +101,11 @@ int renderJob(VulkanContext& context, const Scene& scene, FlatScene& flat, bool 
             job.camera.name.c_str(), job.width, job.height, features.describe().c_str(), renderer.pipelineSeconds(),
             renderer.pipelineSource());
         std::fprintf(stderr, "pt: %s\n", describeIntegrator(job).c_str());
+        if (renderer.mergeRadius() > 0)
+            std::fprintf(stderr, "pt: vertex merging: radius %g in the first round (%g pixel footprints at %s)\n",
+                renderer.mergeRadius(), job.settings.mergeRadius,
+                flatHitDistance ? ("the camera's median hit distance " + formatDouble(*flatHitDistance)).c_str()
+                                : "the scene's radius");
     }
     ImageMetadata meta;
     meta["seed"] = std::to_string(job.settings.seed);

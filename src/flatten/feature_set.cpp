@@ -17,6 +17,7 @@ std::string IntegratorSettings::describe() const {
         s << "integrator="
           << (estimator == Estimator::Path               ? "path"
                  : estimator == Estimator::Bidirectional ? "bdpt"
+                 : estimator == Estimator::VertexMerging ? "vcm"
                                                          : "auto")
           << ' ';
     s << "nee=" << (nee ? "on" : "off") << " mis=" << (mis ? "on" : "off") << " rr=" << (rr ? "on" : "off")
@@ -28,6 +29,9 @@ std::string IntegratorSettings::describe() const {
              : lightSelection == LightSelection::Power ? "off"
                                                        : "auto")
       << " seed=" << seed;
+    // Where vertex merging may render it: its radius and how fast it shrinks change the image.
+    if (!classic && (estimator == Estimator::Auto || estimator == Estimator::VertexMerging))
+        s << " merge-radius=" << mergeRadius << " merge-alpha=" << mergeAlpha;
     return s.str();
 }
 
@@ -210,8 +214,17 @@ bool bdptPossible(const FlatScene& scene, const IntegratorSettings& s, const Fea
 // unidirectional paths find by chance and light subpaths carry to them.
 bool bdptChosen(const FlatScene& scene, const IntegratorSettings& s, const FeatureSet& f) {
     if (s.estimator == Estimator::Path || !bdptPossible(scene, s, f)) return false;
-    if (s.estimator == Estimator::Bidirectional) return true;
+    if (s.estimator == Estimator::Bidirectional || s.estimator == Estimator::VertexMerging) return true;
     return scene.lightVisibility && *scene.lightVisibility < kBdptBelowLightVisibility;
+}
+
+// Vertex merging over BDPT (integrator/vcm.glsl): wherever BDPT renders the scene but for
+// `--integrator bdpt` (so under auto too: on both scenes auto gives BDPT, Veach Ajar and the two
+// rooms of scenes/ajar, merging had 2-5x lower error at equal time; bench/RESULTS.md). Not with
+// moving objects (a round's light subpaths would be merged across shutter times), nor deeper
+// than the light vertices a pixel keeps.
+bool mergingChosen(const FlatScene&, const IntegratorSettings& s, const FeatureSet& f) {
+    return f.bdpt && s.estimator != Estimator::Bidirectional && !f.motion && s.maxDepth <= BDPT_MAX_LIGHT_VERTICES + 1;
 }
 
 // Light tracing pays only where caustics can be seen directly: a smooth (delta) mirror, conductor or

@@ -71,6 +71,9 @@ struct FlatScene {
     // (src/render/light_visibility_probe.h): the fraction of light samples at the surfaces the
     // camera sees that find their light. Absent where not measured.
     std::optional<float> lightVisibility;
+    // Measured by the same probe: the median distance from the camera to the surfaces it sees that
+    // sample lights (vertex merging's radius is a number of pixel footprints there).
+    std::optional<float> cameraHitDistance;
     size_t degenerateTriangles = 0; // zero-area or non-finite triangles dropped
     size_t degenerateSpheres = 0;   // singular or non-finite sphere transforms dropped
     // The world tree's build.

@@ -11,8 +11,9 @@ enum class DirectionSampling { Uniform, Cosine };
 enum class SamplerKind { Independent, Sobol };
 
 // How light transport is estimated (`--integrator`): path tracing, bidirectional path tracing,
-// or the one the scene calls for (src/flatten/feature_set.cpp, bdptChosen).
-enum class Estimator { Auto, Path, Bidirectional };
+// bidirectional path tracing with vertex merging (VCM), or the one the scene calls for
+// (src/flatten/feature_set.cpp, bdptChosen and mergingChosen).
+enum class Estimator { Auto, Path, Bidirectional, VertexMerging };
 
 // How light sampling chooses a light among the bounded ones (`--light-tree`): by the light tree,
 // by power alone, or the one the scene calls for (src/flatten/feature_set.cpp, lightTreeChosen).
@@ -45,6 +46,11 @@ struct IntegratorSettings {
     // (computeFeatures). The image is the same in expectation, with far less noise there.
     bool lightTracing = true;
     Estimator estimator = Estimator::Auto;
+    // Vertex merging: the first round's merge radius in pixel footprints at the median distance
+    // of the surfaces the camera sees (FlatScene::cameraHitDistance; the scene's radius where
+    // unmeasured), and the rate it shrinks at (r_i = r_1 i^((alpha - 1) / 2)).
+    float mergeRadius = 5.0f;
+    float mergeAlpha = 0.75f;
     LightSelection lightSelection = LightSelection::Auto;
 
     std::string describe() const;

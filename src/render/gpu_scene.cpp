@@ -54,7 +54,7 @@ void requireDeviceMemory(VulkanContext& context, const FlatScene& scene, VkDevic
     if (heap == 0 || need <= available) return;
     throw std::runtime_error((scene.source.empty() ? std::string("the scene") : scene.source) + ": needs " +
                              formatBytes(need) + " of device memory (geometry " + formatBytes(geometry) + ", BVH " +
-                             formatBytes(bvh) + ", textures " + formatBytes(textures) + ", image " +
+                             formatBytes(bvh) + ", textures " + formatBytes(textures) + ", image buffers " +
                              formatBytes(accumulationBytes) + "), more than " + limit);
 }
 
@@ -79,6 +79,7 @@ void GpuScene::build(VulkanContext& context, const FlatScene& scene, FlatScene* 
     params.sceneSphere = bounds.empty() ? glm::vec4(0.0f, 0.0f, 0.0f, 1.0f)
                                         : glm::vec4(0.5f * (bounds.lo + bounds.hi),
                                               std::max(0.505f * glm::length(bounds.hi - bounds.lo), 1e-6f));
+    sceneRadius_ = params.sceneSphere.w;
     const bool quantized = !scene.quantizedNodes.empty();
     params.numTriangles = static_cast<uint32_t>(scene.triangles.size());
     params.numNodes = scene.worldNodes;

@@ -19,6 +19,8 @@ public:
     GpuScene(VulkanContext& context, FlatScene&& scene, gpu::GpuSceneParams params, VkDeviceSize accumulationBytes);
 
     VkDeviceAddress paramsAddress() const { return params_.address(); }
+    // The radius of a sphere around all geometry (GpuSceneParams::sceneSphere).
+    float sceneRadius() const { return sceneRadius_; }
     const GpuBuffer& accumulation() const { return accumulation_; }
     GpuBuffer& accumulation() { return accumulation_; }
 
@@ -30,6 +32,7 @@ private:
     GpuBuffer triangles_, shading_, nodes_, spheres_, sphereNodes_, instances_, instanceNodes_, materials_, lights_,
         lightCdf_, lightTreeNodes_, lightTreeTrails_, envTexels_, envMarginal_, envConditional_, textures_, texels_,
         motions_, tangents_, accumulation_, params_;
+    float sceneRadius_ = 1.0f;
 };
 
 } // namespace pt

@@ -15,7 +15,7 @@ constexpr int kProbeWidth = 64;
 constexpr uint32_t kProbeSpp = 4;
 } // namespace
 
-std::optional<float> probeLightVisibility(VulkanContext& context, const FlatScene& scene,
+LightVisibilityProbe probeLightVisibility(VulkanContext& context, const FlatScene& scene,
     const IntegratorSettings& settings, const Camera& camera, int width, int height) {
     IntegratorSettings s = settings;
     s.estimator = Estimator::Path;
@@ -29,22 +29,33 @@ std::optional<float> probeLightVisibility(VulkanContext& context, const FlatScen
     renderer.addSamples(kProbeSpp, 0);
     const Renderer::Readback r = renderer.read();
     double visible = 0, attempted = 0;
+    std::vector<float> distances;
     for (size_t i = 0; i < r.mean.rgba.size(); i += 4) {
         visible += r.mean.rgba[i];
         attempted += r.mean.rgba[i + 1];
+        if (r.mean.rgba[i + 2] > 0.0f) distances.push_back(r.mean.rgba[i + 2]);
     }
-    if (!(attempted > 0)) return std::nullopt;
-    return float(visible / attempted);
+    LightVisibilityProbe probe;
+    if (attempted > 0) probe.lightVisibility = float(visible / attempted);
+    if (!distances.empty()) {
+        std::nth_element(distances.begin(), distances.begin() + distances.size() / 2, distances.end());
+        probe.cameraHitDistance = distances[distances.size() / 2];
+    }
+    return probe;
 }
 
 std::string measureForAutoIntegrator(VulkanContext& context, FlatScene& scene, const IntegratorSettings& settings,
     const Camera& camera, int width, int height) {
     scene.lightVisibility.reset();
+    scene.cameraHitDistance.reset();
     IntegratorSettings bidirectional = settings;
     bidirectional.estimator = Estimator::Bidirectional;
-    if (settings.estimator != Estimator::Auto || !computeFeatures(scene, bidirectional).bdpt) return "";
-    scene.lightVisibility = probeLightVisibility(context, scene, settings, camera, width, height);
-    if (!scene.lightVisibility) return "";
+    const bool merging = settings.estimator == Estimator::VertexMerging;
+    if ((settings.estimator != Estimator::Auto && !merging) || !computeFeatures(scene, bidirectional).bdpt) return "";
+    const LightVisibilityProbe probe = probeLightVisibility(context, scene, settings, camera, width, height);
+    scene.lightVisibility = probe.lightVisibility;
+    scene.cameraHitDistance = probe.cameraHitDistance;
+    if (!scene.lightVisibility || merging) return "";
     char line[160];
     std::snprintf(line, sizeof line, "integrator auto: %.1f%% of light samples find their light (BDPT below %.0f%%)",
         100.0 * *scene.lightVisibility, 100.0 * kBdptBelowLightVisibility);

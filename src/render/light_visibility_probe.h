@@ -18,13 +18,19 @@ namespace pt {
 // measured (a room lit by daylight through a door ajar). Absent where no sample could be taken
 // (no light faces a surface the camera sees). Deterministic: fixed size, samples and seed.
 // `width` and `height`: the render's, whose aspect the probe keeps.
-std::optional<float> probeLightVisibility(VulkanContext& context, const FlatScene& scene,
+struct LightVisibilityProbe {
+    std::optional<float> lightVisibility;
+    // The median distance to the surfaces the camera sees that sample lights (FlatScene::cameraHitDistance).
+    std::optional<float> cameraHitDistance;
+};
+LightVisibilityProbe probeLightVisibility(VulkanContext& context, const FlatScene& scene,
     const IntegratorSettings& settings, const Camera& camera, int width, int height);
 
-// What `--integrator auto` needs before it decides (pt render and pt view alike): where BDPT could
-// render the scene, the probe's measurement, stored in scene.lightVisibility for computeFeatures;
-// otherwise scene.lightVisibility is cleared. Returns the line to log ("integrator auto: ..."),
-// empty where nothing was measured.
+// What `--integrator auto` (and vertex merging's radius) needs before it decides (pt render and pt
+// view alike): where BDPT could render the scene, the probe's measurements, stored in
+// scene.lightVisibility and scene.cameraHitDistance for computeFeatures and the renderer;
+// otherwise both are cleared. Returns the line to log ("integrator auto: ..."), empty where
+// nothing was measured for auto.
 std::string measureForAutoIntegrator(VulkanContext& context, FlatScene& scene, const IntegratorSettings& settings,
     const Camera& camera, int width, int height);
 

@@ -7,6 +7,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
+#include <cstdlib>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -15,12 +17,16 @@ namespace pt {
 
 constexpr VkDeviceSize kAccumulationBytesPerPixel = ACCUMULATION_VEC4S_PER_PIXEL * sizeof(glm::vec4);
 constexpr VkDeviceSize kSplatBytesPerPixel = SPLAT_WORDS_PER_PIXEL * sizeof(uint64_t);
+// Vertex merging keeps a light vertex in its grid with probability min(1, this / n), n the
+// vertices a pilot round left in its cell (integrator/vcm.glsl, mergeKeep): 4 had half the error
+// of 16 at equal time on the two-rooms scene, 4x fewer merges, level with 2 (bench/RESULTS.md).
+constexpr float kMergeKeepTarget = 4.0f;
 
 namespace {
 // Light tracing and BDPT splat with 64-bit atomics; a device without them renders by path
 // tracing alone (the same image, noisier).
 FeatureSet supportedFeatures(const VulkanContext& context, FeatureSet features) {
-    if (!context.info().int64Atomics) features.lightTracing = features.bdpt = false;
+    if (!context.info().int64Atomics) features.lightTracing = features.bdpt = features.merging = false;
     return features;
 }
 
@@ -62,7 +68,11 @@ Renderer::Renderer(VulkanContext& context, const FlatScene& scene, const Feature
     const IntegratorSettings& settings, const Camera& camera, const FilmSettings& film)
     : context_(context), film_(film), camera_(camera), features_(supportedFeatures(context, features)) {
     validateImageSize(film.width, film.height);
+    const std::optional<float> hitDistance = scene.cameraHitDistance;
+    maxDepth_ = settings.maxDepth; // sizes merging's buffers, which filmBytes counts
     gpuScene_ = std::make_unique<GpuScene>(context, scene, sceneParams(settings), filmBytes());
+    mergeRadius_ = initialMergeRadius(settings, hitDistance);
+    mergeAlpha_ = settings.mergeAlpha;
     createPipeline();
 }
 
@@ -70,7 +80,11 @@ Renderer::Renderer(VulkanContext& context, FlatScene&& scene, const FeatureSet& 
     const IntegratorSettings& settings, const Camera& camera, const FilmSettings& film)
     : context_(context), film_(film), camera_(camera), features_(supportedFeatures(context, features)) {
     validateImageSize(film.width, film.height);
+    const std::optional<float> hitDistance = scene.cameraHitDistance;
+    maxDepth_ = settings.maxDepth; // sizes merging's buffers, which filmBytes counts
     gpuScene_ = std::make_unique<GpuScene>(context, std::move(scene), sceneParams(settings), filmBytes());
+    mergeRadius_ = initialMergeRadius(settings, hitDistance);
+    mergeAlpha_ = settings.mergeAlpha;
     createPipeline();
 }
 
@@ -86,7 +100,24 @@ gpu::GpuSceneParams Renderer::sceneParams(const IntegratorSettings& settings) co
     return params;
 }
 
-VkDeviceSize Renderer::filmBytes() const { return VkDeviceSize(film_.width) * film_.height * bytesPerPixel(); }
+VkDeviceSize Renderer::filmBytes() const {
+    const VkDeviceSize merging = features_.merging ? mergingBufferSizes(film_.width, film_.height, maxDepth_).bytes : 0;
+    return VkDeviceSize(film_.width) * film_.height * bytesPerPixel() + merging;
+}
+
+MergingBufferSizes mergingBufferSizes(int width, int height, uint32_t maxDepth) {
+    MergingBufferSizes m;
+    const VkDeviceSize pixels = VkDeviceSize(width) * height;
+    m.verticesPerPixel = std::clamp<uint32_t>(maxDepth - 1, 1, BDPT_MAX_LIGHT_VERTICES);
+    const VkDeviceSize slots = pixels * m.verticesPerPixel;
+    m.cells = 1024;
+    while (m.cells < 8 * slots && m.cells < (1u << 25)) m.cells <<= 1;
+    m.pilotCells = 1024;
+    while (m.pilotCells < 2 * slots && m.pilotCells < (1u << 24)) m.pilotCells <<= 1;
+    m.bytes = slots * VCM_VERTEX_VEC4S * 16 + pixels * sizeof(uint32_t) +
+              (VkDeviceSize(m.cells) + m.pilotCells) * sizeof(uint32_t);
+    return m;
+}
 
 void Renderer::createPipeline() {
     const size_t pixels = size_t(film_.width) * film_.height;
@@ -95,9 +126,98 @@ void Renderer::createPipeline() {
     pipeline_ = std::make_unique<ComputePipeline>(context_, renderKernel(features_),
         static_cast<uint32_t>(sizeof(gpu::GpuRenderPush)), features_.constants(localSize_, localSize_), "render");
     primePipeline();
+    if (features_.merging) createMergingBuffers();
     if (features_.countRays) {
         rayCounts_ = std::make_unique<GpuBuffer>(context_, pixels * sizeof(glm::uvec4), "ray counts");
         rayCounts_->fillZero();
+    }
+}
+
+void Renderer::createMergingBuffers() {
+    const MergingBufferSizes m = mergingBufferSizes(film_.width, film_.height, maxDepth_);
+    const VkDeviceSize pixels = VkDeviceSize(film_.width) * film_.height;
+    vcmVerticesPerPixel_ = m.verticesPerPixel;
+    vcmVertices_ = std::make_unique<GpuBuffer>(
+        context_, pixels * m.verticesPerPixel * VCM_VERTEX_VEC4S * 16 + pixels * sizeof(uint32_t), "light vertices");
+    vcmCellMask_ = m.cells - 1;
+    vcmCells_ = std::make_unique<GpuBuffer>(context_, VkDeviceSize(m.cells) * sizeof(uint32_t), "merge grid");
+    // The pilot: one round of light subpaths of their own, counted in cells of the first round's
+    // grid, before any round (integrator/vcm.glsl, mergeKeep).
+    vcmPilotMask_ = m.pilotCells - 1;
+    vcmPilot_ = std::make_unique<GpuBuffer>(context_, VkDeviceSize(m.pilotCells) * sizeof(uint32_t), "merge pilot");
+    vcmPilot_->fillZero();
+    pilotPending_ = true;
+}
+
+void Renderer::recordMergingPhase(VkCommandBuffer cmd, uint32_t phase, uint32_t sampleIndex, uint32_t tileSize) {
+    const uint32_t w = static_cast<uint32_t>(film_.width);
+    const uint32_t h = static_cast<uint32_t>(film_.height);
+    const uint32_t tw = tileSize ? std::min(tileSize, w) : w;
+    const uint32_t th = tileSize ? std::min(tileSize, h) : h;
+    const uint32_t tilesX = (w + tw - 1) / tw, tiles = tileCount(tileSize);
+    for (uint32_t tile = 0; tile < tiles; ++tile) {
+        const uint32_t x = (tile % tilesX) * tw;
+        const uint32_t y = (tile / tilesX) * th;
+        gpu::GpuRenderPush push{};
+        push.sceneParams = paramsAddress_;
+        push.tileOrigin = glm::uvec2(x, y);
+        push.tileSize = glm::uvec2(std::min(tw, w - x), std::min(th, h - y));
+        push.sampleStart = sampleIndex;
+        push.sampleCount = 1;
+        push.sampleClamp = sampleClamp_;
+        push.rayCounts = phase == VCM_PHASE_PILOT || !rayCounts_ ? 0 : rayCounts_->address();
+        push.phase = phase;
+        push.mergeRadius = mergeRadiusOfRound(sampleIndex);
+        push.vcmCellMask = vcmCellMask_;
+        push.vcmVertices = vcmVertices_->address();
+        push.vcmCells = vcmCells_->address();
+        push.vcmPilot = vcmPilot_->address();
+        push.vcmVerticesPerPixel = vcmVerticesPerPixel_;
+        push.vcmPilotMask = vcmPilotMask_;
+        push.vcmPilotCell = 2.0f * mergeRadius_;
+        push.vcmKeepTarget = kMergeKeepTarget;
+        pipeline_->bindAndPush(cmd, &push, sizeof(push));
+        vkCmdDispatch(
+            cmd, (push.tileSize.x + localSize_ - 1) / localSize_, (push.tileSize.y + localSize_ - 1) / localSize_, 1);
+    }
+}
+
+float Renderer::initialMergeRadius(const IntegratorSettings& settings, std::optional<float> hitDistance) const {
+    const glm::vec4 window = toGpuCamera(camera_, film_.width, film_.height).window;
+    const float pixelAngle = (window.w - window.z) / float(film_.height); // image plane at unit distance
+    return settings.mergeRadius * pixelAngle * hitDistance.value_or(gpuScene_->sceneRadius());
+}
+
+float Renderer::mergeRadiusOfRound(uint32_t sampleIndex) const {
+    return mergeRadius_ * std::pow(float(sampleIndex) + 1.0f, 0.5f * (mergeAlpha_ - 1.0f));
+}
+
+void Renderer::recordMergingRounds(VkCommandBuffer cmd, uint32_t first, uint32_t count, uint32_t tileSize) {
+    auto barrier = [&](VkAccessFlags src, VkPipelineStageFlags srcStage) {
+        VkMemoryBarrier b{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+        b.srcAccessMask = src;
+        b.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT;
+        vkCmdPipelineBarrier(cmd, srcStage, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1, &b, 0, nullptr, 0, nullptr);
+    };
+    if (clearPending_) {
+        vkCmdFillBuffer(cmd, accumulation().handle(), 0, VkDeviceSize(film_.width) * film_.height * bytesPerPixel(), 0);
+        clearPending_ = false;
+    }
+    // The pilot runs in the first pass, so that a time budget counts it (equal-time comparisons).
+    if (pilotPending_) {
+        recordMergingPhase(cmd, VCM_PHASE_PILOT, 0, tileSize);
+        pilotPending_ = false;
+    }
+    for (uint32_t round = 0; round < count; ++round) {
+        // Before the grid is emptied: the pilot's counts written, the last round's camera phase done
+        // reading the grid, and the sums' clear or earlier passes done before they are added to.
+        barrier(VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT,
+            VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT);
+        vkCmdFillBuffer(cmd, vcmCells_->handle(), 0, VK_WHOLE_SIZE, VCM_NO_VERTEX);
+        barrier(VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT);
+        recordMergingPhase(cmd, VCM_PHASE_LIGHT, first + round, tileSize);
+        barrier(VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT);
+        recordMergingPhase(cmd, VCM_PHASE_CAMERA, first + round, tileSize);
     }
 }
 
@@ -156,7 +276,10 @@ void Renderer::addSamples(uint32_t count, uint32_t tileSize) {
     if (adaptive() && count > epochRoundsLeft()) throw std::logic_error("pass runs past its adaptive epoch");
     if (uint64_t(firstSample_) + samples_ + count > UINT32_MAX) throw std::runtime_error("sample index exceeds 2^32");
     context_.submitAndWait([&](VkCommandBuffer cmd) {
-        recordTiles(cmd, count, tileSize, 0, tileCount(tileSize));
+        if (features_.merging)
+            recordMergingRounds(cmd, firstSample_ + samples_, count, tileSize);
+        else
+            recordTiles(cmd, count, tileSize, 0, tileCount(tileSize));
         // Make the sums visible to the host (read back after the fence).
         VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
         barrier.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
@@ -184,6 +307,8 @@ void Renderer::recordTiles(
     const uint32_t tilesX = (w + tw - 1) / tw;
     endTile = std::min(endTile, tileCount(tileSize));
     if (count == 0 || firstTile >= endTile) return;
+    if (features_.merging)
+        throw std::logic_error("vertex merging renders whole rounds (addSamples), not tiles of a pass");
     if (clearPending_) {
         const VkDeviceSize bytes = VkDeviceSize(w) * h * bytesPerPixel();
         vkCmdFillBuffer(cmd, accumulation().handle(), 0, bytes, 0);

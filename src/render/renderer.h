@@ -14,6 +14,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 
 namespace pt {
 
@@ -126,6 +127,20 @@ private:
     void ensureAccumulationBytes(VkDeviceSize bytes);
     // Adaptive sampling's buffer read back (adaptiveSamples_ must exist).
     std::vector<glm::uvec4> adaptivePixels() const;
+    // Vertex merging (features_.merging): the light vertex store and grid, sized for the film.
+    void createMergingBuffers();
+    // Records `count` rounds from sample index `first`: each a light dispatch, then a camera
+    // dispatch, over every tile (integrator/vcm.glsl).
+    void recordMergingRounds(VkCommandBuffer cmd, uint32_t first, uint32_t count, uint32_t tileSize);
+    void recordMergingPhase(VkCommandBuffer cmd, uint32_t phase, uint32_t sampleIndex, uint32_t tileSize);
+    float mergeRadiusOfRound(uint32_t sampleIndex) const;
+    float initialMergeRadius(const IntegratorSettings& settings, std::optional<float> hitDistance) const;
+
+public:
+    // Vertex merging: the first round's merge radius (scene units), 0 without merging.
+    float mergeRadius() const { return features_.merging ? mergeRadius_ : 0.0f; }
+
+private:
     // Lavapipe turns a compute pipeline into machine code at its first dispatch, not when it
     // is created (seconds for the light-tracing kernel with a cold Mesa cache): one empty
     // dispatch right after creation moves that into start-up, where the log counts it, so that
@@ -153,8 +168,26 @@ private:
     // Adaptive sampling: uvec4 per pixel (samples so far, this epoch's allocation, its rays, 0).
     std::unique_ptr<GpuBuffer> adaptiveSamples_;
     uint32_t epochRounds_ = 0, epochRoundsDone_ = 0;
+    // Vertex merging: stored light vertices (GpuRenderPush::vcmVertices) and the grid's cell heads.
+    std::unique_ptr<GpuBuffer> vcmVertices_, vcmCells_, vcmPilot_;
+    uint32_t vcmVerticesPerPixel_ = 0, vcmCellMask_ = 0, vcmPilotMask_ = 0;
+    bool pilotPending_ = false;                     // the pilot round is recorded with the first pass's rounds
+    float mergeRadius_ = 0.0f, mergeAlpha_ = 0.75f; // the first round's radius (scene units)
+    uint32_t maxDepth_ = 16;
     VkDeviceAddress paramsAddress_ = 0;
 };
+
+// Vertex merging's buffers for a film: a slot per light vertex a pixel's light subpath can leave
+// (one per segment but the camera's), the grid's cell heads (8 per slot) and the pilot's counts
+// (2 per slot), each a power of two.
+struct MergingBufferSizes {
+    uint32_t verticesPerPixel = 0, cells = 0, pilotCells = 0;
+    VkDeviceSize bytes = 0; // all three buffers
+};
+MergingBufferSizes mergingBufferSizes(int width, int height, uint32_t maxDepth);
+// --integrator auto renders by BDPT alone where merging's buffers would need more than this
+// (1280x720 at depth 16 needs 1.6 GiB; 4K at depth 16, 6.3 GiB).
+constexpr VkDeviceSize kAutoMergingMaxBytes = VkDeviceSize(2) << 30;
 
 // Checks a requested image size; throws std::runtime_error with the reason.
 void validateImageSize(int width, int height);

@@ -38,6 +38,14 @@ CameraController makeController(const FlatScene& flat, const Camera& camera) {
     return CameraController(camera, centre, radius);
 }
 
+// The viewer spreads a pass's tiles over frames; vertex merging renders whole rounds of two
+// dispatches over the image (Renderer::addSamples), so the viewer renders its scenes by BDPT.
+FeatureSet viewerFeatures(const FlatScene& flat, const IntegratorSettings& settings) {
+    FeatureSet features = computeFeatures(flat, settings);
+    features.merging = false;
+    return features;
+}
+
 } // namespace
 
 Session::Session(Window& window, VulkanContext& context, const FlatScene& flat, const ViewerConfig& config)
@@ -47,7 +55,7 @@ Session::Session(Window& window, VulkanContext& context, const FlatScene& flat, 
     windowSize_ = window.framebufferSize();
     if (windowSize_.x <= 0 || windowSize_.y <= 0) windowSize_ = glm::ivec2(config.job.width, config.job.height);
 
-    FeatureSet features = computeFeatures(flat, settings_);
+    FeatureSet features = viewerFeatures(flat, settings_);
     renderer_ = std::make_unique<Renderer>(context, flat, features, settings_, config.job.camera,
         FilmSettings{windowSize_.x, windowSize_.y, config.background});
     std::fprintf(stderr, "pt: view: kernel features: %s; pipeline %.3f s (%s kernel)\n", features.describe().c_str(),
@@ -128,7 +136,7 @@ void Session::resetPass() {
 void Session::applyChanges() {
     const bool changing = cameraDirty_ || integratorDirty_ || clampDirty_ || sizeDirty_;
     if (integratorDirty_) {
-        FeatureSet features = computeFeatures(flat_, settings_);
+        FeatureSet features = viewerFeatures(flat_, settings_);
         features.debugView = debugView_;
         const auto start = Clock::now();
         renderer_->setIntegrator(settings_, features);

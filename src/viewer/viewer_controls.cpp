@@ -79,9 +79,11 @@ const char* kHelp =
 } // namespace
 
 std::string Session::settingsText() const {
-    const char* integrator = settings_.estimator == Estimator::Path            ? "path "
-                             : settings_.estimator == Estimator::Bidirectional ? "bdpt "
-                                                                               : "auto ";
+    // (Vertex merging is rendered by BDPT in the viewer: viewerFeatures.)
+    const char* integrator =
+        settings_.estimator == Estimator::Path                                                               ? "path "
+        : settings_.estimator == Estimator::Bidirectional || settings_.estimator == Estimator::VertexMerging ? "bdpt "
+                                                                                                             : "auto ";
     std::string s = std::string(settings_.classic ? "" : integrator) + (settings_.nee ? "nee" : "no-nee") + " " +
                     (settings_.mis ? "mis" : "no-mis") + " " + (settings_.rr ? "rr" : "no-rr") + " " +
                     (settings_.sampling == DirectionSampling::Cosine ? "cosine" : "uniform") + " depth " +

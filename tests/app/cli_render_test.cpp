@@ -4,6 +4,7 @@
 #include "support/malformed_corpus.h"
 #include "image/image_io.h"
 #include "film/metrics.h"
+#include "render/renderer.h"
 
 #include <algorithm>
 #include <cmath>
@@ -51,8 +52,9 @@ TEST_F(CliTest, DefaultSceneWritesExrWithMetadataAndPng) {
 }
 
 // --integrator auto (the default) measures how often light sampling finds the light and takes
-// BDPT where it seldom does: the two rooms of scenes/ajar (lit through a door ajar), not the box.
-// The measurement and the choice are logged; the choice is in the EXR's features.
+// BDPT with vertex merging where it seldom does: the two rooms of scenes/ajar (lit through a door
+// ajar), not the box. The measurement, the choice and the merge radius are logged; the choice is
+// in the EXR's features.
 TEST_F(CliTest, AutoIntegratorTakesBdptWhereLightArrivesThroughAGap) {
     const auto render = [&](const fs::path& scene, const std::string& name) {
         const fs::path exr = dir_ / (name + ".exr");
@@ -60,14 +62,33 @@ TEST_F(CliTest, AutoIntegratorTakesBdptWhereLightArrivesThroughAGap) {
             run({"render", scene.string(), "-o", exr.string(), "--spp", "1", "--width", "32", "--height", "18"});
         EXPECT_EXIT_STATUS(r, 0);
         EXPECT_NE(r.err.find("integrator auto: "), std::string::npos) << r;
+        EXPECT_EQ(r.err.find("vertex merging: radius") != std::string::npos, name == "ajar") << r;
         pt::ImageMetadata meta;
         pt::readExr(exr, &meta);
         return meta["features"];
     };
     const std::string ajar = render(kTests.parent_path() / "scenes" / "ajar" / "scene.gltf", "ajar");
-    EXPECT_NE((" " + ajar + " ").find(" bdpt "), std::string::npos) << ajar;
+    EXPECT_NE((" " + ajar + " ").find(" bdpt merging "), std::string::npos) << ajar;
     const std::string box = render(kDiffuseScene, "box");
     EXPECT_EQ((" " + box + " ").find(" bdpt "), std::string::npos) << box;
+}
+
+// Where vertex merging's light vertices would need more than kAutoMergingMaxBytes, auto renders
+// by BDPT alone and says so (960x600 at depth 33: 2.2 GiB); --integrator vcm is still taken.
+TEST_F(CliTest, AutoLeavesVertexMergingOutWhereItsBuffersWouldBeTooBig) {
+    const fs::path scene = kTests.parent_path() / "scenes" / "ajar" / "scene.gltf";
+    ASSERT_GT(pt::mergingBufferSizes(960, 600, 33).bytes, pt::kAutoMergingMaxBytes);
+    ASSERT_LT(pt::mergingBufferSizes(320, 180, 33).bytes, pt::kAutoMergingMaxBytes);
+    const fs::path exr = dir_ / "big.exr";
+    const PtRun r = run({"render", scene.string(), "-o", exr.string(), "--spp", "1", "--width", "960", "--height",
+        "600", "--max-depth", "33"});
+    EXPECT_EXIT_STATUS(r, 0);
+    EXPECT_NE(r.err.find("BDPT without vertex merging: its light vertices would need"), std::string::npos) << r;
+    EXPECT_EQ(r.err.find("vertex merging: radius"), std::string::npos) << r;
+    pt::ImageMetadata meta;
+    pt::readExr(exr, &meta);
+    EXPECT_NE((" " + meta["features"] + " ").find(" bdpt "), std::string::npos) << meta["features"];
+    EXPECT_EQ((" " + meta["features"] + " ").find(" merging "), std::string::npos) << meta["features"];
 }
 
 TEST_F(CliTest, SeedAndSppReachTheMetadata) {

@@ -152,6 +152,30 @@ TEST_F(Partition, BidirectionalPartsMergeToTheSingleRender) {
     EXPECT_EQ(readExr(dir_ / "resumed.exr").rgba, single.rgba);
 }
 
+// Vertex merging renders a part's rounds as the whole render does (each round's light subpaths,
+// the pilot and the radius of each round by its sample index): its parts merge to the single
+// render, and a resumed part is bit-identical.
+TEST_F(Partition, VertexMergingPartsMergeToTheSingleRender) {
+    const std::vector<std::string> scene = {
+        "render", "--width", "24", "--height", "24", "--max-depth", "5", "--integrator", "vcm", "-q"};
+    auto renderVcm = [&](const std::vector<std::string>& more) {
+        const PtRun r = runPt(dir_, with(scene, more));
+        ASSERT_EQ(r.status, 0) << r.describe();
+    };
+    renderVcm({"--spp", "6", "-o", "single.exr"});
+    renderVcm({"--samples", "0:4", "-o", "a.exr"});
+    renderVcm({"--samples", "4:6", "-o", "b.exr"});
+    ASSERT_EQ(merge({"b.exr", "a.exr", "-o", "merged.exr"}).status, 0);
+    ImageMetadata meta;
+    const Image merged = readExr(dir_ / "merged.exr", &meta);
+    const Image single = readExr(dir_ / "single.exr");
+    EXPECT_NE(meta["features"].find("merging"), std::string::npos) << meta["features"];
+    ASSERT_EQ(merged.rgba.size(), single.rgba.size());
+    for (size_t i = 0; i < merged.rgba.size(); ++i) ASSERT_LE(ulpDistance(merged.rgba[i], single.rgba[i]), 1) << i;
+    renderVcm({"--spp", "6", "--resume", (dir_ / "a.exr").string(), "-o", "resumed.exr"});
+    EXPECT_EQ(readExr(dir_ / "resumed.exr").rgba, single.rgba);
+}
+
 TEST_F(Partition, MergeRefusesOverlapsOtherRendersAndPlainImages) {
     render({"--samples", "0:5", "--seed", "5", "-o", "a.exr"});
     render({"--samples", "4:9", "--seed", "5", "-o", "overlapping.exr"});

@@ -302,7 +302,8 @@ TEST_F(Bdpt, LightSamplesFindTheLightInTheBoxButNotThroughADoorAjar) {
             scene.environment = daylight;
         }
         return probeLightVisibility(
-            sharedContext(), flattenScene(scene), independentSettings(), scene.cameras.at(0), 64, 36);
+            sharedContext(), flattenScene(scene), independentSettings(), scene.cameras.at(0), 64, 36)
+            .lightVisibility;
     };
     const auto visibility = [&](const std::filesystem::path& path) {
         const std::optional<float> v = probe(path, false);
