@@ -154,7 +154,6 @@ vec3 mergeAtVertex(SurfaceInteraction si, GpuMaterial mat, Frame frame, vec3 wo,
     ivec3 low = vcmCellOf(si.p, cellSize) - ivec3(lessThan(fract(q), vec3(0.5)));
     bool transmissive = isTransmissiveSurface(mat);
     vec3 ngSeen = dot(wo, si.ng) >= 0.0 ? si.ng : -si.ng;
-    float keepHere = misPower(mergeKeep(si.p));
     vec3 sum = vec3(0.0);
     uint visited[8];
     for (uint k = 0u; k < 8u; ++k) {
@@ -186,7 +185,11 @@ vec3 mergeAtVertex(SurfaceInteraction si, GpuMaterial mat, Frame frame, vec3 wo,
                             lm.cVCM + lm.cVC * towardsLight, lm.eVCM + lm.eVC * towardsLight, lm.mVC * towardsLight);
                         vec3 cameraSide = vec3(mis.cVCM + mis.cVC * towardsCamera, mis.eVCM + mis.eVC * towardsCamera,
                             mis.mVC * towardsCamera);
-                        float others = otherStrategies(lightSide + cameraSide, STRATEGY_MERGE) / keepHere;
+                        // The merge's density is scaled by the keep probability of the light
+                        // vertex it takes (v6.w is its inverse), not of the camera vertex's cell:
+                        // the two can sit in pilot cells of very different counts, and a weight
+                        // from the camera's side left 1 / keep unchecked (fireflies of 40x).
+                        float others = otherStrategies(lightSide + cameraSide, STRATEGY_MERGE) * misPower(v6.w);
                         float weight = BDPT_STRATEGY == BDPT_ALL_STRATEGIES ? 1.0 / (1.0 + others) : 0.0;
                         sum += v4.xyz * e.fCos * (weight * v6.w / cosLightIn);
                     }

@@ -58,7 +58,7 @@ void addSceneOptions(CLI::App* cmd, pt::RenderOptions& o, SwitchWords& w) {
         ->check(CLI::Range(1e-3, 1e3));
     cmd->add_option("--merge-radius", o.integrator.mergeRadius,
            "Vertex merging (--integrator vcm): the first round's merge radius in pixel footprints at the median "
-           "distance of the surfaces the camera sees (default 5)")
+           "distance of the surfaces the camera sees (default 8)")
         ->check(CLI::Range(0.01, 1000.0));
     cmd->add_option("--merge-alpha", o.integrator.mergeAlpha,
            "Vertex merging: the radius shrinks as round^((alpha - 1) / 2) (default 0.75; 1 keeps it)")

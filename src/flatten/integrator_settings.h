@@ -49,7 +49,9 @@ struct IntegratorSettings {
     // Vertex merging: the first round's merge radius in pixel footprints at the median distance
     // of the surfaces the camera sees (FlatScene::cameraHitDistance; the scene's radius where
     // unmeasured), and the rate it shrinks at (r_i = r_1 i^((alpha - 1) / 2)).
-    float mergeRadius = 5.0f;
+    // 8 had 0.6x the relMSE of 5 at 30 s on Veach Ajar and was level on scenes/ajar; 12 and 3 were
+    // worse (bench/RESULTS.md, "Vertex merging").
+    float mergeRadius = 8.0f;
     float mergeAlpha = 0.75f;
     LightSelection lightSelection = LightSelection::Auto;
 

@@ -36,8 +36,8 @@ IntegratorSettings vcmSettings(uint32_t maxDepth, float radius) {
 
 // Block means of `renders` independent renders (seeds 100, 101, ...) and the variance of their
 // mean from the renders' spread.
-BlockStats blocksOverSeeds(const Scene& scene, IntegratorSettings s, int width, int height, uint32_t spp, int renders,
-    int blockSize) {
+BlockStats blocksOverSeeds(
+    const Scene& scene, IntegratorSettings s, int width, int height, uint32_t spp, int renders, int blockSize) {
     std::vector<BlockStats> each;
     for (int k = 0; k < renders; ++k) {
         s.seed = 100u + uint32_t(k);
