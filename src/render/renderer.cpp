@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cmath>
+#include <functional>
 #include <stdexcept>
 #include <string>
 
@@ -150,18 +151,7 @@ void Renderer::createMergingBuffers() {
 }
 
 void Renderer::recordMergingPhase(VkCommandBuffer cmd, uint32_t phase, uint32_t sampleIndex, uint32_t tileSize) {
-    const uint32_t w = static_cast<uint32_t>(film_.width);
-    const uint32_t h = static_cast<uint32_t>(film_.height);
-    const uint32_t tw = tileSize ? std::min(tileSize, w) : w;
-    const uint32_t th = tileSize ? std::min(tileSize, h) : h;
-    const uint32_t tilesX = (w + tw - 1) / tw, tiles = tileCount(tileSize);
-    for (uint32_t tile = 0; tile < tiles; ++tile) {
-        const uint32_t x = (tile % tilesX) * tw;
-        const uint32_t y = (tile / tilesX) * th;
-        gpu::GpuRenderPush push{};
-        push.sceneParams = paramsAddress_;
-        push.tileOrigin = glm::uvec2(x, y);
-        push.tileSize = glm::uvec2(std::min(tw, w - x), std::min(th, h - y));
+    dispatchTiles(cmd, tileSize, 0, tileCount(tileSize), [&](gpu::GpuRenderPush& push) {
         push.sampleStart = sampleIndex;
         push.sampleCount = 1;
         push.sampleClamp = sampleClamp_;
@@ -176,6 +166,24 @@ void Renderer::recordMergingPhase(VkCommandBuffer cmd, uint32_t phase, uint32_t 
         push.vcmPilotMask = vcmPilotMask_;
         push.vcmPilotCell = 2.0f * mergeRadius_;
         push.vcmKeepTarget = kMergeKeepTarget;
+    });
+}
+
+void Renderer::dispatchTiles(VkCommandBuffer cmd, uint32_t tileSize, uint32_t firstTile, uint32_t endTile,
+    const std::function<void(gpu::GpuRenderPush&)>& fill) {
+    const uint32_t w = static_cast<uint32_t>(film_.width);
+    const uint32_t h = static_cast<uint32_t>(film_.height);
+    const uint32_t tw = tileSize ? std::min(tileSize, w) : w;
+    const uint32_t th = tileSize ? std::min(tileSize, h) : h;
+    const uint32_t tilesX = (w + tw - 1) / tw;
+    for (uint32_t tile = firstTile; tile < endTile; ++tile) {
+        const uint32_t x = (tile % tilesX) * tw;
+        const uint32_t y = (tile / tilesX) * th;
+        gpu::GpuRenderPush push{};
+        push.sceneParams = paramsAddress_;
+        push.tileOrigin = glm::uvec2(x, y);
+        push.tileSize = glm::uvec2(std::min(tw, w - x), std::min(th, h - y));
+        fill(push);
         pipeline_->bindAndPush(cmd, &push, sizeof(push));
         vkCmdDispatch(
             cmd, (push.tileSize.x + localSize_ - 1) / localSize_, (push.tileSize.y + localSize_ - 1) / localSize_, 1);
@@ -302,9 +310,6 @@ void Renderer::recordTiles(
     VkCommandBuffer cmd, uint32_t count, uint32_t tileSize, uint32_t firstTile, uint32_t endTile) {
     const uint32_t w = static_cast<uint32_t>(film_.width);
     const uint32_t h = static_cast<uint32_t>(film_.height);
-    const uint32_t tw = tileSize ? std::min(tileSize, w) : w;
-    const uint32_t th = tileSize ? std::min(tileSize, h) : h;
-    const uint32_t tilesX = (w + tw - 1) / tw;
     endTile = std::min(endTile, tileCount(tileSize));
     if (count == 0 || firstTile >= endTile) return;
     if (features_.merging)
@@ -320,23 +325,14 @@ void Renderer::recordTiles(
     before.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT;
     vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
         VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1, &before, 0, nullptr, 0, nullptr);
-    for (uint32_t tile = firstTile; tile < endTile; ++tile) {
-        const uint32_t x = (tile % tilesX) * tw;
-        const uint32_t y = (tile / tilesX) * th;
-        gpu::GpuRenderPush push{};
-        push.sceneParams = paramsAddress_;
-        push.tileOrigin = glm::uvec2(x, y);
-        push.tileSize = glm::uvec2(std::min(tw, w - x), std::min(th, h - y));
+    dispatchTiles(cmd, tileSize, firstTile, endTile, [&](gpu::GpuRenderPush& push) {
         push.sampleStart = adaptive() ? epochRoundsDone_ : firstSample_ + samples_;
         push.sampleCount = count;
         push.adaptiveSamples = adaptive() ? adaptiveSamples_->address() : 0;
         push.epochRounds = epochRounds_;
         push.sampleClamp = sampleClamp_;
         push.rayCounts = rayCounts_ ? rayCounts_->address() : 0;
-        pipeline_->bindAndPush(cmd, &push, sizeof(push));
-        vkCmdDispatch(
-            cmd, (push.tileSize.x + localSize_ - 1) / localSize_, (push.tileSize.y + localSize_ - 1) / localSize_, 1);
-    }
+    });
 }
 
 void Renderer::completePass(uint32_t count) {

@@ -13,6 +13,7 @@
 #include "scene/scene.h"
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 
@@ -133,6 +134,9 @@ private:
     // dispatch, over every tile (integrator/vcm.glsl).
     void recordMergingRounds(VkCommandBuffer cmd, uint32_t first, uint32_t count, uint32_t tileSize);
     void recordMergingPhase(VkCommandBuffer cmd, uint32_t phase, uint32_t sampleIndex, uint32_t tileSize);
+    // One dispatch per tile from firstTile to endTile, each push filled by `fill` past its tile.
+    void dispatchTiles(VkCommandBuffer cmd, uint32_t tileSize, uint32_t firstTile, uint32_t endTile,
+        const std::function<void(gpu::GpuRenderPush&)>& fill);
     float mergeRadiusOfRound(uint32_t sampleIndex) const;
     float initialMergeRadius(const IntegratorSettings& settings, std::optional<float> hitDistance) const;
 
