@@ -3,7 +3,7 @@
 looks like. Images larger than the first (an official reference at full size) are box-filtered
 down to its size by a whole factor, as `pt render --reference` does.
 
-  /tmp/exrvenv/bin/python bench/side_by_side.py OUT.jpg A.exr "caption A" B.exr "caption B" ...
+  /opt/mitsuba/bin/python bench/side_by_side.py OUT.jpg A.exr "caption A" B.exr "caption B" ...
       [--exposure STOPS]
 
 The exposure defaults to the one that puts the first image's mean at 0.18 (sRGB-encoded, clipped).

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# The peer for bench/bench_vs_mitsuba.py: Mitsuba 3 from PyPI, pinned, with numpy and the OpenEXR
-# Python module, in a venv of Debian's python3 at /opt/mitsuba (PT_MITSUBA_VENV overrides), and
+# The peer for bench/bench_vs_mitsuba.py: Mitsuba 3 from PyPI, pinned, with numpy, the OpenEXR
+# Python module and pillow (bench/side_by_side.py runs in it too), in a venv of Debian's python3 at /opt/mitsuba (PT_MITSUBA_VENV overrides), and
 # libllvm19 from Debian 12 (Dr.Jit's LLVM back end needs LLVM >= 16 for fminimum/fmaximum; Mesa's
 # LLVM 15 is not enough). Not part of scripts/setup.sh: only this benchmark needs it.
 # Idempotent and quiet when done.
@@ -13,9 +13,9 @@ if [ ! -e /usr/lib/x86_64-linux-gnu/libLLVM.so.19.1 ] && ! dpkg-query -W -f='${S
   $SUDO apt-get update -qq
   DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends libllvm19 >/dev/null
 fi
-if "$venv/bin/python" -c "import mitsuba, numpy, OpenEXR, sys; sys.exit(mitsuba.__version__ != '$mitsuba_version')" 2>/dev/null; then
+if "$venv/bin/python" -c "import mitsuba, numpy, OpenEXR, PIL, sys; sys.exit(mitsuba.__version__ != '$mitsuba_version')" 2>/dev/null; then
   exit 0
 fi
-echo "setup: installing mitsuba==$mitsuba_version numpy OpenEXR into $venv"
+echo "setup: installing mitsuba==$mitsuba_version numpy OpenEXR pillow into $venv"
 $SUDO /usr/bin/python3 -m venv "$venv"
-$SUDO "$venv/bin/pip" install -q --disable-pip-version-check "mitsuba==$mitsuba_version" numpy OpenEXR
+$SUDO "$venv/bin/pip" install -q --disable-pip-version-check "mitsuba==$mitsuba_version" numpy OpenEXR pillow
