@@ -6,7 +6,7 @@
 // split, and where the integrator is chosen. The furnace (furnace_test.cpp) checks that the MIS
 // weights with merges sum to one. A round's light subpaths serve every pixel, so neighbouring
 // pixels share noise and the image's own variance understates a block's: block variances come
-// from the spread of independent renders.
+// from the spread of independent rounds.
 #include "flatten/feature_set.h"
 #include "flatten/flat_scene.h"
 #include "film/metrics.h"
@@ -34,33 +34,45 @@ IntegratorSettings vcmSettings(uint32_t maxDepth, float radius) {
     return s;
 }
 
-// Block means of `renders` independent renders (seeds 100, 101, ...) and the variance of their
-// mean from the renders' spread.
-BlockStats blocksOverSeeds(
-    const Scene& scene, IntegratorSettings s, int width, int height, uint32_t spp, int renders, int blockSize) {
+// Block means over `rounds` rounds of one renderer, and the variance of their mean from the spread
+// of the rounds' own images (each round's light and camera subpaths are its own, so rounds are
+// independent; one renderer builds the kernel once).
+BlockStats blocksOverRounds(
+    const Scene& scene, const IntegratorSettings& s, int width, int height, int rounds, int blockSize) {
+    FlatScene flat = flattenScene(scene);
+    Renderer renderer(sharedContext(), flat, computeFeatures(flat, s), s, scene.cameras.at(0),
+        FilmSettings{width, height, scene.background});
     std::vector<BlockStats> each;
-    for (int k = 0; k < renders; ++k) {
-        s.seed = 100u + uint32_t(k);
-        const Renderer::Readback r = renderScene(scene, s, scene.cameras.at(0), width, height, spp);
+    std::vector<float> before; // the sums of the rounds so far, per channel
+    for (int k = 1; k <= rounds; ++k) {
+        renderer.addSamples(1, 0);
+        const Renderer::Readback r = renderer.read();
         EXPECT_EQ(r.droppedSamples, 0u);
-        each.push_back(blockStats(r.mean, nullptr, blockSize));
+        Image round = r.mean;
+        before.resize(round.rgba.size(), 0.0f);
+        for (size_t i = 0; i < round.rgba.size(); ++i) {
+            const float sum = r.mean.rgba[i] * float(k);
+            round.rgba[i] = sum - before[i];
+            before[i] = sum;
+        }
+        each.push_back(blockStats(round, nullptr, blockSize));
     }
     BlockStats out = each.front();
     out.varOfMean.assign(out.mean.size(), 0.0);
     for (size_t i = 0; i < out.mean.size(); ++i) {
         double sum = 0, squares = 0;
         for (const BlockStats& b : each) sum += b.mean[i];
-        const double mean = sum / renders;
+        const double mean = sum / rounds;
         for (const BlockStats& b : each) squares += (b.mean[i] - mean) * (b.mean[i] - mean);
         out.mean[i] = mean;
-        out.varOfMean[i] = squares / (renders - 1) / renders;
+        out.varOfMean[i] = squares / (rounds - 1) / rounds;
     }
     return out;
 }
 
 // The diffuse Cornell box against its Mitsuba 3 reference, rendered at half its size (128x128) and
 // compared in blocks of 8x8 pixels (the reference's 16x16): at a radius of one pixel footprint
-// the merges' bias is far below the noise of 4 x 8 spp; at 30 footprints (a tenth of the box)
+// the merges' bias is far below the noise of 32 spp; at 30 footprints (a tenth of the box)
 // light leaks from the bright ceiling and the corners darken, and the same test sees it.
 TEST_F(Vcm, AgreesWithMitsubaInTheDiffuseCornellBoxAtASmallRadius) {
     const auto dir = diffuseBoxDir();
@@ -73,13 +85,13 @@ TEST_F(Vcm, AgreesWithMitsubaInTheDiffuseCornellBoxAtASmallRadius) {
     ASSERT_TRUE(computeFeatures(flattenScene(scene), vcmSettings(depth, 1.0f)).merging);
     const int width = reference.width / 2, height = reference.height / 2;
     const AgreementResult small =
-        compareBlocks(blocksOverSeeds(scene, vcmSettings(depth, 1.0f), width, height, 8, 4, 8), theirs);
+        compareBlocks(blocksOverRounds(scene, vcmSettings(depth, 1.0f), width, height, 32, 8), theirs);
     const AgreementResult large =
-        compareBlocks(blocksOverSeeds(scene, vcmSettings(depth, 30.0f), width, height, 8, 4, 8), theirs);
+        compareBlocks(blocksOverRounds(scene, vcmSettings(depth, 30.0f), width, height, 32, 8), theirs);
     std::printf("[          ] radius 1: chi2/dof %.3f, mean z %.3f; radius 30: chi2/dof %.3f, mean z %.3f\n",
         small.chi2PerDof, small.meanZ, large.chi2PerDof, large.meanZ);
-    // Four renders give a block variance of 3 degrees of freedom: z^2 then has mean 3 rather
-    // than 1 (Student's t), so the threshold allows for it.
+    // The block variance has 31 degrees of freedom (32 rounds): z^2 then has mean 31/29 rather
+    // than 1 (Student's t), well inside the threshold.
     EXPECT_LT(small.chi2PerDof, 4.0) << "block means disagree (max |z| " << small.maxAbsZ << ")";
     EXPECT_LT(std::abs(small.meanZ), 0.5) << "systematic offset";
     EXPECT_GT(large.chi2PerDof, 3.0 * small.chi2PerDof) << "a radius of a tenth of the box must show its bias";
