@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <map>
 #include <memory>
 #include <numeric>
@@ -138,6 +139,19 @@ Renderer::Readback renderSceneWith(const Scene& scene, const IntegratorSettings&
     Renderer renderer(sharedContext(), flat, features, settings, camera, FilmSettings{width, height, scene.background});
     renderer.addSamples(spp, 0);
     return renderer.read();
+}
+
+void expectTheSameImageHoweverSplit(const Scene& scene, const IntegratorSettings& settings, uint32_t spp) {
+    const Camera& camera = scene.cameras.at(0);
+    const Renderer::Readback whole = renderScene(scene, settings, camera, 40, 40, spp);
+    const Renderer::Readback split = renderScene(scene, settings, camera, 40, 40, spp, 3, 16);
+    ASSERT_EQ(whole.mean.rgba.size(), split.mean.rgba.size());
+    EXPECT_EQ(0, std::memcmp(whole.mean.rgba.data(), split.mean.rgba.data(), whole.mean.rgba.size() * sizeof(float)));
+    IntegratorSettings other = settings;
+    other.seed = 7;
+    const Renderer::Readback reseeded = renderScene(scene, other, camera, 40, 40, spp);
+    EXPECT_NE(0, std::memcmp(whole.mean.rgba.data(), reseeded.mean.rgba.data(), whole.mean.rgba.size() * sizeof(float)))
+        << "the comparison can tell images apart";
 }
 
 std::filesystem::path testDataDir() { return PT_TEST_DATA_DIR; }

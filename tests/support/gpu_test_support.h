@@ -57,6 +57,11 @@ Renderer::Readback renderScene(const Scene& scene, const IntegratorSettings& set
 Renderer::Readback renderSceneWith(const Scene& scene, const IntegratorSettings& settings, const FeatureSet& features,
     const Camera& camera, int width, int height, uint32_t spp);
 
+// Renders `spp` samples of `scene` (its first camera, 40x40) in one pass and in passes of 3 spp over
+// 16-pixel tiles, and expects the two images equal bit for bit; a render with another seed must
+// differ, so that the comparison can tell images apart.
+void expectTheSameImageHoweverSplit(const Scene& scene, const IntegratorSettings& settings, uint32_t spp);
+
 // Directory of test data (tests/), set by CMake.
 std::filesystem::path testDataDir();
 
