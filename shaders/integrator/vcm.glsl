@@ -18,6 +18,7 @@
 #ifndef PT_INTEGRATOR_VCM_GLSL
 #define PT_INTEGRATOR_VCM_GLSL
 #include "common/buffers.glsl"
+#include "common/rng.glsl"
 #include "shared/features.glsl"
 #include "integrator/bdpt_vertex.glsl"
 
@@ -79,10 +80,10 @@ ivec3 vcmCellOf(vec3 p, float cellSize) {
     return ivec3(c);
 }
 
-uint vcmHash(ivec3 c, uint mask) {
-    uvec3 u = uvec3(c);
-    return ((u.x * 73856093u) ^ (u.y * 19349663u) ^ (u.z * 83492791u)) & mask;
-}
+// A well-mixed hash: with Teschner et al.'s three products xor'ed, the low bits a power-of-two
+// mask keeps collided often enough that the pilot gave one floor cell in eight of the two-rooms
+// scene a crowded cell's count, and so a low keep probability: squares of noise there.
+uint vcmHash(ivec3 c, uint mask) { return pcg4d(uvec4(uvec3(c), 0x2545F491u)).x & mask; }
 uint vcmCellHash(ivec3 c) { return vcmHash(c, vcm.cellMask); }
 
 // Where a round's light subpaths leave many vertices (beside the light), a merge would gather
