@@ -177,8 +177,11 @@ bool mergingPhase(uint phase) { return MERGING && vcm.phase == phase; }
 
 // The merge term a non-delta vertex at p adds to the MIS sums: the probability that the grid
 // keeps a light vertex there (mergeKeep), through the heuristic; 0 in a dispatch that does not merge.
-float mergeTerm(vec3 p) {
-    return mergingPhase(VCM_PHASE_LIGHT) || mergingPhase(VCM_PHASE_CAMERA) ? misPower(mergeKeep(p)) : 0.0;
+// The light reaches the vertex from direction toLight (towards the path's next vertex on the
+// light's side), which picks the side of the surface whose pilot cell counts.
+float mergeTerm(vec3 p, vec3 ng, vec3 toLight) {
+    if (!(mergingPhase(VCM_PHASE_LIGHT) || mergingPhase(VCM_PHASE_CAMERA))) return 0.0;
+    return misPower(mergeKeep(p, dot(toLight, ng) >= 0.0 ? ng : -ng));
 }
 
 // Light vertex i of this sample's light subpath: kept in the invocation, or (vertex merging's
@@ -219,7 +222,7 @@ void connectLightVertexToCamera(
     if (cosLightIn < 1e-7) return;
     float cosCamera = abs(dot(view.wCamera, si.ng));
     float cameraPdfArea = view.importance * cosCamera; // over the pixel count
-    vec3 lightSide = sideTerms(mis, cameraPdfArea, e.pdfTowardsLight, mergeTerm(si.p));
+    vec3 lightSide = sideTerms(mis, cameraPdfArea, e.pdfTowardsLight, mergeTerm(si.p, si.ng, wLight));
     float weight =
         strategyWeight(segments + 1u, segments + 1u, 1.0 / (1.0 + otherStrategies(lightSide, STRATEGY_ENDPOINT)));
     if (weight == 0.0) return;
@@ -341,7 +344,8 @@ void traceLightSubpath(Rng rng, bool cameraConnects) {
             weight = bs.weight * bs.etaScale * (abs(dot(wLight, si.ns)) * abs(dot(wCamera, si.ng)) / denominator);
         }
         if (!allFinite(weight) || maxComponent(weight) <= 0.0) break;
-        advanceMisSums(bs, abs(dot(wCamera, si.ng)), pdfReverse, bs.isDelta ? 0.0 : mergeTerm(si.p), mis);
+        advanceMisSums(
+            bs, abs(dot(wCamera, si.ng)), pdfReverse, bs.isDelta ? 0.0 : mergeTerm(si.p, si.ng, wLight), mis);
         beta *= weight;
         throughput *= weight;
         if (USE_RR && segments + 1u >= scene.rrStartDepth) {
@@ -386,7 +390,8 @@ vec3 bdptLightSample(
         float directPdfW = positionDelta ? ls.pdf * ls.distance * ls.distance : ls.pdf;
         float cosHere = abs(dot(ls.wi, si.ng));
         float pdfReverse = surfacePdf(mat, wiLocal, woLocal);
-        cameraSide = sideTerms(mis, pdfEmit * cosHere / (directPdfW * cosAtLight), pdfReverse, mergeTerm(si.p));
+        cameraSide =
+            sideTerms(mis, pdfEmit * cosHere / (directPdfW * cosAtLight), pdfReverse, mergeTerm(si.p, si.ng, ls.wi));
     }
     float others = otherStrategies(cameraSide + vec3(0.0, hitTerm, 0.0), STRATEGY_ENDPOINT);
     float weight = strategyWeight(1u, depth + 1u, 1.0 / (1.0 + others));
@@ -416,8 +421,8 @@ vec3 connectToLightVertex(
     // Densities of each side's path making the other side's vertex, per unit area.
     float cameraMakesLightVertex = c.pdfTowardsLight * cosLight / dist2;
     float lightMakesCameraVertex = l.pdfTowardsCamera * cosCamera / dist2;
-    vec3 lightSide = sideTerms(lv.mis, cameraMakesLightVertex, l.pdfTowardsLight, mergeTerm(lv.p));
-    vec3 cameraSide = sideTerms(mis, lightMakesCameraVertex, c.pdfTowardsCamera, mergeTerm(si.p));
+    vec3 lightSide = sideTerms(lv.mis, cameraMakesLightVertex, l.pdfTowardsLight, mergeTerm(lv.p, light.si.ng, wLight));
+    vec3 cameraSide = sideTerms(mis, lightMakesCameraVertex, c.pdfTowardsCamera, mergeTerm(si.p, si.ng, dir));
     uint s = lv.segments + 1u;
     float weight =
         strategyWeight(s, depth + s, 1.0 / (1.0 + otherStrategies(lightSide + cameraSide, STRATEGY_CONNECTION)));
@@ -528,7 +533,7 @@ vec3 traceBdptCameraPath(Ray ray, Rng rng, bool cameraConnects) {
             if (HAS_NORMAL_MAPS && !transmissive && dot(bs.wi, si.nSurface) <= 0.0) break;
         }
         if (!bs.valid || maxComponent(bs.weight) <= 0.0 || !(bs.pdf > 0.0)) break;
-        advanceMisSums(bs, abs(dot(bs.wi, si.ng)), pdfReverse, bs.isDelta ? 0.0 : mergeTerm(si.p), mis);
+        advanceMisSums(bs, abs(dot(bs.wi, si.ng)), pdfReverse, bs.isDelta ? 0.0 : mergeTerm(si.p, si.ng, bs.wi), mis);
         beta *= bs.weight;
         etaScale *= bs.etaScale;
         if (USE_RR && depth >= scene.rrStartDepth) {

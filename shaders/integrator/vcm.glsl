@@ -90,10 +90,24 @@ uint vcmCellHash(ivec3 c) { return vcmHash(c, vcm.cellMask); }
 // hundreds, and the 8 lanes of a SIMD group wait for the busiest. So a vertex joins the grid with
 // probability min(1, keepTarget / n), n the vertices a pilot round left in its pilot cell, and its
 // merges count it 1 / that. MIS weighs a merge at x by the same probability (its density there).
-// A function of the position alone, the same for both subpaths and every round.
-float mergeKeep(vec3 p) {
+// A pilot cell is a cube and a side: of the six axis directions, the one nearest nLit, the
+// geometric normal on the side the light arrives from. Cubes alone mixed the two faces of a thin
+// door, one lit by the lamp, the other seen by the camera through the gap: the seen face took the
+// lit face's count, its few kept vertices weighed tens of times each (grain all over the door).
+// A function of the point and side alone, the same for both subpaths and every round.
+uint pilotSide(vec3 nLit) {
+    vec3 a = abs(nLit);
+    uint axis = a.x >= a.y && a.x >= a.z ? 0u : (a.y >= a.z ? 1u : 2u);
+    return axis * 2u + (nLit[axis] < 0.0 ? 1u : 0u);
+}
+
+uint pilotCellOf(vec3 p, vec3 nLit) {
+    return pcg4d(uvec4(uvec3(vcmCellOf(p, vcm.pilotCell)), pilotSide(nLit))).x & vcm.pilotMask;
+}
+
+float mergeKeep(vec3 p, vec3 nLit) {
     if (!MERGING) return 1.0;
-    float n = float(VcmUintRef(vcm.pilot).v[vcmHash(vcmCellOf(p, vcm.pilotCell), vcm.pilotMask)]);
+    float n = float(VcmUintRef(vcm.pilot).v[pilotCellOf(p, nLit)]);
     return n > vcm.keepTarget ? vcm.keepTarget / n : 1.0;
 }
 
@@ -103,7 +117,7 @@ float mergeKeep(vec3 p) {
 // ngLit is the geometric normal on the side the light arrived from, for merges' side test.
 void storeVcmVertex(uint pixelIndex, uint index, LightVertex v, vec3 ngLit, float uKeep) {
     if (vcm.phase == VCM_PHASE_PILOT) {
-        atomicAdd(VcmUintRef(vcm.pilot).v[vcmHash(vcmCellOf(v.p, vcm.pilotCell), vcm.pilotMask)], 1u);
+        atomicAdd(VcmUintRef(vcm.pilot).v[pilotCellOf(v.p, ngLit)], 1u);
         return;
     }
     uint slot = pixelIndex * vcm.verticesPerPixel + index;
@@ -113,7 +127,7 @@ void storeVcmVertex(uint pixelIndex, uint index, LightVertex v, vec3 ngLit, floa
     r.v[3] = vec4(v.hit.bary, uintBitsToFloat(v.hit.instance), uintBitsToFloat(v.segments));
     r.v[4] = vec4(v.beta, v.mis.cVCM);
     r.v[5] = vec4(v.mis.cVC, v.mis.eVCM, v.mis.eVC, v.mis.mVC);
-    float keep = mergeKeep(v.p);
+    float keep = mergeKeep(v.p, ngLit);
     r.v[6] = vec4(ngLit, 1.0 / keep);
     // Every vertex stays for its own camera path's connections; the grid keeps a share. The
     // first vec4 holds what a merge's search reads of every vertex it passes: the point and the
