@@ -61,7 +61,7 @@ void addSceneOptions(CLI::App* cmd, pt::RenderOptions& o, SwitchWords& w) {
            "distance of the surfaces the camera sees (default 8)")
         ->check(CLI::Range(0.01, 1000.0));
     cmd->add_option("--merge-alpha", o.integrator.mergeAlpha,
-           "Vertex merging: the radius shrinks as round^((alpha - 1) / 2) (default 0.75; 1 keeps it)")
+           "Vertex merging: the radius shrinks as round^((alpha - 1) / 2) (default 0.65; 1 keeps it)")
         ->check(CLI::Range(0.01, 1.0));
     cmd->add_option("--seed", o.integrator.seed, "Random seed (default 0)");
     cmd->add_option("--nee", w.nee, "Next event estimation (light sampling): on|off (default on)")

@@ -50,9 +50,10 @@ struct IntegratorSettings {
     // of the surfaces the camera sees (FlatScene::cameraHitDistance; the scene's radius where
     // unmeasured), and the rate it shrinks at (r_i = r_1 i^((alpha - 1) / 2)).
     // 8 had 0.6x the relMSE of 5 at 30 s on Veach Ajar and was level on scenes/ajar; 12 and 3 were
-    // worse (bench/RESULTS.md, "Vertex merging").
+    // worse (bench/RESULTS.md, "Vertex merging"). Alpha 0.65 had 0.82x the relMSE of 0.75 at 60 s
+    // on scenes/ajar (whose error there is mostly the merges' bias), level at 10 s and on Veach Ajar.
     float mergeRadius = 8.0f;
-    float mergeAlpha = 0.75f;
+    float mergeAlpha = 0.65f;
     LightSelection lightSelection = LightSelection::Auto;
 
     std::string describe() const;
