@@ -163,6 +163,11 @@ uint vcmVertexCount(uint pixelIndex) { return vcmCounts().v[pixelIndex]; }
 // MIS sums `mis`) gathers: every stored light vertex within the radius on the same surface, the
 // camera vertex's BSDF applied to the direction its light arrived from, weighted against every
 // other strategy, over pi r^2 and the round's light subpaths. Times the camera path's throughput.
+// The square of the largest distance from the seen surface's tangent plane a merged vertex may
+// have, in radii: a quarter of the radius, well above a curved surface's sag within it unless
+// the curvature radius is under twice the merge radius.
+const float kMergeSlab = 0.0625;
+
 vec3 mergeAtVertex(SurfaceInteraction si, GpuMaterial mat, Frame frame, vec3 wo, uint depth, MisSums mis) {
     float r = vcm.radius, r2 = r * r, cellSize = 2.0 * r;
     vec3 q = si.p / cellSize;
@@ -183,7 +188,12 @@ vec3 mergeAtVertex(SurfaceInteraction si, GpuMaterial mat, Frame frame, vec3 wo,
             Vec4Ref rec = vcmRecord(slot);
             vec4 v0 = rec.v[0];
             vec3 d = v0.xyz - si.p;
-            if (dot(d, d) <= r2 && depth + floatBitsToUint(rec.v[3].w) <= scene.maxDepth) {
+            // Within the radius, and near the seen surface's tangent plane: a point on another
+            // surface parallel to it behind a thin gap (the far side of a door's slit) is no
+            // sample of the light here, and merging it leaks that side's light through the gap.
+            float offPlane = dot(d, si.ng);
+            if (dot(d, d) <= r2 && offPlane * offPlane <= kMergeSlab * r2 &&
+                depth + floatBitsToUint(rec.v[3].w) <= scene.maxDepth) {
                 vec4 v6 = rec.v[6];
                 vec3 ngLit = v6.xyz;
                 // The same surface, lit from the side seen (either side through a transmissive one).
