@@ -82,9 +82,10 @@ ivec3 vcmCellOf(vec3 p, float cellSize) {
 
 // A well-mixed hash: with Teschner et al.'s three products xor'ed, the low bits a power-of-two
 // mask keeps collided often enough that the pilot gave one floor cell in eight of the two-rooms
-// scene a crowded cell's count, and so a low keep probability: squares of noise there.
-uint vcmHash(ivec3 c, uint mask) { return pcg4d(uvec4(uvec3(c), 0x2545F491u)).x & mask; }
-uint vcmCellHash(ivec3 c) { return vcmHash(c, vcm.cellMask); }
+// scene a crowded cell's count, and so a low keep probability: squares of noise there. `key`
+// tells apart cells of one cube (the pilot's sides).
+uint vcmHash(ivec3 c, uint key, uint mask) { return pcg4d(uvec4(uvec3(c), key)).x & mask; }
+uint vcmCellHash(ivec3 c) { return vcmHash(c, 0x2545F491u, vcm.cellMask); }
 
 // Where a round's light subpaths leave many vertices (beside the light), a merge would gather
 // hundreds, and the 8 lanes of a SIMD group wait for the busiest. So a vertex joins the grid with
@@ -101,9 +102,7 @@ uint pilotSide(vec3 nLit) {
     return axis * 2u + (nLit[axis] < 0.0 ? 1u : 0u);
 }
 
-uint pilotCellOf(vec3 p, vec3 nLit) {
-    return pcg4d(uvec4(uvec3(vcmCellOf(p, vcm.pilotCell)), pilotSide(nLit))).x & vcm.pilotMask;
-}
+uint pilotCellOf(vec3 p, vec3 nLit) { return vcmHash(vcmCellOf(p, vcm.pilotCell), pilotSide(nLit), vcm.pilotMask); }
 
 float mergeKeep(vec3 p, vec3 nLit) {
     if (!MERGING) return 1.0;
@@ -159,15 +158,15 @@ LightVertex loadVcmVertex(uint slot) {
 
 uint vcmVertexCount(uint pixelIndex) { return vcmCounts().v[pixelIndex]; }
 
-// What merging at camera vertex si (shading in `frame`, reached from wo after `depth` segments,
-// MIS sums `mis`) gathers: every stored light vertex within the radius on the same surface, the
-// camera vertex's BSDF applied to the direction its light arrived from, weighted against every
-// other strategy, over pi r^2 and the round's light subpaths. Times the camera path's throughput.
 // The square of the largest distance from the seen surface's tangent plane a merged vertex may
 // have, in radii: a quarter of the radius, well above a curved surface's sag within it unless
 // the curvature radius is under twice the merge radius.
 const float kMergeSlab = 0.0625;
 
+// What merging at camera vertex si (shading in `frame`, reached from wo after `depth` segments,
+// MIS sums `mis`) gathers: every stored light vertex within the radius on the same surface, the
+// camera vertex's BSDF applied to the direction its light arrived from, weighted against every
+// other strategy, over pi r^2 and the round's light subpaths. Times the camera path's throughput.
 vec3 mergeAtVertex(SurfaceInteraction si, GpuMaterial mat, Frame frame, vec3 wo, uint depth, MisSums mis) {
     float r = vcm.radius, r2 = r * r, cellSize = 2.0 * r;
     vec3 q = si.p / cellSize;
