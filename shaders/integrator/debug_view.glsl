@@ -9,6 +9,8 @@
 #include "shared/features.glsl"
 #include "material/material_textures.glsl"
 #include "common/rng.glsl"
+#include "common/sampling.glsl"
+#include "common/ray_offset.glsl"
 #include "bsdf/surface_bsdf.glsl"
 #include "lights/light_sampling.glsl"
 #include "integrator/shadow_ray.glsl"
@@ -50,14 +52,55 @@ vec3 nanMask(vec3 L) {
     return allFinite(L) ? vec3(NAN_MASK_GREY * clamp(luminance(L), 0.0, 1.0)) : vec3(1.0, 0.0, 0.0);
 }
 
+// The share of a surface's scattering in a sharp GGX lobe (alpha below SHARP_LOBE_MAX_ALPHA): a
+// rough conductor or dielectric, a PBR metal or transmitter. Light that such a surface reflects
+// or transmits onto others is a glossy caustic: a unidirectional path finds it only when its
+// BSDF sample from the receiving surface meets the lobe's narrow image of the light, while a
+// light subpath carries it there. Smooth (delta) surfaces are the light tracer's instead.
+float sharpLobeWeight(GpuMaterial m) {
+    if (!(m.alpha >= MIN_ROUGH_ALPHA && m.alpha < SHARP_LOBE_MAX_ALPHA)) return 0.0;
+    if (isRoughConductor(m) || isRoughDielectric(m)) return 1.0;
+    return isPbr(m) ? max(m.metallic, m.transmission) : 0.0;
+}
+
+// One cosine-weighted bounce from surface si (not itself sharp, normal n towards the viewer):
+// does it meet a surface whose scattering is mostly a sharp lobe and whose light sample finds
+// its light? Such bounces carry glossy caustics (sharpLobeWeight).
+bool bounceMeetsLitSharpLobe(SurfaceInteraction si, GpuMaterial mat, vec3 n, Rng rng) {
+    if (!(HAS_MICROFACET || HAS_PBR) || sharpLobeWeight(mat) >= 0.5) return false;
+    Ray bounce;
+    bounce.direction =
+        toWorld(makeFrame(n), sampleCosineHemisphere(rng2(rng, bounceDimension(1u, DIM_BSDF_DIRECTION))));
+    bounce.origin = spawnOrigin(si.p, si.ng, bounce.direction, si.magnitude);
+    Hit hit;
+    if (!traceClosest(bounce, FLOAT_MAX, hit)) return false;
+    SurfaceInteraction sy = makeInteraction(bounce, hit);
+    GpuMaterial my = sceneMaterials.v[sy.materialIndex];
+    applyTextures(my, sy);
+    if (!isSurfaceBsdf(my) || sharpLobeWeight(my) < 0.5) return false;
+    bool transmissive = isTransmissiveSurface(my);
+    if (!transmissive && !sy.frontFace) {
+        if ((my.flags & MATERIAL_FLAG_DOUBLE_SIDED) == 0u) return false;
+        turnToBackSide(sy);
+    }
+    uint index = selectLight(rng1(rng, bounceDimension(2u, DIM_LIGHT_SELECT)));
+    uint type = sceneLights.v[index].type;
+    if (type == LIGHT_DIRECTIONAL || type == LIGHT_ENVIRONMENT) return false;
+    LightSample ls = sampleLightIndex(index, sy.p, rng2(rng, bounceDimension(2u, DIM_LIGHT_POINT)));
+    if (ls.pdf <= 0.0 || maxComponent(ls.radiance) <= 0.0) return false;
+    if (!transmissive && dot(ls.wi, sy.nSurface) <= 0.0) return false;
+    return !lightOccluded(sy, ls);
+}
+
 // Light visibility: at the camera ray's hit on a surface that samples lights, one sample of a
 // light whose light subpaths start near the scene (not the sky nor a directional light: theirs
 // start on a disc around the whole scene, and measured on a room lit by daylight through a door
-// ajar they do not pay, bench/RESULTS.md): green 1 where it
-// could light the surface (it has radiance and lies above an opaque surface), red 1 where,
-// besides, nothing is in between. Mean red over mean green is the fraction of light samples
-// that find their light (src/render/light_visibility_probe.cpp). Blue: the distance to that
-// surface, for vertex merging's radius.
+// ajar they do not pay, bench/RESULTS.md): green 1 where it could light the surface (it has
+// radiance and lies above an opaque surface); red counts two outcomes (shared/layout.h): 1 where,
+// besides, nothing is in between, plus LIGHT_VIA_SHARP_LOBE where a cosine-weighted bounce meets
+// a lit sharp lobe (bounceMeetsLitSharpLobe). The probe (src/render/light_visibility_probe.cpp)
+// takes both fractions from the red sums. Blue: the distance to that surface, for vertex
+// merging's radius.
 vec3 lightVisibility(Ray ray, Rng rng) {
     Hit hit;
     if (scene.numLights == 0u || !traceClosest(ray, FLOAT_MAX, hit)) return vec3(0.0);
@@ -77,7 +120,10 @@ vec3 lightVisibility(Ray ray, Rng rng) {
     LightSample ls = sampleLightIndex(index, si.p, rng2(rng, bounceDimension(1u, DIM_LIGHT_POINT)));
     if (ls.pdf <= 0.0 || maxComponent(ls.radiance) <= 0.0) return distance;
     if (!transmissive && dot(ls.wi, si.nSurface) <= 0.0) return distance;
-    return vec3(lightOccluded(si, ls) ? 0.0 : 1.0, 1.0, hit.t);
+    float visible = lightOccluded(si, ls) ? 0.0 : 1.0;
+    vec3 n = dot(si.ns, ray.direction) < 0.0 ? si.ns : -si.ns;
+    float viaSharpLobe = bounceMeetsLitSharpLobe(si, mat, n, rng) ? LIGHT_VIA_SHARP_LOBE : 0.0;
+    return vec3(visible + viaSharpLobe, 1.0, hit.t);
 }
 
 // Albedo, normal, depth and BVH cost: what the camera ray's closest hit shows.

@@ -178,6 +178,13 @@ using uint64_t = std::uint64_t;
 // Not one of the viewer's: how often light sampling at the surfaces the camera sees finds its
 // light (integrator/debug_view.glsl; `--integrator auto` measures with it).
 #define DEBUG_VIEW_LIGHT_VISIBILITY 6u
+// Its red channel counts two outcomes of a sample in one number: 1 for a light sample that finds
+// its light, LIGHT_VIA_SHARP_LOBE for a bounce that meets a lit sharp GGX lobe (a glossy
+// caustic's carrier). The probe takes fewer samples per pixel than this, so each pixel's two
+// counts are the quotient and remainder of its red sum by it.
+#define LIGHT_VIA_SHARP_LOBE 8.0
+// GGX alpha below which a lobe counts as sharp for that probe (flatten/feature_set.h).
+#define SHARP_LOBE_MAX_ALPHA 0.2
 
 // A triangle as the intersector reads it: world-space vertices plus the ids it needs at a hit.
 struct GpuTriangle {

@@ -208,23 +208,34 @@ bool bdptPossible(const FlatScene& scene, const IntegratorSettings& s, const Fea
     return !f.classic && !f.dispersion && !scene.lights.lights.empty() && s.maxDepth <= BDPT_MAX_LIGHT_VERTICES + 2;
 }
 
-// `--integrator bdpt` where possible; under `auto`, where light sampling at the surfaces the
-// camera sees finds its light less often than kBdptBelowLightVisibility (measured on the device,
-// FlatScene::lightVisibility): light that arrives through a gap, a shade or glass, which
-// unidirectional paths find by chance and light subpaths carry to them.
-bool bdptChosen(const FlatScene& scene, const IntegratorSettings& s, const FeatureSet& f) {
-    if (s.estimator == Estimator::Path || !bdptPossible(scene, s, f)) return false;
-    if (s.estimator == Estimator::Bidirectional || s.estimator == Estimator::VertexMerging) return true;
+// Under `auto`, where light sampling at the surfaces the camera sees finds its light less often
+// than kBdptBelowLightVisibility (measured on the device, FlatScene::lightVisibility): light that
+// arrives through a gap, a shade or glass, which unidirectional paths find by chance and light
+// subpaths carry to them.
+bool lightMostlyHidden(const FlatScene& scene) {
     return scene.lightVisibility && *scene.lightVisibility < kBdptBelowLightVisibility;
 }
 
-// Vertex merging over BDPT (integrator/vcm.glsl): wherever BDPT renders the scene but for
-// `--integrator bdpt` (so under auto too: on both scenes auto gives BDPT, Veach Ajar and the two
-// rooms of scenes/ajar, merging had 2-5x lower error at equal time; bench/RESULTS.md). Not with
-// moving objects (a round's light subpaths would be merged across shutter times), nor deeper
+// `--integrator bdpt` where possible; under `auto`, where the light is mostly hidden or where
+// glossy caustics are common (FlatScene::glossyCausticBounces: light that a rough gold or glass
+// block focuses onto diffuse surfaces, which a light subpath's connection to the camera carries).
+bool bdptChosen(const FlatScene& scene, const IntegratorSettings& s, const FeatureSet& f) {
+    if (s.estimator == Estimator::Path || !bdptPossible(scene, s, f)) return false;
+    if (s.estimator == Estimator::Bidirectional || s.estimator == Estimator::VertexMerging) return true;
+    return lightMostlyHidden(scene) ||
+           (scene.glossyCausticBounces && *scene.glossyCausticBounces >= kBdptFromGlossyCausticBounces);
+}
+
+// Vertex merging over BDPT (integrator/vcm.glsl): for `--integrator vcm`, and under auto where
+// the light is mostly hidden (on both such scenes, Veach Ajar and the two rooms of scenes/ajar,
+// merging had 2-5x lower error than BDPT at equal time; bench/RESULTS.md). Not where BDPT was
+// chosen for glossy caustics alone: connections carry those, and on four of five such boxes
+// merging's cost outweighed what it added (bench/RESULTS.md, "Glossy caustics choose BDPT"). Not
+// with moving objects (a round's light subpaths would be merged across shutter times), nor deeper
 // than the light vertices a pixel keeps.
-bool mergingChosen(const FlatScene&, const IntegratorSettings& s, const FeatureSet& f) {
-    return f.bdpt && s.estimator != Estimator::Bidirectional && !f.motion && s.maxDepth <= BDPT_MAX_LIGHT_VERTICES + 1;
+bool mergingChosen(const FlatScene& scene, const IntegratorSettings& s, const FeatureSet& f) {
+    if (!f.bdpt || f.motion || s.maxDepth > BDPT_MAX_LIGHT_VERTICES + 1) return false;
+    return s.estimator == Estimator::VertexMerging || (s.estimator == Estimator::Auto && lightMostlyHidden(scene));
 }
 
 // Light tracing pays only where caustics can be seen directly: a smooth (delta) mirror, conductor or

@@ -17,6 +17,10 @@ namespace pt {
 // `--integrator auto` renders by BDPT where fewer light samples than this find their light
 // (FlatScene::lightVisibility; bench/RESULTS.md, "Bidirectional path tracing").
 constexpr float kBdptBelowLightVisibility = 0.1f;
+// ... and where at least this fraction of the bounces from the surfaces the camera sees meet a lit
+// sharp GGX lobe (FlatScene::glossyCausticBounces): glossy caustics, which light subpaths carry
+// (bench/RESULTS.md, "Glossy caustics choose BDPT").
+constexpr float kBdptFromGlossyCausticBounces = 0.02f;
 
 #define PT_FEATURE_CPP_TYPE_flag bool
 #define PT_FEATURE_CPP_TYPE_module bool

@@ -71,6 +71,10 @@ struct FlatScene {
     // (src/render/light_visibility_probe.h): the fraction of light samples at the surfaces the
     // camera sees that find their light. Absent where not measured.
     std::optional<float> lightVisibility;
+    // Measured by the same probe: the fraction of cosine-weighted bounces from those surfaces
+    // that meet a lit surface scattering mostly in a sharp GGX lobe (rough gold, rough glass): the
+    // carriers of glossy caustics (shaders/integrator/debug_view.glsl, sharpLobeWeight).
+    std::optional<float> glossyCausticBounces;
     // Measured by the same probe: the median distance from the camera to the surfaces it sees that
     // sample lights (vertex merging's radius is a number of pixel footprints there).
     std::optional<float> cameraHitDistance;

@@ -20,6 +20,9 @@ namespace pt {
 // `width` and `height`: the render's, whose aspect the probe keeps.
 struct LightVisibilityProbe {
     std::optional<float> lightVisibility;
+    // The fraction of cosine-weighted bounces from the same surfaces that meet a lit sharp GGX
+    // lobe (FlatScene::glossyCausticBounces).
+    std::optional<float> glossyCausticBounces;
     // The median distance to the surfaces the camera sees that sample lights (FlatScene::cameraHitDistance).
     std::optional<float> cameraHitDistance;
 };
