@@ -63,6 +63,26 @@ float sharpLobeWeight(GpuMaterial m) {
     return isPbr(m) ? max(m.metallic, m.transmission) : 0.0;
 }
 
+// The probe's light sample at surface si (vertex `bounce` of the sample's dimensions), of a light
+// whose light subpaths start near the scene (not the sky nor a directional light: theirs start on
+// a disc around the whole scene, and measured on a room lit by daylight through a door ajar they
+// do not pay, bench/RESULTS.md). False where it could not light the surface: a one-sided surface
+// seen from behind, a light at infinity, no radiance, a light below an opaque surface. si turns
+// to the viewer's side of a double-sided surface.
+bool probeLightSample(inout SurfaceInteraction si, GpuMaterial mat, uint bounce, Rng rng, out LightSample ls) {
+    bool transmissive = isTransmissiveSurface(mat);
+    if (!transmissive && !si.frontFace) {
+        if ((mat.flags & MATERIAL_FLAG_DOUBLE_SIDED) == 0u) return false;
+        turnToBackSide(si);
+    }
+    uint index = selectLight(rng1(rng, bounceDimension(bounce, DIM_LIGHT_SELECT)));
+    uint type = sceneLights.v[index].type;
+    if (type == LIGHT_DIRECTIONAL || type == LIGHT_ENVIRONMENT) return false;
+    ls = sampleLightIndex(index, si.p, rng2(rng, bounceDimension(bounce, DIM_LIGHT_POINT)));
+    if (ls.pdf <= 0.0 || maxComponent(ls.radiance) <= 0.0) return false;
+    return transmissive || dot(ls.wi, si.nSurface) > 0.0;
+}
+
 // One cosine-weighted bounce from surface si (not itself sharp, normal n towards the viewer):
 // does it meet a surface whose scattering is mostly a sharp lobe and whose light sample finds
 // its light? Such bounces carry glossy caustics (sharpLobeWeight).
@@ -78,29 +98,16 @@ bool bounceMeetsLitSharpLobe(SurfaceInteraction si, GpuMaterial mat, vec3 n, Rng
     GpuMaterial my = sceneMaterials.v[sy.materialIndex];
     applyTextures(my, sy);
     if (!isSurfaceBsdf(my) || sharpLobeWeight(my) < 0.5) return false;
-    bool transmissive = isTransmissiveSurface(my);
-    if (!transmissive && !sy.frontFace) {
-        if ((my.flags & MATERIAL_FLAG_DOUBLE_SIDED) == 0u) return false;
-        turnToBackSide(sy);
-    }
-    uint index = selectLight(rng1(rng, bounceDimension(2u, DIM_LIGHT_SELECT)));
-    uint type = sceneLights.v[index].type;
-    if (type == LIGHT_DIRECTIONAL || type == LIGHT_ENVIRONMENT) return false;
-    LightSample ls = sampleLightIndex(index, sy.p, rng2(rng, bounceDimension(2u, DIM_LIGHT_POINT)));
-    if (ls.pdf <= 0.0 || maxComponent(ls.radiance) <= 0.0) return false;
-    if (!transmissive && dot(ls.wi, sy.nSurface) <= 0.0) return false;
-    return !lightOccluded(sy, ls);
+    LightSample ls;
+    return probeLightSample(sy, my, 2u, rng, ls) && !lightOccluded(sy, ls);
 }
 
-// Light visibility: at the camera ray's hit on a surface that samples lights, one sample of a
-// light whose light subpaths start near the scene (not the sky nor a directional light: theirs
-// start on a disc around the whole scene, and measured on a room lit by daylight through a door
-// ajar they do not pay, bench/RESULTS.md): green 1 where it could light the surface (it has
-// radiance and lies above an opaque surface); red counts two outcomes (shared/layout.h): 1 where,
-// besides, nothing is in between, plus LIGHT_VIA_SHARP_LOBE where a cosine-weighted bounce meets
-// a lit sharp lobe (bounceMeetsLitSharpLobe). The probe (src/render/light_visibility_probe.cpp)
-// takes both fractions from the red sums. Blue: the distance to that surface, for vertex
-// merging's radius.
+// Light visibility: at the camera ray's hit on a surface that samples lights, one
+// probeLightSample: green 1 where it could light the surface; red counts two outcomes
+// (shared/layout.h): 1 where, besides, nothing is in between, plus LIGHT_VIA_SHARP_LOBE where a
+// cosine-weighted bounce meets a lit sharp lobe (bounceMeetsLitSharpLobe). The probe
+// (src/render/light_visibility_probe.cpp) takes both fractions from the red sums. Blue: the
+// distance to that surface, for vertex merging's radius.
 vec3 lightVisibility(Ray ray, Rng rng) {
     Hit hit;
     if (scene.numLights == 0u || !traceClosest(ray, FLOAT_MAX, hit)) return vec3(0.0);
@@ -108,18 +115,8 @@ vec3 lightVisibility(Ray ray, Rng rng) {
     GpuMaterial mat = sceneMaterials.v[si.materialIndex];
     applyTextures(mat, si);
     if (!isSurfaceBsdf(mat)) return vec3(0.0);
-    vec3 distance = vec3(0.0, 0.0, hit.t);
-    bool transmissive = isTransmissiveSurface(mat);
-    if (!transmissive && !si.frontFace) {
-        if ((mat.flags & MATERIAL_FLAG_DOUBLE_SIDED) == 0u) return distance;
-        turnToBackSide(si);
-    }
-    uint index = selectLight(rng1(rng, bounceDimension(1u, DIM_LIGHT_SELECT)));
-    uint type = sceneLights.v[index].type;
-    if (type == LIGHT_DIRECTIONAL || type == LIGHT_ENVIRONMENT) return distance;
-    LightSample ls = sampleLightIndex(index, si.p, rng2(rng, bounceDimension(1u, DIM_LIGHT_POINT)));
-    if (ls.pdf <= 0.0 || maxComponent(ls.radiance) <= 0.0) return distance;
-    if (!transmissive && dot(ls.wi, si.nSurface) <= 0.0) return distance;
+    LightSample ls;
+    if (!probeLightSample(si, mat, 1u, rng, ls)) return vec3(0.0, 0.0, hit.t);
     float visible = lightOccluded(si, ls) ? 0.0 : 1.0;
     vec3 n = dot(si.ns, ray.direction) < 0.0 ? si.ns : -si.ns;
     float viaSharpLobe = bounceMeetsLitSharpLobe(si, mat, n, rng) ? LIGHT_VIA_SHARP_LOBE : 0.0;
