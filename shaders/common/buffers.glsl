@@ -1,5 +1,6 @@
 // Typed views of the scene arrays through their device addresses (GL_EXT_buffer_reference):
-// no descriptor sets, and no 128 MiB per-binding limit (lavapipe's maxStorageBufferRange).
+// no 128 MiB per-binding limit (lavapipe's maxStorageBufferRange). The one descriptor is the
+// uniform buffer of a tiny scene's triangles (below).
 #ifndef PT_COMMON_BUFFERS_GLSL
 #define PT_COMMON_BUFFERS_GLSL
 #extension GL_EXT_buffer_reference : require
@@ -90,6 +91,30 @@ GpuTriangle loadTriangle(uint index) {
     t.lightIndex = w3.y;
     t.p2 = vec3(floatsOf(w.v[4]), uintBitsToFloat(w5.x));
     t.flags = w5.y;
+    return t;
+}
+
+// A tiny scene's triangles again, as a uniform buffer (set 0, binding 0; every pipeline's layout
+// has it, src/gpu/compute_pipeline.cpp), for the traversal that tests them all
+// (UNIFORM_TRIANGLE_COUNT, geometry/traverse.glsl). Read at an index the compiler knows, a
+// uniform buffer's word is loaded once for all lanes of lavapipe's SIMD vector and broadcast;
+// storage buffers and device addresses are gathered lane by lane inside any branch or loop.
+layout(set = 0, binding = 0, std140) uniform UniformTriangleBlock {
+    uvec4 words[UNIFORM_TRIANGLES_MAX * UNIFORM_TRIANGLE_VEC4S];
+}
+uniformTriangles;
+
+GpuTriangle loadUniformTriangle(uint index) {
+    uvec4 a = uniformTriangles.words[index * UNIFORM_TRIANGLE_VEC4S];
+    uvec4 b = uniformTriangles.words[index * UNIFORM_TRIANGLE_VEC4S + 1u];
+    uvec4 c = uniformTriangles.words[index * UNIFORM_TRIANGLE_VEC4S + 2u];
+    GpuTriangle t;
+    t.p0 = uintBitsToFloat(a.xyz);
+    t.materialIndex = a.w;
+    t.p1 = uintBitsToFloat(b.xyz);
+    t.lightIndex = b.w;
+    t.p2 = uintBitsToFloat(c.xyz);
+    t.flags = c.w;
     return t;
 }
 

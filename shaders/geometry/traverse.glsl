@@ -6,6 +6,7 @@
 // of their own.
 #ifndef PT_GEOMETRY_TRAVERSE_GLSL
 #define PT_GEOMETRY_TRAVERSE_GLSL
+#extension GL_EXT_control_flow_attributes : require
 #include "common/buffers.glsl"
 #include "common/math.glsl"
 #include "geometry/triangle.glsl"
@@ -73,6 +74,22 @@ vec4 childEntries(GpuBvh4Node node, BoxRay r, float tMax) {
     vec4 exit = min(min(farX, farY), min(farZ, vec4(tMax))) * BOX_FAR_SCALE;
     bvec4 hit = bvec4(uvec4(lessThanEqual(entry, exit)) & uvec4(notEqual(node.child, uvec4(BVH4_EMPTY))));
     return mix(vec4(FLOAT_MAX), entry, hit);
+}
+
+// Whether the ray enters the box within (0, tMax): one child's test of childEntries.
+bool rayEntersBox(BoxRay r, vec3 lo, vec3 hi, float tMax) {
+    vec3 t0 = (lo - r.origin) * r.invDir, t1 = (hi - r.origin) * r.invDir;
+    vec3 near = min(t0, t1), far = max(t0, t1);
+    for (int axis = 0; axis < 3; ++axis) {
+        if (r.parallel[axis]) {
+            bool inside = r.origin[axis] >= lo[axis] && r.origin[axis] <= hi[axis];
+            near[axis] = inside ? -FLOAT_MAX : FLOAT_MAX;
+            far[axis] = inside ? FLOAT_MAX : -FLOAT_MAX;
+        }
+    }
+    float entry = max(max(near.x, near.y), max(near.z, 0.0));
+    float exit = min(min(far.x, far.y), min(far.z, tMax)) * BOX_FAR_SCALE;
+    return entry <= exit;
 }
 
 // Node `index` of the triangle tree, in the format the pipeline was specialised for, or (not
@@ -146,6 +163,35 @@ uint traversalNodeVisits = 0u;
         else                                                                                                           \
             POP_CHILD();                                                                                               \
     }
+
+// A tiny scene's triangles without a tree (UNIFORM_TRIANGLE_COUNT > 0): every ray tests every
+// triangle, in a loop unrolled at specialization, so each triangle's words are uniform-buffer
+// loads at constant offsets (one scalar load for all lanes) and the lanes of a SIMD vector never
+// diverge. For the 32 triangles of a Cornell box this is faster on lavapipe than the four-wide
+// tree, whose node loads are per-lane gathers (bench/RESULTS.md, "Tiny scenes without a tree").
+// Ties in t keep the lower index (the tree may keep either).
+bool testUniformTriangles(bool anyHit, Ray ray, WatertightRay wray, inout Hit hit) {
+    bool found = false;
+    [[unroll]] for (uint i = 0u; i < UNIFORM_TRIANGLE_COUNT; ++i) {
+        // A shadow ray stops at its first hit: once every lane of the SIMD vector has one, the
+        // driver skips the remaining tests (a branch around a block no lane runs).
+        if (anyHit && found) continue;
+        GpuTriangle tri = placedTriangle(loadUniformTriangle(i));
+        float t;
+        vec2 bary;
+        bool hitTriangle = intersectTriangle(wray, tri.p0, tri.p1, tri.p2, hit.t, t, bary);
+        if (HAS_ALPHA && hitTriangle && (tri.flags & TRIANGLE_FLAG_ALPHA_TESTED) != 0u)
+            hitTriangle = !alphaCutsOut(tri, i, bary, ray);
+        if (hitTriangle) {
+            hit.t = t;
+            hit.primitive = i;
+            hit.bary = bary;
+            hit.instance = NO_INSTANCE;
+            found = true;
+        }
+    }
+    return found;
+}
 
 // One traversal loop for the triangle trees and the sphere tree: `sphereTree` is a literal at
 // every call, so the compiler keeps only one kind of leaf test in each inlined copy. `anyHit`
@@ -232,6 +278,17 @@ bool traverseInstances(bool anyHit, Ray ray, BoxRay boxRay, inout Hit hit) {
     return found;
 }
 
+// Rounding can make a rare false hit far off a sliver triangle (geometry/triangle.glsl); the
+// tree never tests a triangle whose box the ray does not enter, so it never sees one. Without a
+// tree the hit found is checked once the same way (its triangle's box entered by t, by the tree's
+// conservative slab test), and where it fails the tree finds the hit instead (in practice never:
+// a branch no lane of the SIMD vector takes costs nothing). Checking each candidate instead cost
+// a third of what skipping the tree gains on the Cornell box.
+bool uniformHitInItsBox(BoxRay boxRay, Hit hit) {
+    GpuTriangle tri = placedTriangle(loadTriangle(hit.primitive));
+    return rayEntersBox(boxRay, min(min(tri.p0, tri.p1), tri.p2), max(max(tri.p0, tri.p1), tri.p2), hit.t);
+}
+
 // Closest hit in (0, tMax). Returns false on a miss.
 bool traceClosest(Ray ray, float tMax, out Hit hit) {
     hit.t = tMax;
@@ -241,7 +298,14 @@ bool traceClosest(Ray ray, float tMax, out Hit hit) {
     WatertightRay wray = makeWatertightRay(ray);
     BoxRay boxRay = makeBoxRay(ray);
     bool found = false;
-    if (HAS_TRIANGLES) found = traverseTree(false, false, ray, wray, boxRay, hit, 0u, NO_INSTANCE);
+    if (HAS_TRIANGLES && UNIFORM_TRIANGLE_COUNT > 0u) {
+        found = testUniformTriangles(false, ray, wray, hit);
+        if (found && !uniformHitInItsBox(boxRay, hit)) {
+            hit.t = tMax;
+            found = traverseTree(false, false, ray, wray, boxRay, hit, 0u, NO_INSTANCE);
+        }
+    } else if (HAS_TRIANGLES)
+        found = traverseTree(false, false, ray, wray, boxRay, hit, 0u, NO_INSTANCE);
     if (HAS_INSTANCES) found = traverseInstances(false, ray, boxRay, hit) || found;
     if (HAS_SPHERES) found = traverseTree(true, false, ray, wray, boxRay, hit, 0u, NO_INSTANCE) || found;
     return found;
@@ -256,7 +320,14 @@ bool traceAny(Ray ray, float tMax) {
     hit.instance = NO_INSTANCE;
     WatertightRay wray = makeWatertightRay(ray);
     BoxRay boxRay = makeBoxRay(ray);
-    if (HAS_TRIANGLES && traverseTree(false, true, ray, wray, boxRay, hit, 0u, NO_INSTANCE)) return true;
+    if (HAS_TRIANGLES && UNIFORM_TRIANGLE_COUNT > 0u) {
+        if (testUniformTriangles(true, ray, wray, hit)) {
+            if (uniformHitInItsBox(boxRay, hit)) return true;
+            hit.t = tMax;
+            if (traverseTree(false, true, ray, wray, boxRay, hit, 0u, NO_INSTANCE)) return true;
+        }
+    } else if (HAS_TRIANGLES && traverseTree(false, true, ray, wray, boxRay, hit, 0u, NO_INSTANCE))
+        return true;
     if (HAS_INSTANCES && traverseInstances(true, ray, boxRay, hit)) return true;
     return HAS_SPHERES && traverseTree(true, true, ray, wray, boxRay, hit, 0u, NO_INSTANCE);
 }

@@ -112,6 +112,9 @@
         "cosine-weighted rather than uniform hemisphere sampling of diffuse lobes")                                    \
     PT_FEATURE(sampler, choice, SAMPLER, 29, SAMPLER_INDEPENDENT, samplerOf(s), samplerOf(s),                          \
         v == SAMPLER_SOBOL ? "sobol" : nullptr, "SAMPLER_*: how the sample dimensions are filled")                     \
+    PT_FEATURE(uniformTriangles, choice, UNIFORM_TRIANGLE_COUNT, 45, 0, 0, uniformTriangleCount(scene, s, f),          \
+        v ? "all-triangles" : nullptr,                                                                                 \
+        "a tiny scene's triangle count: each ray tests them all from a uniform buffer, no tree (0: the tree)")         \
     /* Where a scene's pipeline is not specialised (FeatureSet::all, the test kernels), the      \
        kernel reads the format from the scene. */                     \
     PT_FEATURE(nodeFormat, choice, NODE_FORMAT, 32, BVH_NODES_FROM_SCENE, BVH_NODES_FROM_SCENE, nodeFormatOf(scene),   \

@@ -90,6 +90,13 @@ using uint64_t = std::uint64_t;
 // that needs more (src/flatten/flat_scene.cpp), so the kernel never checks.
 #define TRAVERSAL_STACK_SIZE 96
 
+// Scenes of at most this many triangles (and no instances) may skip the tree: each ray tests
+// every triangle, read from a uniform buffer at indices the compiler knows (shaders/geometry/
+// traverse.glsl, UNIFORM_TRIANGLE_COUNT), where lavapipe loads each word once for the whole
+// SIMD vector instead of gathering it lane by lane. The block is this size whatever the scene.
+#define UNIFORM_TRIANGLES_MAX 48u
+#define UNIFORM_TRIANGLE_VEC4S 3u // one GpuTriangle as std140 uvec4s
+
 // Child words of GpuBvh4Node. An inner child is the index of its node (bit 31 clear); a leaf
 // has bit 31 set, its primitive count minus one in bits 27..30 and its first primitive (in the
 // BVH-ordered primitive array) in bits 0..26; an unused slot is BVH4_EMPTY.

@@ -37,7 +37,7 @@ bool onOff(const std::string& v) { return v == "on"; }
 
 // Switches given as words on the command line, converted after parsing.
 struct SwitchWords {
-    std::string nee, mis, rr, sampling, integrator, sampler, lightTracing, instances, lightTree;
+    std::string nee, mis, rr, sampling, integrator, sampler, lightTracing, instances, lightTree, bvh;
     std::vector<float> envColour;
 };
 
@@ -95,6 +95,11 @@ void addSceneOptions(CLI::App* cmd, pt::RenderOptions& o, SwitchWords& w) {
            "first), off (by power alone) or auto (the tree where two or more lights spread over a quarter of the "
            "scene or face more ways than a 30-degree cone); default auto")
         ->check(CLI::IsMember({"auto", "on", "off"}));
+    cmd->add_option("--bvh", w.bvh,
+           "Triangles: auto (a scene of at most 48 triangles and no instances tests every triangle against each "
+           "ray, read from a uniform buffer: faster on lavapipe than the tree) or always (the four-wide tree); "
+           "default auto; the same image either way")
+        ->check(CLI::IsMember({"auto", "always"}));
     cmd->add_option("--instances", w.instances,
            "Meshes placed several times (glTF nodes sharing a mesh, the course's MeshInstances): keep (one copy "
            "each, under a tree over their placements), expand (copied into world space into one tree: more memory, "
@@ -138,6 +143,7 @@ void applySwitchWords(const SwitchWords& w, pt::RenderOptions& o) {
         o.integrator.lightSelection = w.lightTree == "on"    ? pt::LightSelection::Tree
                                       : w.lightTree == "off" ? pt::LightSelection::Power
                                                              : pt::LightSelection::Auto;
+    if (!w.bvh.empty()) o.integrator.alwaysTree = w.bvh == "always";
     if (!w.sampler.empty())
         o.integrator.sampler = w.sampler == "sobol" ? pt::SamplerKind::Sobol : pt::SamplerKind::Independent;
     if (!w.instances.empty())

@@ -29,6 +29,7 @@ std::string IntegratorSettings::describe() const {
              : lightSelection == LightSelection::Power ? "off"
                                                        : "auto")
       << " seed=" << seed;
+    if (alwaysTree) s << " bvh=always";
     // Where vertex merging may render it: its radius and how fast it shrinks change the image.
     if (!classic && (estimator == Estimator::Auto || estimator == Estimator::VertexMerging))
         s << " merge-radius=" << mergeRadius << " merge-alpha=" << mergeAlpha;
@@ -275,6 +276,19 @@ bool lightTreeChosen(const FlatScene& scene, const IntegratorSettings& s, const 
 
 uint32_t nodeFormatOf(const FlatScene& scene) {
     return scene.quantizedNodes.empty() ? BVH_NODES_FLOAT : BVH_NODES_QUANTIZED;
+}
+
+// A tiny scene's triangles are all tested against each ray, from a uniform buffer, without the
+// tree: on lavapipe 1.15-1.17x the paths per second of the four-wide tree at 32 triangles, 0.73x
+// at 82 (bench/RESULTS.md, "Tiny scenes without a tree"), hence UNIFORM_TRIANGLES_MAX = 48.
+// Instanced meshes keep their trees (the ray changes space per instance).
+uint32_t uniformTriangleCount(const FlatScene& scene, const IntegratorSettings& s, const FeatureSet& f) {
+    if (s.alwaysTree || scene.triangles.empty() || scene.triangles.size() > UNIFORM_TRIANGLES_MAX) return 0;
+    // Not in the bidirectional kernels: with a dozen trace calls, each inlined with every triangle
+    // unrolled, lavapipe took 3x as long to compile them (8 -> 24 s for the rough box).
+    if (f.bdpt) return 0;
+    if (!scene.instances.empty()) return 0;
+    return static_cast<uint32_t>(scene.triangles.size());
 }
 
 uint32_t samplerOf(const IntegratorSettings& s) {

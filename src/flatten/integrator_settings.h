@@ -55,6 +55,10 @@ struct IntegratorSettings {
     float mergeRadius = 8.0f;
     float mergeAlpha = 0.65f;
     LightSelection lightSelection = LightSelection::Auto;
+    // `--bvh always`: the triangle tree even for a tiny scene, which otherwise (at most
+    // UNIFORM_TRIANGLES_MAX triangles, no instances) tests every triangle from a uniform buffer
+    // (src/flatten/feature_set.cpp, uniformTriangleCount). The same image either way.
+    bool alwaysTree = false;
 
     std::string describe() const;
 };

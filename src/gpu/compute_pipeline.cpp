@@ -1,6 +1,7 @@
 #include "gpu/compute_pipeline.h"
 
 #include "gpu/vulkan_error.h"
+#include "shared/layout.h"
 
 #include <chrono>
 #include <string>
@@ -8,7 +9,7 @@
 namespace pt {
 
 ComputePipeline::ComputePipeline(VulkanContext& context, std::span<const uint32_t> spirv, uint32_t pushConstantBytes,
-    const std::vector<SpecializationConstant>& constants, const char* name)
+    const std::vector<SpecializationConstant>& constants, const char* name, const GpuBuffer* uniforms)
     : context_(context) {
     auto start = std::chrono::steady_clock::now();
     const std::string what = std::string("creating the '") + name + "' compute pipeline";
@@ -26,13 +27,23 @@ ComputePipeline::ComputePipeline(VulkanContext& context, std::span<const uint32_
     VkShaderModule module = VK_NULL_HANDLE;
     vkCheck(vkCreateShaderModule(context.device(), &moduleInfo, nullptr, &module), what.c_str());
 
+    try {
+        createUniformDescriptor(uniforms, what);
+    } catch (...) {
+        vkDestroyShaderModule(context.device(), module, nullptr);
+        throw;
+    }
     VkPushConstantRange range{VK_SHADER_STAGE_COMPUTE_BIT, 0, pushConstantBytes};
     VkPipelineLayoutCreateInfo layoutInfo{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+    layoutInfo.setLayoutCount = 1;
+    layoutInfo.pSetLayouts = &setLayout_;
     layoutInfo.pushConstantRangeCount = 1;
     layoutInfo.pPushConstantRanges = &range;
     VkResult result = vkCreatePipelineLayout(context.device(), &layoutInfo, nullptr, &layout_);
     if (result != VK_SUCCESS) {
         vkDestroyShaderModule(context.device(), module, nullptr);
+        vkDestroyDescriptorPool(context.device(), pool_, nullptr);
+        vkDestroyDescriptorSetLayout(context.device(), setLayout_, nullptr);
         throw VulkanError(result, what);
     }
 
@@ -46,19 +57,75 @@ ComputePipeline::ComputePipeline(VulkanContext& context, std::span<const uint32_
     vkDestroyShaderModule(context.device(), module, nullptr);
     if (result != VK_SUCCESS) {
         vkDestroyPipelineLayout(context.device(), layout_, nullptr);
+        vkDestroyDescriptorPool(context.device(), pool_, nullptr);
+        vkDestroyDescriptorSetLayout(context.device(), setLayout_, nullptr);
         throw VulkanError(result, what);
     }
     cache.save();
     creationSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+VkDeviceSize ComputePipeline::uniformBlockBytes() {
+    return VkDeviceSize(UNIFORM_TRIANGLES_MAX) * UNIFORM_TRIANGLE_VEC4S * 16;
+}
+
+// The set layout, a pool of one set and the set itself, pointing at `uniforms` or at a
+// zero-filled buffer of the pipeline's own.
+void ComputePipeline::createUniformDescriptor(const GpuBuffer* uniforms, const std::string& what) {
+    if (!uniforms) {
+        ownUniforms_ = std::make_unique<GpuBuffer>(context_, uniformBlockBytes(), "uniforms");
+        ownUniforms_->fillZero();
+        uniforms = ownUniforms_.get();
+    }
+    if (uniforms->size() < uniformBlockBytes())
+        throw std::runtime_error(what + ": the uniform buffer is smaller than the kernel's block");
+    VkDescriptorSetLayoutBinding binding{};
+    binding.binding = 0;
+    binding.descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+    binding.descriptorCount = 1;
+    binding.stageFlags = VK_SHADER_STAGE_COMPUTE_BIT;
+    VkDescriptorSetLayoutCreateInfo setInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+    setInfo.bindingCount = 1;
+    setInfo.pBindings = &binding;
+    vkCheck(vkCreateDescriptorSetLayout(context_.device(), &setInfo, nullptr, &setLayout_), what.c_str());
+    VkDescriptorPoolSize poolSize{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1};
+    VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+    poolInfo.maxSets = 1;
+    poolInfo.poolSizeCount = 1;
+    poolInfo.pPoolSizes = &poolSize;
+    VkResult result = vkCreateDescriptorPool(context_.device(), &poolInfo, nullptr, &pool_);
+    if (result == VK_SUCCESS) {
+        VkDescriptorSetAllocateInfo allocInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+        allocInfo.descriptorPool = pool_;
+        allocInfo.descriptorSetCount = 1;
+        allocInfo.pSetLayouts = &setLayout_;
+        result = vkAllocateDescriptorSets(context_.device(), &allocInfo, &set_);
+    }
+    if (result != VK_SUCCESS) {
+        vkDestroyDescriptorPool(context_.device(), pool_, nullptr);
+        vkDestroyDescriptorSetLayout(context_.device(), setLayout_, nullptr);
+        throw VulkanError(result, what);
+    }
+    VkDescriptorBufferInfo bufferInfo{uniforms->handle(), 0, uniformBlockBytes()};
+    VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+    write.dstSet = set_;
+    write.dstBinding = 0;
+    write.descriptorCount = 1;
+    write.descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+    write.pBufferInfo = &bufferInfo;
+    vkUpdateDescriptorSets(context_.device(), 1, &write, 0, nullptr);
+}
+
 ComputePipeline::~ComputePipeline() {
     if (pipeline_) vkDestroyPipeline(context_.device(), pipeline_, nullptr);
     if (layout_) vkDestroyPipelineLayout(context_.device(), layout_, nullptr);
+    if (pool_) vkDestroyDescriptorPool(context_.device(), pool_, nullptr);
+    if (setLayout_) vkDestroyDescriptorSetLayout(context_.device(), setLayout_, nullptr);
 }
 
 void ComputePipeline::bindAndPush(VkCommandBuffer cmd, const void* pushData, uint32_t bytes) const {
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 1, &set_, 0, nullptr);
     vkCmdPushConstants(cmd, layout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, bytes, pushData);
 }
 

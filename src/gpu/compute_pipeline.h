@@ -1,13 +1,17 @@
 #pragma once
-// A compute pipeline from embedded SPIR-V, with push constants only (every buffer is reached
+// A compute pipeline from embedded SPIR-V, with push constants, one uniform buffer (set 0,
+// binding 0: a tiny scene's triangles, shaders/common/buffers.glsl; every other buffer is reached
 // through its device address) and specialization constants chosen per scene. The constants are
 // baked into the SPIR-V before the driver sees it (spirv_specialization.h), through the context's
 // pipeline cache, so a kernel's second creation, in any process, skips that step.
+#include "gpu/gpu_buffer.h"
 #include "gpu/spirv_specialization.h"
 #include "gpu/vulkan_context.h"
 
 #include <cstdint>
+#include <memory>
 #include <span>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -15,11 +19,16 @@ namespace pt {
 
 class ComputePipeline {
 public:
+    // `uniforms`: the buffer bound at set 0, binding 0 (at least uniformBlockBytes()); null binds
+    // a zero-filled one of the pipeline's own, for kernels and scenes that do not read it.
     ComputePipeline(VulkanContext& context, std::span<const uint32_t> spirv, uint32_t pushConstantBytes,
-        const std::vector<SpecializationConstant>& constants, const char* name);
+        const std::vector<SpecializationConstant>& constants, const char* name, const GpuBuffer* uniforms = nullptr);
     ~ComputePipeline();
     ComputePipeline(const ComputePipeline&) = delete;
     ComputePipeline& operator=(const ComputePipeline&) = delete;
+
+    // The size of the uniform block at set 0, binding 0 (UniformTriangleBlock).
+    static VkDeviceSize uniformBlockBytes();
 
     VkPipeline handle() const { return pipeline_; }
     VkPipelineLayout layout() const { return layout_; }
@@ -30,7 +39,13 @@ public:
     void bindAndPush(VkCommandBuffer cmd, const void* pushData, uint32_t bytes) const;
 
 private:
+    void createUniformDescriptor(const GpuBuffer* uniforms, const std::string& what);
+
     VulkanContext& context_;
+    VkDescriptorSetLayout setLayout_ = VK_NULL_HANDLE;
+    VkDescriptorPool pool_ = VK_NULL_HANDLE;
+    VkDescriptorSet set_ = VK_NULL_HANDLE;
+    std::unique_ptr<GpuBuffer> ownUniforms_;
     VkPipelineLayout layout_ = VK_NULL_HANDLE;
     VkPipeline pipeline_ = VK_NULL_HANDLE;
     double creationSeconds_ = 0;

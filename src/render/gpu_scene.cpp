@@ -1,5 +1,7 @@
 #include "render/gpu_scene.h"
 
+#include "gpu/compute_pipeline.h"
+
 #include "base/memory_usage.h"
 
 #include <algorithm>
@@ -90,6 +92,11 @@ void GpuScene::build(VulkanContext& context, const FlatScene& scene, FlatScene* 
         if (release) std::remove_reference_t<decltype(release->*array)>().swap(release->*array);
         return buffer;
     };
+    if (!scene.triangles.empty() && scene.triangles.size() <= UNIFORM_TRIANGLES_MAX) {
+        uniformTriangles_ = GpuBuffer(context, ComputePipeline::uniformBlockBytes(), "uniform triangles");
+        uniformTriangles_.fillZero();
+        uniformTriangles_.upload(std::span<const gpu::GpuTriangle>(scene.triangles));
+    }
     triangles_ = upload(&FlatScene::triangles, "triangles");
     shading_ = upload(&FlatScene::shading, "shading");
     nodes_ = quantized ? upload(&FlatScene::quantizedNodes, "bvh nodes") : upload(&FlatScene::nodes, "bvh nodes");

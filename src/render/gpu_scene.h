@@ -21,6 +21,9 @@ public:
     VkDeviceAddress paramsAddress() const { return params_.address(); }
     // The radius of a sphere around all geometry (GpuSceneParams::sceneSphere).
     float sceneRadius() const { return sceneRadius_; }
+    // What the render pipeline binds at set 0, binding 0: the triangles again where the scene has
+    // at most UNIFORM_TRIANGLES_MAX (shaders/common/buffers.glsl), else null.
+    const GpuBuffer* uniformTriangles() const { return uniformTriangles_.size() ? &uniformTriangles_ : nullptr; }
     const GpuBuffer& accumulation() const { return accumulation_; }
     GpuBuffer& accumulation() { return accumulation_; }
 
@@ -31,7 +34,7 @@ private:
 
     GpuBuffer triangles_, shading_, nodes_, spheres_, sphereNodes_, instances_, instanceNodes_, materials_, lights_,
         lightCdf_, lightTreeNodes_, lightTreeTrails_, envTexels_, envMarginal_, envConditional_, textures_, texels_,
-        motions_, tangents_, accumulation_, params_;
+        motions_, tangents_, uniformTriangles_, accumulation_, params_;
     float sceneRadius_ = 1.0f;
 };
 

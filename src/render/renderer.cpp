@@ -123,7 +123,8 @@ void Renderer::createPipeline() {
     paramsAddress_ = gpuScene_->paramsAddress();
 
     pipeline_ = std::make_unique<ComputePipeline>(context_, renderKernel(features_),
-        static_cast<uint32_t>(sizeof(gpu::GpuRenderPush)), features_.constants(localSize_, localSize_), "render");
+        static_cast<uint32_t>(sizeof(gpu::GpuRenderPush)), features_.constants(localSize_, localSize_), "render",
+        gpuScene_->uniformTriangles());
     primePipeline();
     if (features_.merging) createMergingBuffers();
     if (features_.countRays) {
@@ -420,8 +421,8 @@ void Renderer::setIntegrator(const IntegratorSettings& settings, const FeatureSe
             return a.id == b.id && a.value == b.value;
         });
     if (!same) {
-        auto fresh = std::make_unique<ComputePipeline>(
-            context_, renderKernel(wanted), static_cast<uint32_t>(sizeof(gpu::GpuRenderPush)), constants, "render");
+        auto fresh = std::make_unique<ComputePipeline>(context_, renderKernel(wanted),
+            static_cast<uint32_t>(sizeof(gpu::GpuRenderPush)), constants, "render", gpuScene_->uniformTriangles());
         vkDeviceWaitIdle(context_.device());
         pipeline_ = std::move(fresh);
         primePipeline();

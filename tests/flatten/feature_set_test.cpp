@@ -28,17 +28,20 @@ TEST(FeatureTable, ConstantIdsAreUniqueAndClearOfTheWorkgroupSize) {
     for (const SpecializationConstant& c : constants) EXPECT_TRUE(constantIds.insert(c.id).second) << c.id;
 }
 
+// (Its 32 triangles are few enough to be tested without a tree: all-triangles.)
 TEST(FeatureTable, TheCornellBoxNeedsTrianglesDiffuseAndEmitters) {
     const FlatScene box = flattenScene(loadDefaultScene());
     EXPECT_EQ(computeFeatures(box, IntegratorSettings{}).describe(),
-        "triangles diffuse emitters nee mis rr cosine-sampling sobol");
+        "triangles diffuse emitters nee mis rr cosine-sampling sobol all-triangles");
     IntegratorSettings classic;
     classic.classic = true; // the course's ray tracer samples lights everywhere, no MIS or roulette
-    EXPECT_EQ(computeFeatures(box, classic).describe(), "classic triangles diffuse emitters nee cosine-sampling sobol");
+    EXPECT_EQ(computeFeatures(box, classic).describe(),
+        "classic triangles diffuse emitters nee cosine-sampling sobol all-triangles");
     IntegratorSettings plain;
     plain.nee = false; // MIS needs NEE
     plain.sampling = DirectionSampling::Uniform;
     plain.sampler = SamplerKind::Independent;
+    plain.alwaysTree = true;
     EXPECT_EQ(computeFeatures(box, plain).describe(), "triangles diffuse emitters rr uniform-sampling");
 }
 
