@@ -76,15 +76,18 @@ vec4 childEntries(GpuBvh4Node node, BoxRay r, float tMax) {
     return mix(vec4(FLOAT_MAX), entry, hit);
 }
 
-// Whether the ray enters the box within (0, tMax): one child's test of childEntries.
+// Whether the ray enters the box within (0, tMax): one child's test of childEntries, with the
+// same rule for slabs the ray runs parallel to.
 bool rayEntersBox(BoxRay r, vec3 lo, vec3 hi, float tMax) {
     vec3 t0 = (lo - r.origin) * r.invDir, t1 = (hi - r.origin) * r.invDir;
     vec3 near = min(t0, t1), far = max(t0, t1);
-    for (int axis = 0; axis < 3; ++axis) {
-        if (r.parallel[axis]) {
-            bool inside = r.origin[axis] >= lo[axis] && r.origin[axis] <= hi[axis];
-            near[axis] = inside ? -FLOAT_MAX : FLOAT_MAX;
-            far[axis] = inside ? FLOAT_MAX : -FLOAT_MAX;
+    if (r.anyParallel) {
+        for (int axis = 0; axis < 3; ++axis) {
+            if (!r.parallel[axis]) continue;
+            vec4 n, f;
+            parallelSlab(r.origin[axis], vec4(lo[axis]), vec4(hi[axis]), n, f);
+            near[axis] = n.x;
+            far[axis] = f.x;
         }
     }
     float entry = max(max(near.x, near.y), max(near.z, 0.0));
