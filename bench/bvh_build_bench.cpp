@@ -2,7 +2,7 @@
 // times per thread count and prints the median build time, M triangles/s, SAH cost, node count
 // and depth (one Markdown table row each). Built when PT_BUILD_BENCH is on (the default).
 //
-//   pt_bvh_bench [--triangles N] [--repeats R] [--threads 1,2] [--mesh soup|surface]
+//   pt_bvh_bench [--triangles N] [--repeats R] [--threads 1,2] [--mesh soup|surface] [--bins B]
 //
 // soup:    N small random triangles with centres uniform in the unit cube (as the host test).
 // surface: a closed, bumpy sphere tessellated into about N triangles: the shape of a scanned
@@ -83,6 +83,7 @@ int run(int argc, char** argv) {
     int repeats = 5;
     std::vector<int> threads{1, 2};
     std::string mesh = "soup";
+    int bins = pt::BvhBuildOptions{}.bins;
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
         if (i + 1 >= argc) throw std::runtime_error(a + ": missing value");
@@ -95,6 +96,8 @@ int run(int argc, char** argv) {
             threads = parseList(v);
         else if (a == "--mesh")
             mesh = v;
+        else if (a == "--bins")
+            bins = std::stoi(v);
         else
             throw std::runtime_error(a + ": unknown option");
     }
@@ -113,6 +116,7 @@ int run(int argc, char** argv) {
     for (int t : threads) {
         pt::BvhBuildOptions opt;
         opt.threads = t;
+        opt.bins = bins;
         std::vector<double> seconds, cpu;
         pt::Bvh bvh;
         for (int r = 0; r < repeats; ++r) {
