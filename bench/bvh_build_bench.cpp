@@ -8,6 +8,7 @@
 // surface: a closed, bumpy sphere tessellated into about N triangles: the shape of a scanned
 //          mesh (connected, locally flat, very uneven density along the view of any axis).
 #include "accel/bvh.h"
+#include "accel/wide_bvh.h"
 
 #include <algorithm>
 #include <cmath>
@@ -78,6 +79,25 @@ std::vector<int> parseList(const std::string& s) {
     return out;
 }
 
+// How full the four-wide tree the kernel traverses is: slots used per node, primitives per leaf.
+void printWideTree(const pt::WideBvh& wide) {
+    size_t slots = 0, leaves = 0, primitives = 0;
+    for (const auto& node : wide.nodes)
+        for (int i = 0; i < 4; ++i) {
+            const uint32_t word = node.child[i];
+            if (word == BVH4_EMPTY) continue;
+            ++slots;
+            if ((word & BVH4_LEAF_BIT) != 0u) {
+                ++leaves;
+                primitives += ((word >> BVH4_COUNT_SHIFT) & 15u) + 1u;
+            }
+        }
+    const double nodes = double(std::max<size_t>(wide.nodes.size(), 1));
+    std::printf("\nfour-wide: %zu nodes, depth %d, %.2f children a node, %zu leaves of %.2f primitives\n",
+        wide.nodes.size(), wide.depth, double(slots) / nodes, leaves,
+        double(primitives) / double(std::max<size_t>(leaves, 1)));
+}
+
 int run(int argc, char** argv) {
     size_t triangles = 1000000;
     int repeats = 5;
@@ -132,6 +152,7 @@ int run(int argc, char** argv) {
         std::printf("| %s | %zu | %d | %.3f (%.3f-%.3f) | %.2f | %.3f | %.2f | %zu | %d |\n", mesh.c_str(), tris.size(),
             t, median, seconds.front(), seconds.back(), 1e-6 * double(tris.size()) / median, cpu[cpu.size() / 2],
             bvh.sahCost, bvh.nodes.size(), bvh.maxDepth);
+        if (t == threads.back()) printWideTree(pt::collapseToWide(bvh));
     }
     return 0;
 }
