@@ -80,22 +80,35 @@ std::vector<int> parseList(const std::string& s) {
 }
 
 // How full the four-wide tree the kernel traverses is: slots used per node, primitives per leaf.
-void printWideTree(const pt::WideBvh& wide) {
+// How full the four-wide tree the kernel traverses is: slots used per node, primitives per leaf;
+// and its SAH cost under the collapse's cost model (relative to the root's area).
+void printWideTree(const pt::WideBvh& wide, const pt::WideCollapseOptions& costs) {
     size_t slots = 0, leaves = 0, primitives = 0;
+    double cost = 0.0;
+    const double rootArea = std::max(double(pt::wideNodeBounds(wide.nodes.at(0)).surfaceArea()), 1e-30);
+    cost += costs.nodeCost;
     for (const auto& node : wide.nodes)
         for (int i = 0; i < 4; ++i) {
             const uint32_t word = node.child[i];
             if (word == BVH4_EMPTY) continue;
             ++slots;
+            pt::Aabb box;
+            box.grow(glm::vec3(node.loX[i], node.loY[i], node.loZ[i]));
+            box.grow(glm::vec3(node.hiX[i], node.hiY[i], node.hiZ[i]));
+            const double area = double(box.surfaceArea()) / rootArea;
             if ((word & BVH4_LEAF_BIT) != 0u) {
                 ++leaves;
-                primitives += ((word >> BVH4_COUNT_SHIFT) & 15u) + 1u;
-            }
+                const uint32_t count = ((word >> BVH4_COUNT_SHIFT) & 15u) + 1u;
+                primitives += count;
+                cost += area * (costs.leafCost + costs.primitiveCost * double(count));
+            } else
+                cost += area * costs.nodeCost;
         }
     const double nodes = double(std::max<size_t>(wide.nodes.size(), 1));
-    std::printf("\nfour-wide: %zu nodes, depth %d, %.2f children a node, %zu leaves of %.2f primitives\n",
+    std::printf(
+        "\nfour-wide: %zu nodes, depth %d, %.2f children a node, %zu leaves of %.2f primitives, SAH cost %.2f\n",
         wide.nodes.size(), wide.depth, double(slots) / nodes, leaves,
-        double(primitives) / double(std::max<size_t>(leaves, 1)));
+        double(primitives) / double(std::max<size_t>(leaves, 1)), cost);
 }
 
 int run(int argc, char** argv) {
@@ -104,6 +117,8 @@ int run(int argc, char** argv) {
     std::vector<int> threads{1, 2};
     std::string mesh = "soup";
     int bins = pt::BvhBuildOptions{}.bins;
+    int leaf = pt::BvhBuildOptions{}.maxLeafSize;
+    pt::WideCollapseOptions collapse;
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
         if (i + 1 >= argc) throw std::runtime_error(a + ": missing value");
@@ -118,6 +133,14 @@ int run(int argc, char** argv) {
             mesh = v;
         else if (a == "--bins")
             bins = std::stoi(v);
+        else if (a == "--leaf")
+            leaf = std::stoi(v);
+        else if (a == "--wide-leaf")
+            collapse.maxLeafSize = std::stoi(v);
+        else if (a == "--leaf-cost")
+            collapse.leafCost = std::stof(v);
+        else if (a == "--primitive-cost")
+            collapse.primitiveCost = std::stof(v);
         else
             throw std::runtime_error(a + ": unknown option");
     }
@@ -137,6 +160,7 @@ int run(int argc, char** argv) {
         pt::BvhBuildOptions opt;
         opt.threads = t;
         opt.bins = bins;
+        opt.maxLeafSize = leaf;
         std::vector<double> seconds, cpu;
         pt::Bvh bvh;
         for (int r = 0; r < repeats; ++r) {
@@ -152,7 +176,7 @@ int run(int argc, char** argv) {
         std::printf("| %s | %zu | %d | %.3f (%.3f-%.3f) | %.2f | %.3f | %.2f | %zu | %d |\n", mesh.c_str(), tris.size(),
             t, median, seconds.front(), seconds.back(), 1e-6 * double(tris.size()) / median, cpu[cpu.size() / 2],
             bvh.sahCost, bvh.nodes.size(), bvh.maxDepth);
-        if (t == threads.back()) printWideTree(pt::collapseToWide(bvh));
+        if (t == threads.back()) printWideTree(pt::collapseToWide(bvh, collapse), collapse);
     }
     return 0;
 }

@@ -7,6 +7,7 @@
 #ifndef PT_GEOMETRY_TRAVERSE_GLSL
 #define PT_GEOMETRY_TRAVERSE_GLSL
 #extension GL_EXT_control_flow_attributes : require
+#extension GL_KHR_shader_subgroup_vote : require
 #include "common/buffers.glsl"
 #include "common/math.glsl"
 #include "geometry/triangle.glsl"
@@ -196,10 +197,67 @@ bool testUniformTriangles(bool anyHit, Ray ray, WatertightRay wray, inout Hit hi
     return found;
 }
 
+// Tests the primitives of leaf `leaf` (a child word) against the ray; true if one is hit within
+// hit.t (hit updated). `anyHit` returns at the first.
+bool testLeaf(bool sphereTree, bool anyHit, Ray ray, WatertightRay wray, uint leaf, inout Hit hit, uint instance) {
+    uint first = leaf & BVH4_FIRST_MASK;
+    uint end = first + ((leaf >> BVH4_COUNT_SHIFT) & 15u) + 1u;
+    bool found = false;
+    for (uint i = first; i < end; ++i) {
+        float t;
+        vec2 bary = vec2(0.0);
+        bool hitPrimitive;
+        if (sphereTree) {
+            GpuSphere sphere = SphereRef(scene.spheres).v[i];
+            Ray r = ray;
+            // A moving sphere: move the ray the other way (t is unchanged).
+            if (HAS_MOTION && sphere.motion != NO_MOTION) r.origin -= motionOffset(sphere.motion);
+            hitPrimitive = intersectSphere(sphere, r, hit.t, t);
+        } else {
+            GpuTriangle tri = placedTriangle(loadTriangle(i));
+            hitPrimitive = intersectTriangle(wray, tri.p0, tri.p1, tri.p2, hit.t, t, bary);
+            if (HAS_ALPHA && hitPrimitive && (tri.flags & TRIANGLE_FLAG_ALPHA_TESTED) != 0u)
+                hitPrimitive = !alphaCutsOut(tri, i, bary, ray);
+        }
+        if (hitPrimitive) {
+            hit.t = t;
+            hit.primitive = sphereTree ? (i | SPHERE_BIT) : i;
+            hit.bary = bary;
+            hit.instance = instance;
+            found = true;
+            if (anyHit) return true;
+        }
+    }
+    return found;
+}
+
+// The stack's pop for traverseTree: the next child entered before the closest hit so far, or
+// TRAVERSAL_DONE when none is left.
+const uint TRAVERSAL_DONE = BVH4_EMPTY; // has the leaf bit: ends the inner-node loop
+#define POP_OR_DONE()                                                                                                  \
+    {                                                                                                                  \
+        current = TRAVERSAL_DONE;                                                                                      \
+        while (stackSize > 0) {                                                                                        \
+            --stackSize;                                                                                               \
+            if (stackT[stackSize] <= hit.t * BOX_FAR_SCALE) {                                                          \
+                current = stack[stackSize];                                                                            \
+                break;                                                                                                 \
+            }                                                                                                          \
+        }                                                                                                              \
+    }
+
 // One traversal loop for the triangle trees and the sphere tree: `sphereTree` is a literal at
 // every call, so the compiler keeps only one kind of leaf test in each inlined copy. `anyHit`
 // stops at the first hit (shadow rays). A triangle tree starts at node `root` (0: the world
 // tree); `instance` is what a hit records (NO_INSTANCE for world space).
+//
+// Inner nodes first, down to a leaf: the lanes of a SIMD group then test their leaves together
+// instead of paying for inner-node and leaf steps in every iteration (Aila and Laine's
+// "while-while" traversal, 2009). A lane that reaches a leaf while others are still descending
+// puts it aside and goes on through the inner nodes on its stack (their "speculative" traversal):
+// the inner-node loop runs until every lane has a leaf to test, so fewer of its iterations find
+// lanes idle. The leaf put aside is tested later than a strict nearest-first order would, which
+// can only cost extra work, never change the hit.
 bool traverseTree(
     bool sphereTree, bool anyHit, Ray ray, WatertightRay wray, BoxRay boxRay, inout Hit hit, uint root, uint instance) {
     uint64_t nodes = sphereTree ? scene.sphereNodes : scene.nodes;
@@ -207,45 +265,45 @@ bool traverseTree(
     uint stack[TRAVERSAL_STACK_SIZE];   // child words
     float stackT[TRAVERSAL_STACK_SIZE]; // their entry distances
     int stackSize = 0;
-    uint current = root; // a child word: the root node
+    uint current = root;           // a child word: the root node
+    uint pending = TRAVERSAL_DONE; // a leaf put aside, or none
     bool found = false;
     while (true) {
-        // Inner nodes first, down to a leaf: the lanes of a SIMD group then test their leaves
-        // together instead of paying for inner-node and leaf steps in every iteration
-        // (Aila and Laine's "while-while" traversal, 2009).
         while ((current & BVH4_LEAF_BIT) == 0u) {
             if (DEBUG_VIEW == DEBUG_VIEW_BVH_COST) ++traversalNodeVisits;
             GpuBvh4Node node = sphereTree ? loadBvh4Node(nodes, current) : loadTriangleTreeNode(nodes, current);
-            VISIT_INNER_NODE(node);
-        }
-        uint first = current & BVH4_FIRST_MASK;
-        uint end = first + ((current >> BVH4_COUNT_SHIFT) & 15u) + 1u;
-        for (uint i = first; i < end; ++i) {
-            float t;
-            vec2 bary = vec2(0.0);
-            bool hitPrimitive;
-            if (sphereTree) {
-                GpuSphere sphere = SphereRef(scene.spheres).v[i];
-                Ray r = ray;
-                // A moving sphere: move the ray the other way (t is unchanged).
-                if (HAS_MOTION && sphere.motion != NO_MOTION) r.origin -= motionOffset(sphere.motion);
-                hitPrimitive = intersectSphere(sphere, r, hit.t, t);
-            } else {
-                GpuTriangle tri = placedTriangle(loadTriangle(i));
-                hitPrimitive = intersectTriangle(wray, tri.p0, tri.p1, tri.p2, hit.t, t, bary);
-                if (HAS_ALPHA && hitPrimitive && (tri.flags & TRIANGLE_FLAG_ALPHA_TESTED) != 0u)
-                    hitPrimitive = !alphaCutsOut(tri, i, bary, ray);
+            vec4 d;
+            uvec4 c;
+            orderedChildren(node, boxRay, hit.t, d, c);
+            if (d.w != FLOAT_MAX) PUSH_CHILD(c.w, d.w);
+            if (d.z != FLOAT_MAX) PUSH_CHILD(c.z, d.z);
+            if (d.y != FLOAT_MAX) PUSH_CHILD(c.y, d.y);
+            if (d.x != FLOAT_MAX)
+                current = c.x;
+            else
+                POP_OR_DONE();
+            if (current != TRAVERSAL_DONE && (current & BVH4_LEAF_BIT) != 0u && pending == TRAVERSAL_DONE) {
+                pending = current;
+                POP_OR_DONE();
             }
-            if (hitPrimitive) {
-                hit.t = t;
-                hit.primitive = sphereTree ? (i | SPHERE_BIT) : i;
-                hit.bary = bary;
-                hit.instance = instance;
+            if (subgroupAll(pending != TRAVERSAL_DONE)) break;
+        }
+        if (pending != TRAVERSAL_DONE) {
+            if (testLeaf(sphereTree, anyHit, ray, wray, pending, hit, instance)) {
                 found = true;
                 if (anyHit) return true;
             }
+            pending = TRAVERSAL_DONE;
         }
-        POP_CHILD();
+        if (current == TRAVERSAL_DONE) return found;
+        if ((current & BVH4_LEAF_BIT) != 0u) {
+            if (testLeaf(sphereTree, anyHit, ray, wray, current, hit, instance)) {
+                found = true;
+                if (anyHit) return true;
+            }
+            POP_OR_DONE();
+            if (current == TRAVERSAL_DONE) return found;
+        }
     }
     return found;
 }

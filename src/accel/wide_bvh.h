@@ -18,12 +18,22 @@ struct WideBvh {
                                          // paths, the sum of (children - 1) of the nodes on the path
 };
 
-// Collapses `bvh` (as buildBvh returns it, primitives in bvh.primOrder order): each wide node
-// takes a binary node's two children and repeatedly opens its inner child of largest surface
-// area until it has four children or only leaves. Leaves keep their primitive ranges. Throws
+// The collapse's SAH cost model, per unit of surface area relative to the root's: a wide node
+// visited (its four box tests), a leaf entered, a primitive tested.
+struct WideCollapseOptions {
+    float nodeCost = 1.0f;
+    float leafCost = 0.0f;
+    float primitiveCost = 1.0f;
+    int maxLeafSize = 4; // primitives a leaf gathers from the binary tree's subtrees (binary leaves
+                         // bigger than this stay as they are)
+};
+
+// Collapses `bvh` (as buildBvh returns it, primitives in bvh.primOrder order) into the wide tree
+// of least SAH cost under `options`: each wide child is a binary subtree, kept as a wide node or
+// made one leaf of all its primitives. Leaves are contiguous primitive ranges. Throws
 // std::length_error when a leaf holds more than BVH4_MAX_LEAF_PRIMITIVES primitives or the tree
 // more than BVH4_FIRST_MASK.
-WideBvh collapseToWide(const Bvh& bvh);
+WideBvh collapseToWide(const Bvh& bvh, const WideCollapseOptions& options = {});
 
 // Union of a wide node's child boxes (empty slots contribute nothing): the root's is the
 // tree's bounds.

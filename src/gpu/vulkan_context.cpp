@@ -163,7 +163,9 @@ bool hasDeviceExtension(VkPhysicalDevice device, const char* name) {
 }
 
 DeviceInfo describeDevice(VkPhysicalDevice device, uint32_t index) {
+    VkPhysicalDeviceSubgroupProperties subgroup{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES};
     VkPhysicalDeviceDriverProperties driver{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES};
+    driver.pNext = &subgroup;
     VkPhysicalDeviceProperties2 props{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
     props.pNext = &driver;
     vkGetPhysicalDeviceProperties2(device, &props);
@@ -186,6 +188,11 @@ DeviceInfo describeDevice(VkPhysicalDevice device, uint32_t index) {
         info.whyNotUsable = "no shaderInt64";
     else if (findComputeQueueFamily(device) < 0)
         info.whyNotUsable = "no compute queue";
+    // The BVH traversal asks whether every lane of its SIMD group has a leaf (subgroupAll,
+    // geometry/traverse.glsl): Vulkan 1.1 devices have it everywhere in practice, but it is optional.
+    else if ((subgroup.supportedStages & VK_SHADER_STAGE_COMPUTE_BIT) == 0 ||
+             (subgroup.supportedOperations & VK_SUBGROUP_FEATURE_VOTE_BIT) == 0)
+        info.whyNotUsable = "no subgroup vote operations in compute shaders";
     info.usable = info.whyNotUsable.empty();
     info.int64Atomics = features12.shaderBufferInt64Atomics;
     return info;

@@ -81,9 +81,10 @@ std::pair<int, int> walk(const pt::WideBvh& wide, const pt::Bvh& bvh, const std:
     return {depth, need + used - 1};
 }
 
-void expectValid(const std::vector<Aabb>& prims, const pt::BvhBuildOptions& options = {}) {
+void expectValid(const std::vector<Aabb>& prims, const pt::BvhBuildOptions& options = {},
+    const pt::WideCollapseOptions& collapse = {}) {
     const pt::Bvh bvh = pt::buildBvh(prims, options);
-    const pt::WideBvh wide = pt::collapseToWide(bvh);
+    const pt::WideBvh wide = pt::collapseToWide(bvh, collapse);
     if (prims.empty()) {
         EXPECT_TRUE(wide.nodes.empty());
         return;
@@ -124,6 +125,10 @@ TEST(WideBvh, StructureOfLargeTreesAndLeafSizes) {
         pt::BvhBuildOptions o;
         o.maxLeafSize = leaf;
         expectValid(randomBoxes(20000, 11, 0.01f), o);
+        pt::WideCollapseOptions bigLeaves;
+        bigLeaves.maxLeafSize = 16;
+        bigLeaves.primitiveCost = 0.05f;
+        expectValid(randomBoxes(20000, 12, 0.01f), o, bigLeaves);
     }
     // Identical boxes: the builder's fallback splits, one long range.
     expectValid(std::vector<Aabb>(5000, randomBoxes(1, 5, 0.1f)[0]));
@@ -140,6 +145,116 @@ TEST(WideBvh, HalvesTheDepthAndTheInnerNodes) {
     EXPECT_LE(double(wide.nodes.size()), 0.6 * double(binaryInner));
     EXPECT_LE(wide.depth, (bvh.maxDepth + 1) * 3 / 4);
     EXPECT_LE(wide.stackNeed, TRAVERSAL_STACK_SIZE);
+}
+
+// SAH cost of a wide tree under the collapse's cost model, relative to the root's area: the
+// root node, then every child slot (a node or a leaf of n primitives).
+double wideSahCost(const pt::WideBvh& wide, const pt::WideCollapseOptions& o) {
+    const double rootArea = pt::wideNodeBounds(wide.nodes.at(0)).surfaceArea();
+    double cost = o.nodeCost * rootArea;
+    for (const GpuBvh4Node& n : wide.nodes)
+        for (int slot = 0; slot < 4; ++slot) {
+            const uint32_t c = n.child[slot];
+            if (c == BVH4_EMPTY) continue;
+            const double area = slotBox(n, slot).surfaceArea();
+            cost +=
+                pt::isWideLeaf(c) ? area * (o.leafCost + o.primitiveCost * pt::wideLeafCount(c)) : area * o.nodeCost;
+        }
+    return cost / rootArea;
+}
+
+// The least cost by exhaustive search: every way to cover a node's subtree with at most four
+// wide children (each a binary subtree made a leaf or, recursively at its best, a wide node).
+class BruteForceCollapse {
+public:
+    BruteForceCollapse(const pt::Bvh& bvh, const pt::WideCollapseOptions& o) : bvh_(bvh), o_(o) {}
+
+    double asNode(uint32_t n) const {
+        const pt::BvhNode& node = bvh_.nodes[n];
+        double best = std::numeric_limits<double>::infinity();
+        for (const auto& left : covers(node.leftOrFirst))
+            for (const auto& right : covers(node.leftOrFirst + 1)) {
+                if (left.size() + right.size() > 4) continue;
+                double c = 0.0;
+                for (uint32_t m : left) c += asChild(m);
+                for (uint32_t m : right) c += asChild(m);
+                best = std::min(best, c);
+            }
+        return area(n) * o_.nodeCost + best;
+    }
+
+private:
+    double area(uint32_t n) const {
+        Aabb b;
+        b.lo = bvh_.nodes[n].lo;
+        b.hi = bvh_.nodes[n].hi;
+        return b.surfaceArea();
+    }
+    uint32_t count(uint32_t n) const {
+        const pt::BvhNode& node = bvh_.nodes[n];
+        return node.count != 0 ? node.count : count(node.leftOrFirst) + count(node.leftOrFirst + 1);
+    }
+    double asChild(uint32_t n) const {
+        const double leaf = area(n) * (o_.leafCost + o_.primitiveCost * count(n));
+        if (bvh_.nodes[n].count != 0) return leaf;
+        return count(n) <= uint32_t(o_.maxLeafSize) ? std::min(leaf, asNode(n)) : asNode(n);
+    }
+    // Every set of at most four disjoint subtrees that together hold n's primitives.
+    std::vector<std::vector<uint32_t>> covers(uint32_t n) const {
+        std::vector<std::vector<uint32_t>> out{{n}};
+        const pt::BvhNode& node = bvh_.nodes[n];
+        if (node.count != 0) return out;
+        for (const auto& left : covers(node.leftOrFirst))
+            for (const auto& right : covers(node.leftOrFirst + 1)) {
+                if (left.size() + right.size() > 4) continue;
+                std::vector<uint32_t> both = left;
+                both.insert(both.end(), right.begin(), right.end());
+                out.push_back(both);
+            }
+        return out;
+    }
+
+    const pt::Bvh& bvh_;
+    pt::WideCollapseOptions o_;
+};
+
+TEST(WideBvh, CollapseIsTheLeastCostOneUnderItsModel) {
+    const pt::WideCollapseOptions models[] = {{1.0f, 0.0f, 1.0f, 4}, {1.0f, 0.5f, 1.0f, 4}, {1.0f, 0.0f, 0.3f, 8},
+        {1.0f, 0.0f, 2.0f, 2}, {0.2f, 1.0f, 1.0f, 16}};
+    for (uint32_t seed = 1; seed <= 40; ++seed) {
+        const size_t n = 9 + seed % 8; // more than any model's leaf below 16: the root is a node
+        pt::BvhBuildOptions binary;
+        binary.maxLeafSize = 1 + int(seed % 3);
+        const std::vector<Aabb> prims = randomBoxes(n, 100 + seed, 0.2f);
+        const pt::Bvh bvh = pt::buildBvh(prims, binary);
+        for (const pt::WideCollapseOptions& model : models) {
+            if (n <= size_t(model.maxLeafSize)) continue;
+            SCOPED_TRACE(::testing::Message() << "seed " << seed << ", leaf cost " << model.leafCost
+                                              << ", primitive cost " << model.primitiveCost);
+            const pt::WideBvh wide = pt::collapseToWide(bvh, model);
+            const double rootArea = pt::wideNodeBounds(wide.nodes[0]).surfaceArea();
+            const double best = BruteForceCollapse(bvh, model).asNode(0) / rootArea;
+            EXPECT_NEAR(wideSahCost(wide, model), best, 1e-5 * best);
+        }
+    }
+}
+
+TEST(WideBvh, LeavesGatherSmallSubtreesUpToTheirLimit) {
+    pt::BvhBuildOptions binary;
+    binary.maxLeafSize = 1;
+    const std::vector<Aabb> prims = randomBoxes(20000, 31, 0.01f);
+    const pt::Bvh bvh = pt::buildBvh(prims, binary);
+    for (int leaf : {1, 3, 8}) {
+        pt::WideCollapseOptions o;
+        o.maxLeafSize = leaf;
+        o.primitiveCost = 0.1f; // cheap primitives: leaves as big as allowed pay
+        const pt::WideBvh wide = pt::collapseToWide(bvh, o);
+        uint32_t largest = 0;
+        for (const GpuBvh4Node& node : wide.nodes)
+            for (int slot = 0; slot < 4; ++slot)
+                if (pt::isWideLeaf(node.child[slot])) largest = std::max(largest, pt::wideLeafCount(node.child[slot]));
+        EXPECT_EQ(largest, uint32_t(leaf));
+    }
 }
 
 TEST(WideBvh, LeavesTooBigForAChildWordAreRefused) {
