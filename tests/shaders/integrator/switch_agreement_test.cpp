@@ -32,8 +32,12 @@ struct Combination {
 std::vector<Combination> allCombinations(bool lightTracedScene) {
     const DirectionSampling cosine = DirectionSampling::Cosine, uniform = DirectionSampling::Uniform;
     std::vector<Combination> out = {
-        {true, true, true, cosine},   {true, true, false, uniform},  {true, false, true, uniform},
-        {true, false, false, cosine}, {false, false, true, uniform}, {false, false, false, cosine},
+        {true, true, true, cosine},
+        {true, true, false, uniform},
+        {true, false, true, uniform},
+        {true, false, false, cosine},
+        {false, false, true, uniform},
+        {false, false, false, cosine},
     };
     // The Sobol' sampler with and without light sampling: the same image as independent samples.
     out.push_back({true, true, true, DirectionSampling::Cosine, SamplerKind::Sobol});
