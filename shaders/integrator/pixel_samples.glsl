@@ -30,11 +30,12 @@ vec3 sampleValue(vec3 L, float sampleClamp) {
     return L;
 }
 
-// Samples `first` to `first + count - 1` of `pixel`, one at a time, added to `sums` in order.
-void addSamplesOneByOne(uvec2 pixel, uint first, uint count, float sampleClamp, inout PixelSums sums) {
+// Samples `first` to `first + count - 1` of `pixel`, one at a time, added to `sums` in order; their
+// random numbers keyed by `streamKey` (integrator/pixel_groups.glsl, cameraStreamKey).
+void addSamplesOneByOne(uvec2 pixel, uvec2 streamKey, uint first, uint count, float sampleClamp, inout PixelSums sums) {
     bool radiance = DEBUG_VIEW == DEBUG_VIEW_NONE || DEBUG_VIEW == DEBUG_VIEW_NAN_MASK;
     for (uint s = 0u; s < count; ++s) {
-        Rng rng = rngCreate(pixel, first + s, scene.seed);
+        Rng rng = rngCreate(streamKey, first + s, scene.seed);
         Ray ray = sampleCameraRay(pixel, rng);
         addToPixelSums(sums, sampleValue(radiance ? tracePath(ray, rng) : debugView(ray, rng), sampleClamp));
     }
@@ -46,14 +47,15 @@ void addSamplesOneByOne(uvec2 pixel, uint first, uint count, float sampleClamp, 
 // lane, so with Russian roulette one path at a time paid the longest of 8 paths for every
 // sample (bench/RESULTS.md, "Path regeneration"). Each pixel still adds its own samples in
 // sample order: the sums are bit-identical to addSamplesOneByOne's.
-void addPathSamplesRegenerated(uvec2 pixel, uint first, uint count, float sampleClamp, inout PixelSums sums) {
+void addPathSamplesRegenerated(
+    uvec2 pixel, uvec2 streamKey, uint first, uint count, float sampleClamp, inout PixelSums sums) {
     if (count == 0u) return;
     uint s = 0u;
     bool start = true;
     PathState st;
     while (true) {
         if (start) {
-            Rng rng = rngCreate(pixel, first + s, scene.seed);
+            Rng rng = rngCreate(streamKey, first + s, scene.seed);
             st = pathStart(sampleCameraRay(pixel, rng), rng);
         }
         start = !pathStep(st);
@@ -98,16 +100,17 @@ void countPilotLightSubpath(uvec2 pixel) { traceLightSubpath(rngCreate(pixel, 0u
 // Samples `first` to `first + count - 1` of `pixel`, added to `sums` in that order. (If-else on
 // one constant at a time: the specializer then deletes the branches not taken, and with them
 // the second copy of the path tracer that the driver would otherwise compile.)
-void addPixelSamples(uvec2 pixel, uint first, uint count, float sampleClamp, inout PixelSums sums) {
-    if (CLASSIC) addSamplesOneByOne(pixel, first, count, sampleClamp, sums);
+void addPixelSamples(uvec2 pixel, uvec2 streamKey, uint first, uint count, float sampleClamp, inout PixelSums sums) {
+    if (CLASSIC) addSamplesOneByOne(pixel, streamKey, first, count, sampleClamp, sums);
 #ifdef PT_BDPT
     else if (BDPT && (DEBUG_VIEW == DEBUG_VIEW_NONE || DEBUG_VIEW == DEBUG_VIEW_NAN_MASK))
         addBdptSamples(pixel, first, count, sampleClamp, sums);
 #endif
-    else if (DEBUG_VIEW == DEBUG_VIEW_NONE || DEBUG_VIEW == DEBUG_VIEW_NAN_MASK)
-        addPathSamplesRegenerated(pixel, first, count, sampleClamp, sums);
+    // Shared samples keep a SIMD vector's paths in step: regenerating them would part them.
+    else if (!SHARED_SAMPLES && (DEBUG_VIEW == DEBUG_VIEW_NONE || DEBUG_VIEW == DEBUG_VIEW_NAN_MASK))
+        addPathSamplesRegenerated(pixel, streamKey, first, count, sampleClamp, sums);
     else
-        addSamplesOneByOne(pixel, first, count, sampleClamp, sums);
+        addSamplesOneByOne(pixel, streamKey, first, count, sampleClamp, sums);
 }
 
 #endif

@@ -9,6 +9,7 @@
 #include "shared/layout.h"
 #include "shared/features.glsl"
 #include "integrator/pixel_samples.glsl"
+#include "integrator/pixel_groups.glsl"
 #include "integrator/ray_counts.glsl"
 #ifdef PT_LIGHT_TRACING
 #include "integrator/light_tracer.glsl"
@@ -19,7 +20,7 @@ layout(local_size_x_id = SPEC_LOCAL_SIZE_X, local_size_y_id = SPEC_LOCAL_SIZE_Y)
 layout(push_constant) uniform PushBlock { GpuRenderPush push; };
 
 void main() {
-    uvec2 local = gl_GlobalInvocationID.xy;
+    uvec2 local = invocationPixel();
     if (any(greaterThanEqual(local, push.tileSize))) return;
     bindScene(push.sceneParams);
     uvec2 pixel = push.tileOrigin + local;
@@ -57,7 +58,8 @@ void main() {
     }
 #endif
     PixelSums sums = loadPixelSums(accumulation, base);
-    addPixelSamples(pixel, first, count, push.sampleClamp, sums);
+    // The stream key once here: a constant table indexed per sample costs a copy of it each time.
+    addPixelSamples(pixel, cameraStreamKey(pixel), first, count, push.sampleClamp, sums);
     storePixelSums(accumulation, base, sums);
     // One light path per pixel and sample, splatted wherever it lands.
 #ifdef PT_LIGHT_TRACING

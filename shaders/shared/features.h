@@ -112,6 +112,10 @@
         "cosine-weighted rather than uniform hemisphere sampling of diffuse lobes")                                    \
     PT_FEATURE(sampler, choice, SAMPLER, 29, SAMPLER_INDEPENDENT, samplerOf(s), samplerOf(s),                          \
         v == SAMPLER_SOBOL ? "sobol" : nullptr, "SAMPLER_*: how the sample dimensions are filled")                     \
+    /* The path tracer only: a light subpath shared by 8 pixels would splat 8 times to one place. */                   \
+    PT_FEATURE(sharedSamples, flag, SHARED_SAMPLES, 46, false, s.sharedSamples,                                        \
+        s.sharedSamples && !f.classic && !f.bdpt, v ? "shared-samples" : nullptr,                                      \
+        "the 8 pixels of a SIMD vector (spread over an 8x8 block) share their camera paths' random numbers")           \
     PT_FEATURE(uniformTriangles, choice, UNIFORM_TRIANGLE_COUNT, 45, 0, 0, uniformTriangleCount(scene, s, f),          \
         v ? "all-triangles" : nullptr,                                                                                 \
         "a tiny scene's triangle count: each ray tests them all from a uniform buffer, no tree (0: the tree)")         \

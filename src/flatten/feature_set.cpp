@@ -30,6 +30,7 @@ std::string IntegratorSettings::describe() const {
                                                        : "auto")
       << " seed=" << seed;
     if (alwaysTree) s << " bvh=always";
+    if (sharedSamples) s << " shared-samples=on";
     // Where vertex merging may render it: its radius and how fast it shrinks change the image.
     if (!classic && (estimator == Estimator::Auto || estimator == Estimator::VertexMerging))
         s << " merge-radius=" << mergeRadius << " merge-alpha=" << mergeAlpha;

@@ -59,6 +59,12 @@ struct IntegratorSettings {
     // UNIFORM_TRIANGLES_MAX triangles, no instances) tests every triangle from a uniform buffer
     // (src/flatten/feature_set.cpp, uniformTriangleCount). The same image either way.
     bool alwaysTree = false;
+    // `--shared-samples on`: the path tracer's pixels of one SIMD vector (8, spread over an 8x8
+    // block) take the same random numbers, so their paths stay coherent. Each pixel's expected
+    // error is unchanged and paths are 1.23-1.28x faster on lavapipe (relMSE 0.74-0.83x at equal
+    // time), but the group's noise is correlated: the error of the image averaged over 8x8 blocks
+    // is 1.8-4x higher (bench/RESULTS.md, "Shared samples"). Off by default for that reason.
+    bool sharedSamples = false;
 
     std::string describe() const;
 };

@@ -158,7 +158,9 @@ private:
     std::unique_ptr<GpuScene> gpuScene_;
     std::unique_ptr<ComputePipeline> pipeline_;
     double primeSeconds_ = 0;
-    uint32_t localSize_ = 8;
+    // Workgroups of 8x8: shaders/integrator/pixel_groups.glsl maps their invocations to pixels
+    // for exactly that size.
+    static constexpr uint32_t localSize_ = 8;
     Camera camera_;
     FeatureSet features_;
     float sampleClamp_ = 0.0f;
