@@ -21,10 +21,10 @@
 // (y * 8 + x), so group g (invocations 8g..8g+7, one SIMD vector) is entries 8g..8g+7; and
 // SHARED_GROUP_OF_OFFSET is its inverse's group. A Latin square with no equal entries closer
 // than sqrt(5) on the torus, found by a randomised search.
-const uint SHARED_GROUP_PIXELS[64] = uint[64](7u, 12u, 22u, 26u, 37u, 40u, 51u, 57u, 1u, 15u, 21u, 27u, 32u, 42u, 52u,
-    62u, 2u, 14u, 20u, 31u, 33u, 43u, 48u, 61u, 4u, 8u, 18u, 29u, 35u, 46u, 49u, 63u, 0u, 11u, 17u, 30u, 34u, 45u, 55u,
-    60u, 3u, 13u, 23u, 25u, 38u, 44u, 50u, 56u, 5u, 10u, 16u, 28u, 39u, 41u, 54u, 59u, 6u, 9u, 19u, 24u, 36u, 47u, 53u,
-    58u);
+const uint SHARED_GROUP_PIXELS[64] =
+    uint[64](7u, 12u, 22u, 26u, 37u, 40u, 51u, 57u, 1u, 15u, 21u, 27u, 32u, 42u, 52u, 62u, 2u, 14u, 20u, 31u, 33u, 43u,
+        48u, 61u, 4u, 8u, 18u, 29u, 35u, 46u, 49u, 63u, 0u, 11u, 17u, 30u, 34u, 45u, 55u, 60u, 3u, 13u, 23u, 25u, 38u,
+        44u, 50u, 56u, 5u, 10u, 16u, 28u, 39u, 41u, 54u, 59u, 6u, 9u, 19u, 24u, 36u, 47u, 53u, 58u);
 const uint SHARED_GROUP_OF_OFFSET[64] = uint[64](4u, 1u, 2u, 5u, 3u, 6u, 7u, 0u, 3u, 7u, 6u, 4u, 0u, 5u, 2u, 1u, 6u, 4u,
     3u, 7u, 2u, 1u, 0u, 5u, 7u, 5u, 0u, 1u, 6u, 3u, 4u, 2u, 1u, 2u, 4u, 3u, 7u, 0u, 5u, 6u, 0u, 6u, 1u, 2u, 5u, 4u, 3u,
     7u, 2u, 3u, 5u, 0u, 1u, 7u, 6u, 4u, 5u, 0u, 7u, 6u, 4u, 2u, 1u, 3u);
