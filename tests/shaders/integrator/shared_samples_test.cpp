@@ -61,24 +61,14 @@ TEST_F(SharedSamples, CornellBoxAgreesWithMitsubaAndItsGroupsShareTheirNoise) {
     const AgreementResult a = compareBlocks(seedBlockStats(renders, 32), blockStats(reference, &referenceVar, 32));
 
     // The 8x8 blocks' variance against what independent pixels would give: the pixels' own
-    // variances (from the seeds' spread) over 64^2.
-    const BlockStats blocks = seedBlockStats(renders, 8);
-    double pixelVariance = 0;
-    size_t cells = 0;
-    for (int y = 0; y < blocks.blocksY * 8; ++y)
-        for (int x = 0; x < blocks.blocksX * 8; ++x)
-            for (int c = 0; c < 3; ++c) {
-                double sum = 0, sumSq = 0;
-                for (const Image& r : renders) {
-                    const double v = r.rgba[(size_t(y) * r.width + x) * 4 + c];
-                    sum += v, sumSq += v * v;
-                }
-                pixelVariance += std::max(0.0, (sumSq - sum * sum / seeds) / (seeds - 1)) / seeds;
-                ++cells;
-            }
-    double blockVariance = 0;
-    for (double v : blocks.varOfMean) blockVariance += v;
-    const double correlation = (blockVariance / double(blocks.varOfMean.size())) / (pixelVariance / double(cells) / 64);
+    // variances (blocks of one pixel, from the seeds' spread) over 64.
+    auto meanOf = [](const std::vector<double>& v) {
+        double sum = 0;
+        for (double x : v) sum += x;
+        return sum / double(v.size());
+    };
+    const double correlation =
+        meanOf(seedBlockStats(renders, 8).varOfMean) / (meanOf(seedBlockStats(renders, 1).varOfMean) / 64);
     std::printf("shared samples: chi2/dof %.3f, mean z %+.3f, max |z| %.2f; 8x8 block variance %.2fx independent "
                 "pixels'\n",
         a.chi2PerDof, a.meanZ, a.maxAbsZ, correlation);
