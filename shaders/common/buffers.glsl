@@ -39,12 +39,12 @@ vec2 floatsOf(uint64_t w) { return uintBitsToFloat(wordsOf(w)); }
 // same per element whatever its width, so 64-bit words bring a record in with half the gathers
 // (they were the kernel's hottest instructions; bench/RESULTS.md, "Loads of 64-bit words").
 
-// Child planes of one axis: origin + q * scale for the four bytes of `bytes` (q * scale is
-// exact, so this is the decoding src/accel/quantized_bvh.cpp does, bit for bit).
-vec4 dequantizePlanes(uint bytes, float origin, float scale) {
-    uvec4 q = (uvec4(bytes) >> uvec4(0u, 8u, 16u, 24u)) & 0xffu;
-    return origin + vec4(q) * scale;
-}
+// The four steps q of one axis' child planes (the bytes of `bytes`), as floats.
+vec4 planeSteps(uint bytes) { return vec4((uvec4(bytes) >> uvec4(0u, 8u, 16u, 24u)) & 0xffu); }
+
+// Child planes of one axis: origin + q * scale (exact: the origin is a multiple of the scale,
+// so this is the decoding src/accel/quantized_bvh.cpp does, bit for bit).
+vec4 dequantizePlanes(uint bytes, float origin, float scale) { return origin + planeSteps(bytes) * scale; }
 
 // Node `index` of a four-wide BVH of float nodes (GpuBvh4Node) at `nodes`.
 GpuBvh4Node loadBvh4Node(uint64_t nodes, uint index) {
@@ -60,23 +60,41 @@ GpuBvh4Node loadBvh4Node(uint64_t nodes, uint index) {
     return n;
 }
 
-// Node `index` of a four-wide BVH of quantised nodes (GpuBvh4QNode) at `nodes`, decoded.
-GpuBvh4Node loadBvh4QNode(uint64_t nodes, uint index) {
+// A quantised node's (GpuBvh4QNode) words, read as seven 64-bit loads: per axis the origin and
+// scale, the child words, and per axis the four children's low and high plane bytes.
+struct QuantizedNodeWords {
+    vec3 origin;
+    vec3 scale;
+    uvec4 child;
+    uvec3 lo; // child i's q in bits 8i..8i+7
+    uvec3 hi;
+};
+
+QuantizedNodeWords loadQuantizedNodeWords(uint64_t nodes, uint index) {
     Uint64Ref w = Uint64Ref(nodes + uint64_t(index) * uint64_t(BVH4_QNODE_WORDS64 * 8u));
-    vec2 originXY = floatsOf(w.v[0]);
     uvec2 originZExponents = wordsOf(w.v[1]);
     uvec2 loXY = wordsOf(w.v[4]), loZhiX = wordsOf(w.v[5]), hiYZ = wordsOf(w.v[6]);
-    vec3 origin = vec3(originXY, uintBitsToFloat(originZExponents.x));
+    QuantizedNodeWords q;
+    q.origin = vec3(floatsOf(w.v[0]), uintBitsToFloat(originZExponents.x));
     uint e = originZExponents.y;
-    vec3 scale = uintBitsToFloat(((uvec3(e) >> uvec3(0u, 8u, 16u)) & 0xffu) << 23u);
+    q.scale = uintBitsToFloat(((uvec3(e) >> uvec3(0u, 8u, 16u)) & 0xffu) << 23u);
+    q.child = uvec4(wordsOf(w.v[2]), wordsOf(w.v[3]));
+    q.lo = uvec3(loXY, loZhiX.x);
+    q.hi = uvec3(loZhiX.y, hiYZ);
+    return q;
+}
+
+// Node `index` of a four-wide BVH of quantised nodes (GpuBvh4QNode) at `nodes`, decoded.
+GpuBvh4Node loadBvh4QNode(uint64_t nodes, uint index) {
+    QuantizedNodeWords q = loadQuantizedNodeWords(nodes, index);
     GpuBvh4Node n;
-    n.loX = dequantizePlanes(loXY.x, origin.x, scale.x);
-    n.loY = dequantizePlanes(loXY.y, origin.y, scale.y);
-    n.loZ = dequantizePlanes(loZhiX.x, origin.z, scale.z);
-    n.hiX = dequantizePlanes(loZhiX.y, origin.x, scale.x);
-    n.hiY = dequantizePlanes(hiYZ.x, origin.y, scale.y);
-    n.hiZ = dequantizePlanes(hiYZ.y, origin.z, scale.z);
-    n.child = uvec4(wordsOf(w.v[2]), wordsOf(w.v[3]));
+    n.loX = dequantizePlanes(q.lo.x, q.origin.x, q.scale.x);
+    n.loY = dequantizePlanes(q.lo.y, q.origin.y, q.scale.y);
+    n.loZ = dequantizePlanes(q.lo.z, q.origin.z, q.scale.z);
+    n.hiX = dequantizePlanes(q.hi.x, q.origin.x, q.scale.x);
+    n.hiY = dequantizePlanes(q.hi.y, q.origin.y, q.scale.y);
+    n.hiZ = dequantizePlanes(q.hi.z, q.origin.z, q.scale.z);
+    n.child = q.child;
     return n;
 }
 

@@ -23,6 +23,14 @@
 const float BOX_FAR_SCALE = 1.0000003576;
 // Direction components below this are treated as parallel to the slab (exact zeros included).
 const float TINY_DIRECTION = 1e-20;
+// quantizedChildEntries: its distances are exact but for the two roundings of (origin - o) / d
+// and the one of the fma (relative, covered by BOX_FAR_SCALE), so each box is widened by this
+// many times the largest |(origin - o) / d|, twice the bound.
+const float QUANTIZED_SLACK = 4.0 / 16777216.0;
+// Rays whose |1 / d| components lie in [2^-40, 2^40] (all but the nearly axis-parallel, and the
+// shadow rays of scenes over 2^40 across) use it: scale / d then neither overflows nor flushes to
+// zero (scales are 2^-80 or more, src/accel/quantized_bvh.cpp). The others decode the planes.
+const float FOLDED_INV_MAX = 1099511627776.0; // 2^40
 
 struct Hit {
     float t;
@@ -37,6 +45,7 @@ struct BoxRay {
     vec3 invDir;
     bvec3 parallel; // direction component (almost) zero: the slab is crossed never or always
     bool anyParallel;
+    bool folded; // quantised nodes are tested by quantizedChildEntries
 };
 
 BoxRay makeBoxRay(Ray ray) {
@@ -46,6 +55,11 @@ BoxRay makeBoxRay(Ray ray) {
     r.anyParallel = any(r.parallel);
     vec3 tiny = mix(vec3(TINY_DIRECTION), vec3(-TINY_DIRECTION), lessThan(ray.direction, vec3(0.0)));
     r.invDir = vec3(1.0) / mix(ray.direction, tiny, r.parallel);
+    vec3 a = abs(r.invDir);
+    bool quantized = NODE_FORMAT == BVH_NODES_QUANTIZED ||
+                     (NODE_FORMAT == BVH_NODES_FROM_SCENE && scene.nodeFormat == BVH_NODES_QUANTIZED);
+    r.folded = quantized && !r.anyParallel && all(lessThanEqual(a, vec3(FOLDED_INV_MAX))) &&
+               all(greaterThanEqual(a, vec3(1.0 / FOLDED_INV_MAX)));
     return r;
 }
 
@@ -74,6 +88,30 @@ vec4 childEntries(GpuBvh4Node node, BoxRay r, float tMax) {
     vec4 entry = max(max(nearX, nearY), max(nearZ, vec4(0.0)));
     vec4 exit = min(min(farX, farY), min(farZ, vec4(tMax))) * BOX_FAR_SCALE;
     bvec4 hit = bvec4(uvec4(lessThanEqual(entry, exit)) & uvec4(notEqual(node.child, uvec4(BVH4_EMPTY))));
+    return mix(vec4(FLOAT_MAX), entry, hit);
+}
+
+// childEntries for quantised node `index` (GpuBvh4QNode), its planes folded into the distances:
+// plane q of an axis lies at t = q * (scale / d) + (origin - o) / d, one fma a plane, where
+// decoding and then subtracting and scaling took three operations (the 1 M-triangle mesh: 3%
+// faster, the same image; bench/RESULTS.md). Exact planes (the encoder's origin is a multiple of
+// the scale) and QUANTIZED_SLACK keep it conservative. For r.folded rays only.
+vec4 quantizedChildEntries(uint64_t nodes, uint index, BoxRay r, float tMax, out uvec4 child) {
+    QuantizedNodeWords q = loadQuantizedNodeWords(nodes, index);
+    child = q.child;
+    vec3 s = q.scale * r.invDir, b = (q.origin - r.origin) * r.invDir;
+    vec4 x0 = planeSteps(q.lo.x) * s.x + b.x, x1 = planeSteps(q.hi.x) * s.x + b.x;
+    vec4 y0 = planeSteps(q.lo.y) * s.y + b.y, y1 = planeSteps(q.hi.y) * s.y + b.y;
+    vec4 z0 = planeSteps(q.lo.z) * s.z + b.z, z1 = planeSteps(q.hi.z) * s.z + b.z;
+    vec4 nearX = min(x0, x1), farX = max(x0, x1);
+    vec4 nearY = min(y0, y1), farY = max(y0, y1);
+    vec4 nearZ = min(z0, z1), farZ = max(z0, z1);
+    vec3 absB = abs(b);
+    float slack = QUANTIZED_SLACK * max(max(absB.x, absB.y), absB.z);
+    vec4 entry = max(max(nearX, nearY), nearZ) - slack;
+    entry = max(entry, vec4(0.0));
+    vec4 exit = min(min(farX, farY), min(farZ, vec4(tMax))) * BOX_FAR_SCALE + slack;
+    bvec4 hit = bvec4(uvec4(lessThanEqual(entry, exit)) & uvec4(notEqual(child, uvec4(BVH4_EMPTY))));
     return mix(vec4(FLOAT_MAX), entry, hit);
 }
 
@@ -117,18 +155,24 @@ void orderPair(inout float da, inout uint ca, inout float db, inout uint cb) {
     cb = swap ? c : cb;
 }
 
-// The node's children the ray enters within (0, tMax), nearest first: entry distances in d,
-// child words in c, misses last (at FLOAT_MAX). Nearest first, so that the hits a child yields
-// shorten the rest; shadow rays find occluders sooner this way too (measured: unordered was
-// slower for them). A network of five compare-exchanges orders the four slots.
-void orderedChildren(GpuBvh4Node node, BoxRay boxRay, float tMax, out vec4 d, out uvec4 c) {
-    d = childEntries(node, boxRay, tMax);
-    c = node.child;
+// A node's four (entry distance, child word) pairs sorted nearest first, misses (FLOAT_MAX) last:
+// a network of five compare-exchanges. Nearest first, so that the hits a child yields shorten
+// the rest; shadow rays find occluders sooner this way too (measured: unordered was slower for
+// them).
+void orderChildren(inout vec4 d, inout uvec4 c) {
     orderPair(d.x, c.x, d.y, c.y);
     orderPair(d.z, c.z, d.w, c.w);
     orderPair(d.x, c.x, d.z, c.z);
     orderPair(d.y, c.y, d.w, c.w);
     orderPair(d.y, c.y, d.z, c.z);
+}
+
+// The node's children the ray enters within (0, tMax), nearest first: entry distances in d,
+// child words in c, misses last (at FLOAT_MAX).
+void orderedChildren(GpuBvh4Node node, BoxRay boxRay, float tMax, out vec4 d, out uvec4 c) {
+    d = childEntries(node, boxRay, tMax);
+    c = node.child;
+    orderChildren(d, c);
 }
 
 // Nodes visited by this invocation's traversals, counted only for the viewer's BVH-cost view
@@ -271,10 +315,15 @@ bool traverseTree(
     while (true) {
         while ((current & BVH4_LEAF_BIT) == 0u) {
             if (DEBUG_VIEW == DEBUG_VIEW_BVH_COST) ++traversalNodeVisits;
-            GpuBvh4Node node = sphereTree ? loadBvh4Node(nodes, current) : loadTriangleTreeNode(nodes, current);
             vec4 d;
             uvec4 c;
-            orderedChildren(node, boxRay, hit.t, d, c);
+            if (!sphereTree && boxRay.folded) {
+                d = quantizedChildEntries(nodes, current, boxRay, hit.t, c);
+                orderChildren(d, c);
+            } else {
+                GpuBvh4Node node = sphereTree ? loadBvh4Node(nodes, current) : loadTriangleTreeNode(nodes, current);
+                orderedChildren(node, boxRay, hit.t, d, c);
+            }
             if (d.w != FLOAT_MAX) PUSH_CHILD(c.w, d.w);
             if (d.z != FLOAT_MAX) PUSH_CHILD(c.z, d.z);
             if (d.y != FLOAT_MAX) PUSH_CHILD(c.y, d.y);

@@ -280,7 +280,7 @@ FlatScene flattenScene(const Scene& scene, const BvhBuildOptions& bvhOptions) {
         flat.wideBvhDepth = tree.wideDepth;
     }
     flattenKeptInstances(scene, kept, bvhOptions, keepTangents, flat);
-    if (flat.nodes.size() * sizeof(gpu::GpuBvh4Node) > bvhOptions.quantizeOverBytes) {
+    if (flat.nodes.size() * sizeof(gpu::GpuBvh4Node) > bvhOptions.quantizeOverBytes && quantizable(flat.nodes)) {
         flat.quantizedNodes = quantizeWideNodes(flat.nodes);
         releaseVector(flat.nodes);
     }

@@ -44,7 +44,8 @@ struct FlatScene {
     std::vector<gpu::GpuTriangleTangents> tangents; // per triangle when any mesh has tangents, else empty
     // The triangles' four-wide trees (accel/wide_bvh.h): the world tree's nodes first (root 0),
     // then each instanced mesh's (src/flatten/flat_instances.h). Float nodes, or quantised ones
-    // (accel/quantized_bvh.h) when they are big (BvhBuildOptions::quantizeOverBytes); one is empty.
+    // (accel/quantized_bvh.h) when they are big (BvhBuildOptions::quantizeOverBytes) and within
+    // 2^60 of the origin (quantizable); one is empty.
     std::vector<gpu::GpuBvh4Node> nodes;
     std::vector<gpu::GpuBvh4QNode> quantizedNodes;
     uint32_t worldNodes = 0; // the world tree's nodes (0: no world-space triangles)

@@ -127,7 +127,44 @@ TEST(QuantizedBvh, UnusedSlotsDecodeAsEmptyBoxes) {
         EXPECT_EQ(d.child[i], BVH4_EMPTY);
         EXPECT_GT(d.loX[i], d.hiX[i]);
     }
-    EXPECT_EQ(pt::wideNodeBounds(d).lo.x, pt::wideNodeBounds(n).lo.x); // origin: the exact low corner
+    // The origin: the exact low corner rounded down to a multiple of the scale.
+    const GpuBvh4QNode q = pt::quantizeWideNode(n);
+    EXPECT_LE(q.origin.x, pt::wideNodeBounds(n).lo.x);
+    EXPECT_GT(q.origin.x, pt::wideNodeBounds(n).lo.x - scaleOfAxis(q, 0));
+}
+
+TEST(QuantizedBvh, OnlyTreesWithin2To60AreQuantizable) {
+    std::mt19937 rng(9);
+    std::vector<GpuBvh4Node> nodes{randomNode(rng, 0.0f, 1.0f, 4), randomNode(rng, 1e17f, 1e3f, 3)};
+    EXPECT_TRUE(pt::quantizable(nodes));
+    nodes.push_back(randomNode(rng, -1e19f, 1.0f, 2)); // beyond 2^60 = 1.15e18
+    EXPECT_FALSE(pt::quantizable(nodes));
+}
+
+// The kernel folds the decode into ray distances, q * (scale / d) + (origin - o) / d, which is
+// conservative only if origin + q * scale is the plane exactly: the origin is a multiple of the
+// scale, so every decoded plane equals its exact value (computed in double), for every q.
+TEST(QuantizedBvh, DecodedPlanesAreExact) {
+    std::mt19937 rng(5);
+    const float centres[] = {0.0f, 1.0f, -3.5f, 1e4f, -1e4f, 1e7f, -1e7f, 3e-5f, 1e12f};
+    const float sizes[] = {1.0f, 1e-3f, 20.0f, 1e5f, 1e-6f, 1e-20f};
+    int checked = 0;
+    for (float c : centres)
+        for (float s : sizes)
+            for (int k = 0; k < 20; ++k) {
+                const GpuBvh4QNode q = pt::quantizeWideNode(randomNode(rng, c, s, 4));
+                for (int a = 0; a < 3; ++a) {
+                    const float scale = scaleOfAxis(q, a);
+                    EXPECT_EQ(std::fmod(double(q.origin[a]), double(scale)), 0.0) << "centre " << c << " size " << s;
+                    for (uint32_t step = 0; step <= 255; step += 5) {
+                        const float plane = q.origin[a] + float(step) * scale;
+                        ASSERT_EQ(double(plane), double(q.origin[a]) + double(step) * double(scale))
+                            << "centre " << c << " size " << s << " axis " << a << " q " << step;
+                        ++checked;
+                    }
+                }
+            }
+    EXPECT_GT(checked, 10000);
 }
 
 TEST(QuantizedBvh, EveryNodeOfABuiltTreeIsConservative) {

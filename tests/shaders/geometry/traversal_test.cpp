@@ -347,6 +347,22 @@ TEST_P(TraversalTest, RandomRaysAgainstTriangleSoupMatchBruteForce) {
         c.hits, c.ties, scene.flat.nodes.size(), scene.flat.wideBvhDepth, scene.flat.bvhDepth);
 }
 
+// The same soup moved far out and shrunk (a box of 2e-3 at 3e4, where a float's step is 2e-3 /
+// 1000): quantised nodes there have coarse steps and origins far from the rays' (the kernel's
+// folded decode, shaders/geometry/traverse.glsl), and both formats must still find every hit.
+TEST_P(TraversalTest, FarSmallSoupMatchesBruteForce) {
+    pt::Mesh soup = randomSoup(3000, 21);
+    const glm::vec3 far(3e4f, -3e4f, 1e4f);
+    for (glm::vec3& p : soup.positions) p = far + p * 1e-4f;
+    const TestScene scene = uploadMeshes({soup});
+    std::mt19937 rng(77);
+    std::vector<GpuTestRay> rays = randomRays(40000, rng, far - glm::vec3(1.4e-3f), far + glm::vec3(1.4e-3f));
+    const std::vector<GpuTestRay> planes = nodePlaneRays(scene.flat, 20000, rng);
+    rays.insert(rays.end(), planes.begin(), planes.end());
+    const Comparison c = expectBvhMatchesBruteForce(scene, rays, "random and node-plane rays / far small soup");
+    EXPECT_GT(c.hits, rays.size() / 8);
+}
+
 TEST_P(TraversalTest, AxisAlignedRaysAndOriginsOnNodePlanesMatchBruteForce) {
     const TestScene scene = uploadMeshes({randomSoup(2000, 99)});
     std::mt19937 rng(2024);
