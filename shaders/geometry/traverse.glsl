@@ -71,8 +71,18 @@ void parallelSlab(float origin, vec4 lo, vec4 hi, inout vec4 tNear, inout vec4 t
     tFar = mix(vec4(-FLOAT_MAX), vec4(FLOAT_MAX), inside);
 }
 
-// Entry distances (>= 0) into a wide node's four child boxes, FLOAT_MAX for each the ray
-// misses within (0, tMax) and for unused slots (so that misses sort last).
+// The slab test's end, shared by both node formats: from each child's slab intervals, its entry
+// distance (>= 0), or FLOAT_MAX where the ray misses it within (0, tMax) or the slot is unused
+// (so that misses sort last). `slack` widens every box by that distance at both ends.
+vec4 enteredChildren(
+    vec4 nearX, vec4 farX, vec4 nearY, vec4 farY, vec4 nearZ, vec4 farZ, float tMax, float slack, uvec4 child) {
+    vec4 entry = max(max(max(nearX, nearY), nearZ) - slack, vec4(0.0));
+    vec4 exit = min(min(farX, farY), min(farZ, vec4(tMax))) * BOX_FAR_SCALE + slack;
+    bvec4 hit = bvec4(uvec4(lessThanEqual(entry, exit)) & uvec4(notEqual(child, uvec4(BVH4_EMPTY))));
+    return mix(vec4(FLOAT_MAX), entry, hit);
+}
+
+// Entry distances into a wide node's four child boxes (enteredChildren).
 vec4 childEntries(GpuBvh4Node node, BoxRay r, float tMax) {
     vec4 x0 = (node.loX - r.origin.x) * r.invDir.x, x1 = (node.hiX - r.origin.x) * r.invDir.x;
     vec4 y0 = (node.loY - r.origin.y) * r.invDir.y, y1 = (node.hiY - r.origin.y) * r.invDir.y;
@@ -85,10 +95,7 @@ vec4 childEntries(GpuBvh4Node node, BoxRay r, float tMax) {
         if (r.parallel.y) parallelSlab(r.origin.y, node.loY, node.hiY, nearY, farY);
         if (r.parallel.z) parallelSlab(r.origin.z, node.loZ, node.hiZ, nearZ, farZ);
     }
-    vec4 entry = max(max(nearX, nearY), max(nearZ, vec4(0.0)));
-    vec4 exit = min(min(farX, farY), min(farZ, vec4(tMax))) * BOX_FAR_SCALE;
-    bvec4 hit = bvec4(uvec4(lessThanEqual(entry, exit)) & uvec4(notEqual(node.child, uvec4(BVH4_EMPTY))));
-    return mix(vec4(FLOAT_MAX), entry, hit);
+    return enteredChildren(nearX, farX, nearY, farY, nearZ, farZ, tMax, 0.0, node.child);
 }
 
 // childEntries for quantised node `index` (GpuBvh4QNode), its planes folded into the distances:
@@ -103,16 +110,10 @@ vec4 quantizedChildEntries(uint64_t nodes, uint index, BoxRay r, float tMax, out
     vec4 x0 = planeSteps(q.lo.x) * s.x + b.x, x1 = planeSteps(q.hi.x) * s.x + b.x;
     vec4 y0 = planeSteps(q.lo.y) * s.y + b.y, y1 = planeSteps(q.hi.y) * s.y + b.y;
     vec4 z0 = planeSteps(q.lo.z) * s.z + b.z, z1 = planeSteps(q.hi.z) * s.z + b.z;
-    vec4 nearX = min(x0, x1), farX = max(x0, x1);
-    vec4 nearY = min(y0, y1), farY = max(y0, y1);
-    vec4 nearZ = min(z0, z1), farZ = max(z0, z1);
     vec3 absB = abs(b);
     float slack = QUANTIZED_SLACK * max(max(absB.x, absB.y), absB.z);
-    vec4 entry = max(max(nearX, nearY), nearZ) - slack;
-    entry = max(entry, vec4(0.0));
-    vec4 exit = min(min(farX, farY), min(farZ, vec4(tMax))) * BOX_FAR_SCALE + slack;
-    bvec4 hit = bvec4(uvec4(lessThanEqual(entry, exit)) & uvec4(notEqual(child, uvec4(BVH4_EMPTY))));
-    return mix(vec4(FLOAT_MAX), entry, hit);
+    return enteredChildren(
+        min(x0, x1), max(x0, x1), min(y0, y1), max(y0, y1), min(z0, z1), max(z0, z1), tMax, slack, child);
 }
 
 // Whether the ray enters the box within (0, tMax): one child's test of childEntries, with the

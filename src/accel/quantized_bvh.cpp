@@ -69,8 +69,8 @@ gpu::GpuBvh4QNode quantizeWideNode(const gpu::GpuBvh4Node& node) {
                 const bool exact = std::abs(k) <= kExactSteps && std::isfinite(origin);
                 if (biased == kMaxBiased || (exact && double(origin) + double(kMaxQ) * s >= double(hi))) break;
             }
-            // Only near the float range's end: the old origin, decoded with rounding (and outwards by
-            // the corrections below), which the traversal then treats as inexact.
+            // Only near the float range's end (never in a tree quantizable() admits): the old origin,
+            // decoded with rounding and kept conservative by the corrections below.
             if (!std::isfinite(origin) || double(origin) + double(kMaxQ) * double(scaleOf(biased)) < double(hi))
                 origin = lo;
         }
