@@ -1,11 +1,14 @@
 // Typed views of the scene arrays through their device addresses (GL_EXT_buffer_reference):
-// no 128 MiB per-binding limit (lavapipe's maxStorageBufferRange). The one descriptor is the
-// uniform buffer of a tiny scene's triangles (below).
+// no 128 MiB per-binding limit (lavapipe's maxStorageBufferRange). The descriptors are the
+// uniform buffer of a tiny scene's triangles and the texel buffers of the triangle tree and the
+// triangles (below).
 #ifndef PT_COMMON_BUFFERS_GLSL
 #define PT_COMMON_BUFFERS_GLSL
 #extension GL_EXT_buffer_reference : require
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
+#extension GL_EXT_samplerless_texture_functions : require
 #include "shared/layout.h"
+#include "shared/features.glsl"
 
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer SceneParamsRef { GpuSceneParams p; };
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer ShadingRef { GpuTriangleShading v[]; };
@@ -60,8 +63,36 @@ GpuBvh4Node loadBvh4Node(uint64_t nodes, uint index) {
     return n;
 }
 
-// A quantised node's (GpuBvh4QNode) words, read as seven 64-bit loads: per axis the origin and
-// scale, the child words, and per axis the four children's low and high plane bytes.
+// The triangle tree's nodes and the triangles as 16-byte texels (set 0, TEXEL_BINDING_* in
+// shared/layout.h), read instead of their addresses where TEXEL_LOADS: lavapipe fetches a texel
+// with one 16-byte load per lane and transposes the vector, where a load through an address is a
+// gather per 64-bit word (1.16x the paths per second on the 1 M-triangle mesh; the materials, read
+// once a hit, gained nothing this way: bench/RESULTS.md, "Geometry read through texel buffers").
+// The views are the same bytes as the buffers at scene.nodes and scene.triangles.
+layout(set = 0, binding = TEXEL_BINDING_NODES) uniform utextureBuffer triangleTreeTexels;
+layout(set = 0, binding = TEXEL_BINDING_TRIANGLES) uniform utextureBuffer triangleTexels;
+
+// Texel `k` of record `index` of `texelsPerRecord` texels.
+uvec4 nodeTexel(uint index, uint texelsPerRecord, uint k) {
+    return texelFetch(triangleTreeTexels, int(index * texelsPerRecord + k));
+}
+
+// Node `index` of the triangle tree in float nodes (GpuBvh4Node).
+GpuBvh4Node loadTriangleTreeFloatNode(uint index) {
+    if (!TEXEL_LOADS) return loadBvh4Node(scene.nodes, index);
+    GpuBvh4Node n;
+    n.loX = uintBitsToFloat(nodeTexel(index, BVH4_NODE_TEXELS, 0u));
+    n.hiX = uintBitsToFloat(nodeTexel(index, BVH4_NODE_TEXELS, 1u));
+    n.loY = uintBitsToFloat(nodeTexel(index, BVH4_NODE_TEXELS, 2u));
+    n.hiY = uintBitsToFloat(nodeTexel(index, BVH4_NODE_TEXELS, 3u));
+    n.loZ = uintBitsToFloat(nodeTexel(index, BVH4_NODE_TEXELS, 4u));
+    n.hiZ = uintBitsToFloat(nodeTexel(index, BVH4_NODE_TEXELS, 5u));
+    n.child = nodeTexel(index, BVH4_NODE_TEXELS, 6u);
+    return n;
+}
+
+// A quantised node's (GpuBvh4QNode) words: per axis the origin and scale, the child words, and
+// per axis the four children's low and high plane bytes. Only the triangle tree is quantised.
 struct QuantizedNodeWords {
     vec3 origin;
     vec3 scale;
@@ -70,23 +101,34 @@ struct QuantizedNodeWords {
     uvec3 hi;
 };
 
-QuantizedNodeWords loadQuantizedNodeWords(uint64_t nodes, uint index) {
-    Uint64Ref w = Uint64Ref(nodes + uint64_t(index) * uint64_t(BVH4_QNODE_WORDS64 * 8u));
-    uvec2 originZExponents = wordsOf(w.v[1]);
-    uvec2 loXY = wordsOf(w.v[4]), loZhiX = wordsOf(w.v[5]), hiYZ = wordsOf(w.v[6]);
+// Node `index` of the triangle tree in quantised nodes: four texels, or seven 64-bit loads.
+QuantizedNodeWords loadTriangleTreeQuantizedWords(uint index) {
+    uvec4 originExponents, child, loHiX, hiYZ;
+    if (TEXEL_LOADS) {
+        originExponents = nodeTexel(index, BVH4_QNODE_TEXELS, 0u);
+        child = nodeTexel(index, BVH4_QNODE_TEXELS, 1u);
+        loHiX = nodeTexel(index, BVH4_QNODE_TEXELS, 2u);
+        hiYZ = nodeTexel(index, BVH4_QNODE_TEXELS, 3u);
+    } else {
+        Uint64Ref w = Uint64Ref(scene.nodes + uint64_t(index) * uint64_t(BVH4_QNODE_WORDS64 * 8u));
+        originExponents = uvec4(wordsOf(w.v[0]), wordsOf(w.v[1]));
+        child = uvec4(wordsOf(w.v[2]), wordsOf(w.v[3]));
+        loHiX = uvec4(wordsOf(w.v[4]), wordsOf(w.v[5]));
+        hiYZ = uvec4(wordsOf(w.v[6]), 0u, 0u); // the eighth word is padding
+    }
     QuantizedNodeWords q;
-    q.origin = vec3(floatsOf(w.v[0]), uintBitsToFloat(originZExponents.x));
-    uint e = originZExponents.y;
+    q.origin = uintBitsToFloat(originExponents.xyz);
+    uint e = originExponents.w;
     q.scale = uintBitsToFloat(((uvec3(e) >> uvec3(0u, 8u, 16u)) & 0xffu) << 23u);
-    q.child = uvec4(wordsOf(w.v[2]), wordsOf(w.v[3]));
-    q.lo = uvec3(loXY, loZhiX.x);
-    q.hi = uvec3(loZhiX.y, hiYZ);
+    q.child = child;
+    q.lo = loHiX.xyz;
+    q.hi = uvec3(loHiX.w, hiYZ.xy);
     return q;
 }
 
-// Node `index` of a four-wide BVH of quantised nodes (GpuBvh4QNode) at `nodes`, decoded.
-GpuBvh4Node loadBvh4QNode(uint64_t nodes, uint index) {
-    QuantizedNodeWords q = loadQuantizedNodeWords(nodes, index);
+// Node `index` of the triangle tree in quantised nodes, decoded.
+GpuBvh4Node loadTriangleTreeQNode(uint index) {
+    QuantizedNodeWords q = loadTriangleTreeQuantizedWords(index);
     GpuBvh4Node n;
     n.loX = dequantizePlanes(q.lo.x, q.origin.x, q.scale.x);
     n.loY = dequantizePlanes(q.lo.y, q.origin.y, q.scale.y);
@@ -98,18 +140,33 @@ GpuBvh4Node loadBvh4QNode(uint64_t nodes, uint index) {
     return n;
 }
 
-// Triangle `index` of the scene.
-GpuTriangle loadTriangle(uint index) {
-    Uint64Ref w = Uint64Ref(scene.triangles + uint64_t(index) * uint64_t(TRIANGLE_WORDS64 * 8u));
-    uvec2 w1 = wordsOf(w.v[1]), w3 = wordsOf(w.v[3]), w5 = wordsOf(w.v[5]);
+// A GpuTriangle from its three 16-byte texels (each a vertex and one id).
+GpuTriangle triangleOfTexels(uvec4 a, uvec4 b, uvec4 c) {
     GpuTriangle t;
-    t.p0 = vec3(floatsOf(w.v[0]), uintBitsToFloat(w1.x));
-    t.materialIndex = w1.y;
-    t.p1 = vec3(floatsOf(w.v[2]), uintBitsToFloat(w3.x));
-    t.lightIndex = w3.y;
-    t.p2 = vec3(floatsOf(w.v[4]), uintBitsToFloat(w5.x));
-    t.flags = w5.y;
+    t.p0 = uintBitsToFloat(a.xyz);
+    t.materialIndex = a.w;
+    t.p1 = uintBitsToFloat(b.xyz);
+    t.lightIndex = b.w;
+    t.p2 = uintBitsToFloat(c.xyz);
+    t.flags = c.w;
     return t;
+}
+
+// Triangle `index` of the scene: three texels, or six 64-bit loads.
+GpuTriangle loadTriangle(uint index) {
+    uvec4 a, b, c;
+    if (TEXEL_LOADS) {
+        int first = int(index * TRIANGLE_TEXELS);
+        a = texelFetch(triangleTexels, first);
+        b = texelFetch(triangleTexels, first + 1);
+        c = texelFetch(triangleTexels, first + 2);
+    } else {
+        Uint64Ref w = Uint64Ref(scene.triangles + uint64_t(index) * uint64_t(TRIANGLE_WORDS64 * 8u));
+        a = uvec4(wordsOf(w.v[0]), wordsOf(w.v[1]));
+        b = uvec4(wordsOf(w.v[2]), wordsOf(w.v[3]));
+        c = uvec4(wordsOf(w.v[4]), wordsOf(w.v[5]));
+    }
+    return triangleOfTexels(a, b, c);
 }
 
 // A tiny scene's triangles again, as a uniform buffer (set 0, binding 0; every pipeline's layout
@@ -126,14 +183,7 @@ GpuTriangle loadUniformTriangle(uint index) {
     uvec4 a = uniformTriangles.words[index * UNIFORM_TRIANGLE_VEC4S];
     uvec4 b = uniformTriangles.words[index * UNIFORM_TRIANGLE_VEC4S + 1u];
     uvec4 c = uniformTriangles.words[index * UNIFORM_TRIANGLE_VEC4S + 2u];
-    GpuTriangle t;
-    t.p0 = uintBitsToFloat(a.xyz);
-    t.materialIndex = a.w;
-    t.p1 = uintBitsToFloat(b.xyz);
-    t.lightIndex = b.w;
-    t.p2 = uintBitsToFloat(c.xyz);
-    t.flags = c.w;
-    return t;
+    return triangleOfTexels(a, b, c);
 }
 
 void bindScene(uint64_t paramsAddress) {

@@ -103,8 +103,8 @@ vec4 childEntries(GpuBvh4Node node, BoxRay r, float tMax) {
 // decoding and then subtracting and scaling took three operations (the 1 M-triangle mesh: 3%
 // faster, the same image; bench/RESULTS.md). Exact planes (the encoder's origin is a multiple of
 // the scale) and QUANTIZED_SLACK keep it conservative. For r.folded rays only.
-vec4 quantizedChildEntries(uint64_t nodes, uint index, BoxRay r, float tMax, out uvec4 child) {
-    QuantizedNodeWords q = loadQuantizedNodeWords(nodes, index);
+vec4 quantizedChildEntries(uint index, BoxRay r, float tMax, out uvec4 child) {
+    QuantizedNodeWords q = loadTriangleTreeQuantizedWords(index);
     child = q.child;
     vec3 s = q.scale * r.invDir, b = (q.origin - r.origin) * r.invDir;
     vec4 x0 = planeSteps(q.lo.x) * s.x + b.x, x1 = planeSteps(q.hi.x) * s.x + b.x;
@@ -138,11 +138,11 @@ bool rayEntersBox(BoxRay r, vec3 lo, vec3 hi, float tMax) {
 // Node `index` of the triangle tree, in the format the pipeline was specialised for, or (not
 // specialised) the scene's. If-else on one constant at a time: only one loader survives
 // specialization, and neither load is made speculatively beside the other.
-GpuBvh4Node loadTriangleTreeNode(uint64_t nodes, uint index) {
-    if (NODE_FORMAT == BVH_NODES_QUANTIZED) return loadBvh4QNode(nodes, index);
-    if (NODE_FORMAT == BVH_NODES_FLOAT) return loadBvh4Node(nodes, index);
-    if (scene.nodeFormat == BVH_NODES_QUANTIZED) return loadBvh4QNode(nodes, index);
-    return loadBvh4Node(nodes, index);
+GpuBvh4Node loadTriangleTreeNode(uint index) {
+    if (NODE_FORMAT == BVH_NODES_QUANTIZED) return loadTriangleTreeQNode(index);
+    if (NODE_FORMAT == BVH_NODES_FLOAT) return loadTriangleTreeFloatNode(index);
+    if (scene.nodeFormat == BVH_NODES_QUANTIZED) return loadTriangleTreeQNode(index);
+    return loadTriangleTreeFloatNode(index);
 }
 
 // Orders (distance, child) pairs a and b so that a is the nearer; misses count as farthest.
@@ -305,7 +305,6 @@ const uint TRAVERSAL_DONE = BVH4_EMPTY; // has the leaf bit: ends the inner-node
 // can only cost extra work, never change the hit.
 bool traverseTree(
     bool sphereTree, bool anyHit, Ray ray, WatertightRay wray, BoxRay boxRay, inout Hit hit, uint root, uint instance) {
-    uint64_t nodes = sphereTree ? scene.sphereNodes : scene.nodes;
     if (sphereTree ? scene.numSphereNodes == 0u : (instance == NO_INSTANCE && scene.numNodes == 0u)) return false;
     uint stack[TRAVERSAL_STACK_SIZE];   // child words
     float stackT[TRAVERSAL_STACK_SIZE]; // their entry distances
@@ -319,10 +318,11 @@ bool traverseTree(
             vec4 d;
             uvec4 c;
             if (!sphereTree && boxRay.folded) {
-                d = quantizedChildEntries(nodes, current, boxRay, hit.t, c);
+                d = quantizedChildEntries(current, boxRay, hit.t, c);
                 orderChildren(d, c);
             } else {
-                GpuBvh4Node node = sphereTree ? loadBvh4Node(nodes, current) : loadTriangleTreeNode(nodes, current);
+                GpuBvh4Node node =
+                    sphereTree ? loadBvh4Node(scene.sphereNodes, current) : loadTriangleTreeNode(current);
                 orderedChildren(node, boxRay, hit.t, d, c);
             }
             if (d.w != FLOAT_MAX) PUSH_CHILD(c.w, d.w);

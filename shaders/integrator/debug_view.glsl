@@ -41,7 +41,7 @@ void growByWideNode(GpuBvh4Node n, inout vec3 lo, inout vec3 hi) {
 // depth is shown as 1 - t / this, so near surfaces are bright and the far end is black.
 float farthestSceneDistance(vec3 p) {
     vec3 lo = vec3(FLOAT_MAX), hi = vec3(-FLOAT_MAX);
-    if (HAS_TRIANGLES && scene.numNodes > 0u) growByWideNode(loadTriangleTreeNode(scene.nodes, 0u), lo, hi);
+    if (HAS_TRIANGLES && scene.numNodes > 0u) growByWideNode(loadTriangleTreeNode(0u), lo, hi);
     if (HAS_INSTANCES && scene.numInstanceNodes > 0u) growByWideNode(loadBvh4Node(scene.instanceNodes, 0u), lo, hi);
     if (HAS_SPHERES && scene.numSphereNodes > 0u) growByWideNode(Bvh4Ref(scene.sphereNodes).v[0], lo, hi);
     return all(lessThanEqual(lo, hi)) ? max(length(max(abs(p - lo), abs(p - hi))), 1e-20) : 1.0;

@@ -97,6 +97,18 @@ using uint64_t = std::uint64_t;
 #define UNIFORM_TRIANGLES_MAX 48u
 #define UNIFORM_TRIANGLE_VEC4S 3u // one GpuTriangle as std140 uvec4s
 
+// Set 0's texel buffers (R32G32B32A32_UINT views, one 16-byte texel per load) of the triangle
+// tree's nodes and of the triangles, read through them where TEXEL_LOADS (shared/features.h) is
+// on. Lavapipe turns a texel fetch into one 16-byte load per lane, where a load through a buffer
+// address is a gather per 64-bit word (bench/RESULTS.md, "Geometry read through texel buffers").
+// Pipelines without a scene's views bind small placeholders (src/gpu/compute_pipeline.cpp).
+#define TEXEL_BINDING_NODES 1
+#define TEXEL_BINDING_TRIANGLES 2
+#define TEXEL_BINDING_COUNT 2 // bindings 1 and 2
+#define TRIANGLE_TEXELS 3u    // GpuTriangle in 16-byte texels
+#define BVH4_QNODE_TEXELS 4u  // GpuBvh4QNode
+#define BVH4_NODE_TEXELS 7u   // GpuBvh4Node
+
 // Child words of GpuBvh4Node. An inner child is the index of its node (bit 31 clear); a leaf
 // has bit 31 set, its primitive count minus one in bits 27..30 and its first primitive (in the
 // BVH-ordered primitive array) in bits 0..26; an unused slot is BVH4_EMPTY.

@@ -37,7 +37,8 @@ bool onOff(const std::string& v) { return v == "on"; }
 
 // Switches given as words on the command line, converted after parsing.
 struct SwitchWords {
-    std::string nee, mis, rr, sampling, integrator, sampler, lightTracing, instances, lightTree, bvh, sharedSamples;
+    std::string nee, mis, rr, sampling, integrator, sampler, lightTracing, instances, lightTree, bvh, sharedSamples,
+        texelLoads;
     std::vector<float> envColour;
 };
 
@@ -100,6 +101,11 @@ void addSceneOptions(CLI::App* cmd, pt::RenderOptions& o, SwitchWords& w) {
            "ray, read from a uniform buffer: faster on lavapipe than the tree) or always (the four-wide tree); "
            "default auto; the same image either way")
         ->check(CLI::IsMember({"auto", "always"}));
+    cmd->add_option("--texel-loads", w.texelLoads,
+           "Triangles and tree nodes: auto (read through texel buffers on a CPU device such as lavapipe, one "
+           "16-byte load per lane instead of a gather per word: faster there) or off (through buffer addresses, as "
+           "on GPUs); default auto; the same image either way")
+        ->check(CLI::IsMember({"auto", "off"}));
     cmd->add_option("--shared-samples", w.sharedSamples,
            "Path tracing: the 8 pixels the CPU driver runs as one SIMD vector (spread over an 8x8 block) share "
            "their random numbers, so their paths stay together: 1.2-1.3x the paths per second on lavapipe with "
@@ -151,6 +157,7 @@ void applySwitchWords(const SwitchWords& w, pt::RenderOptions& o) {
                                                              : pt::LightSelection::Auto;
     if (!w.bvh.empty()) o.integrator.alwaysTree = w.bvh == "always";
     if (!w.sharedSamples.empty()) o.integrator.sharedSamples = onOff(w.sharedSamples);
+    if (!w.texelLoads.empty()) o.integrator.texelLoads = w.texelLoads == "auto";
     if (!w.sampler.empty())
         o.integrator.sampler = w.sampler == "sobol" ? pt::SamplerKind::Sobol : pt::SamplerKind::Independent;
     if (!w.instances.empty())

@@ -275,6 +275,8 @@ bool lightTreeChosen(const FlatScene& scene, const IntegratorSettings& s, const 
     return s.lightSelection == LightSelection::Tree || lightTreePays(scene);
 }
 
+bool hasTriangleTree(const FlatScene& scene) { return !scene.nodes.empty() || !scene.quantizedNodes.empty(); }
+
 uint32_t nodeFormatOf(const FlatScene& scene) {
     return scene.quantizedNodes.empty() ? BVH_NODES_FLOAT : BVH_NODES_QUANTIZED;
 }

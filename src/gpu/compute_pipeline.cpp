@@ -28,7 +28,7 @@ ComputePipeline::ComputePipeline(VulkanContext& context, std::span<const uint32_
     vkCheck(vkCreateShaderModule(context.device(), &moduleInfo, nullptr, &module), what.c_str());
 
     try {
-        createUniformDescriptor(uniforms, what);
+        createDescriptors(uniforms, what);
     } catch (...) {
         vkDestroyShaderModule(context.device(), module, nullptr);
         throw;
@@ -69,9 +69,10 @@ VkDeviceSize ComputePipeline::uniformBlockBytes() {
     return VkDeviceSize(UNIFORM_TRIANGLES_MAX) * UNIFORM_TRIANGLE_VEC4S * 16;
 }
 
-// The set layout, a pool of one set and the set itself, pointing at `uniforms` or at a
-// zero-filled buffer of the pipeline's own.
-void ComputePipeline::createUniformDescriptor(const GpuBuffer* uniforms, const std::string& what) {
+// The set layout (the uniform block and the texel buffers), a pool of one set and the set
+// itself, pointing at `uniforms` or at a zero-filled buffer of the pipeline's own, and at
+// placeholder texels until setTexelBuffers.
+void ComputePipeline::createDescriptors(const GpuBuffer* uniforms, const std::string& what) {
     if (!uniforms) {
         ownUniforms_ = std::make_unique<GpuBuffer>(context_, uniformBlockBytes(), "uniforms");
         ownUniforms_->fillZero();
@@ -79,20 +80,27 @@ void ComputePipeline::createUniformDescriptor(const GpuBuffer* uniforms, const s
     }
     if (uniforms->size() < uniformBlockBytes())
         throw std::runtime_error(what + ": the uniform buffer is smaller than the kernel's block");
-    VkDescriptorSetLayoutBinding binding{};
-    binding.binding = 0;
-    binding.descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
-    binding.descriptorCount = 1;
-    binding.stageFlags = VK_SHADER_STAGE_COMPUTE_BIT;
+    placeholderTexels_ = TexelView(context_, *uniforms, uniformBlockBytes(), what.c_str());
+    VkDescriptorSetLayoutBinding bindings[1 + TEXEL_BINDING_COUNT]{};
+    for (uint32_t b = 0; b < 1 + TEXEL_BINDING_COUNT; ++b) {
+        bindings[b].binding = b;
+        bindings[b].descriptorType =
+            b == 0 ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER : VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
+        bindings[b].descriptorCount = 1;
+        bindings[b].stageFlags = VK_SHADER_STAGE_COMPUTE_BIT;
+    }
+    static_assert(TEXEL_BINDING_NODES == 1 && TEXEL_BINDING_TRIANGLES == 2 && TEXEL_BINDING_COUNT == 2,
+        "the set's bindings are 0 (uniforms) and the texel buffers after it");
     VkDescriptorSetLayoutCreateInfo setInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
-    setInfo.bindingCount = 1;
-    setInfo.pBindings = &binding;
+    setInfo.bindingCount = 1 + TEXEL_BINDING_COUNT;
+    setInfo.pBindings = bindings;
     vkCheck(vkCreateDescriptorSetLayout(context_.device(), &setInfo, nullptr, &setLayout_), what.c_str());
-    VkDescriptorPoolSize poolSize{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1};
+    VkDescriptorPoolSize poolSizes[2] = {
+        {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1}, {VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, TEXEL_BINDING_COUNT}};
     VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
     poolInfo.maxSets = 1;
-    poolInfo.poolSizeCount = 1;
-    poolInfo.pPoolSizes = &poolSize;
+    poolInfo.poolSizeCount = 2;
+    poolInfo.pPoolSizes = poolSizes;
     VkResult result = vkCreateDescriptorPool(context_.device(), &poolInfo, nullptr, &pool_);
     if (result == VK_SUCCESS) {
         VkDescriptorSetAllocateInfo allocInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
@@ -114,6 +122,23 @@ void ComputePipeline::createUniformDescriptor(const GpuBuffer* uniforms, const s
     write.descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
     write.pBufferInfo = &bufferInfo;
     vkUpdateDescriptorSets(context_.device(), 1, &write, 0, nullptr);
+    setTexelBuffers(TexelBuffers{});
+}
+
+void ComputePipeline::setTexelBuffers(const TexelBuffers& views) {
+    const VkBufferView placeholder = placeholderTexels_.handle();
+    const VkBufferView bound[TEXEL_BINDING_COUNT] = {
+        views.nodes ? views.nodes : placeholder, views.triangles ? views.triangles : placeholder};
+    VkWriteDescriptorSet writes[TEXEL_BINDING_COUNT]{};
+    for (uint32_t i = 0; i < TEXEL_BINDING_COUNT; ++i) {
+        writes[i].sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
+        writes[i].dstSet = set_;
+        writes[i].dstBinding = TEXEL_BINDING_NODES + i;
+        writes[i].descriptorCount = 1;
+        writes[i].descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
+        writes[i].pTexelBufferView = &bound[i];
+    }
+    vkUpdateDescriptorSets(context_.device(), TEXEL_BINDING_COUNT, writes, 0, nullptr);
 }
 
 ComputePipeline::~ComputePipeline() {

@@ -1,11 +1,13 @@
 #pragma once
 // A compute pipeline from embedded SPIR-V, with push constants, one uniform buffer (set 0,
-// binding 0: a tiny scene's triangles, shaders/common/buffers.glsl; every other buffer is reached
-// through its device address) and specialization constants chosen per scene. The constants are
+// binding 0: a tiny scene's triangles, shaders/common/buffers.glsl), two texel buffers (the
+// triangle tree's nodes and the triangles, TEXEL_BINDING_* in shared/layout.h; every other
+// buffer is reached through its device address) and specialization constants chosen per scene. The constants are
 // baked into the SPIR-V before the driver sees it (spirv_specialization.h), through the context's
 // pipeline cache, so a kernel's second creation, in any process, skips that step.
 #include "gpu/gpu_buffer.h"
 #include "gpu/spirv_specialization.h"
+#include "gpu/texel_view.h"
 #include "gpu/vulkan_context.h"
 
 #include <cstdint>
@@ -36,16 +38,23 @@ public:
     // Whether the specialised SPIR-V came from the disk cache (for the log line).
     bool specializedFromCache() const { return specializedFromCache_; }
 
+    // Points the texel-buffer bindings at a scene's views (GpuScene::texelBuffers); a null view
+    // binds the placeholder. Not while a dispatch of this pipeline may run.
+    void setTexelBuffers(const TexelBuffers& views);
+
     void bindAndPush(VkCommandBuffer cmd, const void* pushData, uint32_t bytes) const;
 
 private:
-    void createUniformDescriptor(const GpuBuffer* uniforms, const std::string& what);
+    void createDescriptors(const GpuBuffer* uniforms, const std::string& what);
 
     VulkanContext& context_;
     VkDescriptorSetLayout setLayout_ = VK_NULL_HANDLE;
     VkDescriptorPool pool_ = VK_NULL_HANDLE;
     VkDescriptorSet set_ = VK_NULL_HANDLE;
     std::unique_ptr<GpuBuffer> ownUniforms_;
+    // A view of the uniform block's buffer, bound at the texel bindings a scene does not fill
+    // (a kernel that never reads them still needs something there).
+    TexelView placeholderTexels_;
     VkPipelineLayout layout_ = VK_NULL_HANDLE;
     VkPipeline pipeline_ = VK_NULL_HANDLE;
     double creationSeconds_ = 0;

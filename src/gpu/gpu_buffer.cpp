@@ -88,8 +88,8 @@ void setStagingPolicyForTests(const StagingPolicy& policy) { stagingPolicy = pol
 GpuBuffer::GpuBuffer(VulkanContext& context, VkDeviceSize size, const char* name)
     : context_(&context), size_(std::max<VkDeviceSize>(size, 16)), name_(name) {
     const VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT |
-                                     VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
-                                     VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+                                     VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT |
+                                     VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
     RawBuffer raw = createRawBuffer(context, size_, usage, false, name);
     if (stagingPolicy.forceStaging && raw.mapped) {
         vkUnmapMemory(context.device(), raw.memory);

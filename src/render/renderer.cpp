@@ -26,6 +26,9 @@ namespace {
 // tracing alone (the same image, noisier).
 FeatureSet supportedFeatures(const VulkanContext& context, FeatureSet features) {
     if (!context.info().int64Atomics) features.lightTracing = features.bdpt = features.merging = false;
+    // Texel buffers are measured faster on lavapipe only (a GPU loads a 16-byte word per thread
+    // through an address anyway); elsewhere the kernel keeps its address loads.
+    if (context.properties().deviceType != VK_PHYSICAL_DEVICE_TYPE_CPU) features.texelLoads = false;
     return features;
 }
 
@@ -70,6 +73,7 @@ Renderer::Renderer(VulkanContext& context, const FlatScene& scene, const Feature
     const std::optional<float> hitDistance = scene.cameraHitDistance;
     maxDepth_ = settings.maxDepth; // sizes merging's buffers, which filmBytes counts
     gpuScene_ = std::make_unique<GpuScene>(context, scene, sceneParams(settings), filmBytes());
+    if (!gpuScene_->hasTexelViews()) features_.texelLoads = false; // beyond the device's view limit
     mergeRadius_ = initialMergeRadius(settings, hitDistance);
     mergeAlpha_ = settings.mergeAlpha;
     createPipeline();
@@ -82,6 +86,7 @@ Renderer::Renderer(VulkanContext& context, FlatScene&& scene, const FeatureSet& 
     const std::optional<float> hitDistance = scene.cameraHitDistance;
     maxDepth_ = settings.maxDepth; // sizes merging's buffers, which filmBytes counts
     gpuScene_ = std::make_unique<GpuScene>(context, std::move(scene), sceneParams(settings), filmBytes());
+    if (!gpuScene_->hasTexelViews()) features_.texelLoads = false; // beyond the device's view limit
     mergeRadius_ = initialMergeRadius(settings, hitDistance);
     mergeAlpha_ = settings.mergeAlpha;
     createPipeline();
@@ -125,6 +130,7 @@ void Renderer::createPipeline() {
     pipeline_ = std::make_unique<ComputePipeline>(context_, renderKernel(features_),
         static_cast<uint32_t>(sizeof(gpu::GpuRenderPush)), features_.constants(localSize_, localSize_), "render",
         gpuScene_->uniformTriangles());
+    pipeline_->setTexelBuffers(gpuScene_->texelBuffers());
     primePipeline();
     if (features_.merging) createMergingBuffers();
     if (features_.countRays) {
@@ -413,7 +419,8 @@ void Renderer::setIntegrator(const IntegratorSettings& settings, const FeatureSe
     params_.rrStartDepth = settings.rrStartDepth;
     params_.rrThreshold = settings.rrThreshold;
     params_.seed = settings.seed;
-    const FeatureSet wanted = supportedFeatures(context_, features);
+    FeatureSet wanted = supportedFeatures(context_, features);
+    if (!gpuScene_->hasTexelViews()) wanted.texelLoads = false;
     const auto constants = wanted.constants(localSize_, localSize_);
     const auto current = features_.constants(localSize_, localSize_);
     const bool same = std::equal(constants.begin(), constants.end(), current.begin(), current.end(),
@@ -423,6 +430,7 @@ void Renderer::setIntegrator(const IntegratorSettings& settings, const FeatureSe
     if (!same) {
         auto fresh = std::make_unique<ComputePipeline>(context_, renderKernel(wanted),
             static_cast<uint32_t>(sizeof(gpu::GpuRenderPush)), constants, "render", gpuScene_->uniformTriangles());
+        fresh->setTexelBuffers(gpuScene_->texelBuffers());
         vkDeviceWaitIdle(context_.device());
         pipeline_ = std::move(fresh);
         primePipeline();

@@ -28,7 +28,8 @@ TEST(FeatureTable, ConstantIdsAreUniqueAndClearOfTheWorkgroupSize) {
     for (const SpecializationConstant& c : constants) EXPECT_TRUE(constantIds.insert(c.id).second) << c.id;
 }
 
-// (Its 32 triangles are few enough to be tested without a tree: all-triangles.)
+// (Its 32 triangles are few enough to be tested without a tree: all-triangles; through the tree its
+// nodes and triangles are read as texels: texel-loads.)
 TEST(FeatureTable, TheCornellBoxNeedsTrianglesDiffuseAndEmitters) {
     const FlatScene box = flattenScene(loadDefaultScene());
     EXPECT_EQ(computeFeatures(box, IntegratorSettings{}).describe(),
@@ -42,6 +43,8 @@ TEST(FeatureTable, TheCornellBoxNeedsTrianglesDiffuseAndEmitters) {
     plain.sampling = DirectionSampling::Uniform;
     plain.sampler = SamplerKind::Independent;
     plain.alwaysTree = true;
+    EXPECT_EQ(computeFeatures(box, plain).describe(), "triangles diffuse emitters rr uniform-sampling texel-loads");
+    plain.texelLoads = false; // --texel-loads off: the same image through buffer addresses
     EXPECT_EQ(computeFeatures(box, plain).describe(), "triangles diffuse emitters rr uniform-sampling");
 }
 
@@ -175,6 +178,7 @@ TEST(FeatureTable, AllCompilesEverySceneFeatureAndKeepsTheSwitches) {
     EXPECT_TRUE(all.nee);
     EXPECT_FALSE(all.mis);
     EXPECT_FALSE(all.lightTracing); // decided by the scene, never compiled in by all()
+    EXPECT_FALSE(all.texelLoads);   // a scene's texel views are bound only by its renderer
     EXPECT_FALSE(all.classic);
     EXPECT_EQ(all.debugView, DEBUG_VIEW_NONE);
     // The constants carry each field's value.

@@ -32,14 +32,23 @@ void GpuTest::TearDown() {
         << "Vulkan validation: " << sharedContext().firstValidationMessage();
 }
 
+namespace {
+bool testKernelTexelLoads = false;
+}
+
+void setTestKernelTexelLoads(bool on) { testKernelTexelLoads = on; }
+
 std::vector<glm::vec4> runTestKernel(uint32_t mode, uint32_t count, const GpuScene* scene,
     std::span<const std::byte> inputs, glm::vec3 point, glm::vec3 normal, uint32_t seed, uint32_t materialIndex) {
     VulkanContext& ctx = sharedContext();
-    // One pipeline per mode, specialised to it: a process compiles only the code of the modes it runs.
-    static std::map<uint32_t, std::unique_ptr<ComputePipeline>> pipelines;
-    std::unique_ptr<ComputePipeline>& pipeline = pipelines[mode];
+    // One pipeline per mode and load path, specialised to them: a process compiles only the code
+    // of the modes it runs.
+    static std::map<std::pair<uint32_t, bool>, std::unique_ptr<ComputePipeline>> pipelines;
+    std::unique_ptr<ComputePipeline>& pipeline = pipelines[{mode, testKernelTexelLoads}];
     if (!pipeline) {
-        std::vector<SpecializationConstant> constants = FeatureSet::all(IntegratorSettings{}).constants(8, 8);
+        FeatureSet features = FeatureSet::all(IntegratorSettings{});
+        features.texelLoads = testKernelTexelLoads;
+        std::vector<SpecializationConstant> constants = features.constants(8, 8);
         constants.push_back({TEST_MODE_CONSTANT_ID, mode});
         pipeline = std::make_unique<ComputePipeline>(ctx, std::span<const uint32_t>(pt_test_kernels_spv),
             static_cast<uint32_t>(sizeof(gpu::GpuTestPush)), constants, "test kernels");
@@ -58,6 +67,8 @@ std::vector<glm::vec4> runTestKernel(uint32_t mode, uint32_t count, const GpuSce
     push.normal = normal;
     push.materialIndex = materialIndex;
     push.seed = seed;
+    // The previous dispatch has finished (submitAndWait), so the set may change.
+    pipeline->setTexelBuffers(scene ? scene->texelBuffers() : TexelBuffers{});
     ctx.submitAndWait([&](VkCommandBuffer cmd) {
         pipeline->bindAndPush(cmd, &push, sizeof(push));
         vkCmdDispatch(cmd, (count + 63) / 64, 1, 1);

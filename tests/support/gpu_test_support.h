@@ -37,6 +37,10 @@ std::vector<glm::vec4> runTestKernel(uint32_t mode, uint32_t count, const GpuSce
     std::span<const std::byte> inputs = {}, glm::vec3 point = glm::vec3(0.0f), glm::vec3 normal = glm::vec3(0, 0, 1),
     uint32_t seed = 1, uint32_t materialIndex = 0);
 
+// Whether runTestKernel's kernels read the triangle tree and the triangles through texel buffers
+// (TEXEL_LOADS) or through buffer addresses (the default, as FeatureSet::all has it).
+void setTestKernelTexelLoads(bool on);
+
 // Procedural geometry.
 Mesh makeIcosphere(int subdivisions, glm::vec3 centre, float radius, uint32_t material);
 Mesh makeQuad(glm::vec3 corner, glm::vec3 edgeU, glm::vec3 edgeV, uint32_t material); // normal = edgeU x edgeV

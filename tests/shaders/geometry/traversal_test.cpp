@@ -320,17 +320,26 @@ std::vector<GpuTestRay> concat(std::vector<std::vector<GpuTestRay>> parts) {
     return all;
 }
 
-// Every traversal test runs with float nodes and with quantised ones (GpuBvh4QNode).
-class TraversalTest : public pt::test::GpuTest, public ::testing::WithParamInterface<bool> {
+// Every traversal test runs with float nodes and with quantised ones (GpuBvh4QNode), each read
+// through buffer addresses and through texel buffers (TEXEL_LOADS).
+class TraversalTest : public pt::test::GpuTest, public ::testing::WithParamInterface<std::tuple<bool, bool>> {
 protected:
     void SetUp() override {
         pt::test::GpuTest::SetUp();
-        quantizedTrees = GetParam();
+        quantizedTrees = std::get<0>(GetParam());
+        pt::test::setTestKernelTexelLoads(std::get<1>(GetParam()));
+    }
+    void TearDown() override {
+        pt::test::setTestKernelTexelLoads(false);
+        pt::test::GpuTest::TearDown();
     }
 };
 
-INSTANTIATE_TEST_SUITE_P(NodeFormats, TraversalTest, ::testing::Values(false, true),
-    [](const ::testing::TestParamInfo<bool>& info) { return info.param ? "Quantized" : "Float"; });
+INSTANTIATE_TEST_SUITE_P(NodeFormats, TraversalTest, ::testing::Combine(::testing::Bool(), ::testing::Bool()),
+    [](const ::testing::TestParamInfo<std::tuple<bool, bool>>& info) {
+        return std::string(std::get<0>(info.param) ? "Quantized" : "Float") +
+               (std::get<1>(info.param) ? "Texels" : "Addresses");
+    });
 
 TEST_P(TraversalTest, RandomRaysAgainstTriangleSoupMatchBruteForce) {
     const TestScene scene = uploadMeshes({randomSoup(3000, 7)});

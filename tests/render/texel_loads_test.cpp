@@ -1,0 +1,69 @@
+// The triangle tree and the triangles read through texel buffers (TEXEL_LOADS): taken on
+// lavapipe wherever there is a tree, and the image is the one the buffer-address loads give, bit
+// for bit, with float nodes and with quantised ones.
+#include "flatten/feature_set.h"
+#include "scene/gltf/gltf_loader.h"
+#include "support/gpu_test_support.h"
+
+#include <limits>
+
+namespace pt::test {
+namespace {
+
+class TexelLoads : public GpuTest {};
+
+// The diffuse box with a subdivided sphere in it (1,280 triangles more), through the tree.
+Scene boxWithSphere() {
+    Scene box = loadGltfFile(testDataDir() / "references" / "cbox-diffuse" / "scene.gltf");
+    box.meshes.push_back(makeIcosphere(3, glm::vec3(0.2f, -0.5f, 0.1f), 0.3f, 0));
+    return box;
+}
+
+Renderer::Readback render(const Scene& scene, IntegratorSettings s, bool texels, bool quantized, uint32_t seed) {
+    s.texelLoads = texels;
+    s.seed = seed;
+    BvhBuildOptions bvh;
+    bvh.quantizeOverBytes = quantized ? 0 : std::numeric_limits<size_t>::max();
+    FlatScene flat = flattenScene(scene, bvh);
+    EXPECT_EQ(flat.quantizedNodes.empty(), !quantized);
+    Renderer renderer(sharedContext(), flat, computeFeatures(flat, s), s, scene.cameras.at(0),
+        FilmSettings{40, 40, scene.background});
+    EXPECT_EQ(renderer.features().texelLoads, texels); // lavapipe is a CPU device: taken where asked
+    renderer.addSamples(8, 0);
+    return renderer.read();
+}
+
+TEST_F(TexelLoads, TheSameImageAsBufferAddressesWithEitherNodeFormat) {
+    const Scene scene = boxWithSphere();
+    IntegratorSettings s;
+    s.alwaysTree = true;
+    for (bool quantized : {false, true}) {
+        const Renderer::Readback texels = render(scene, s, true, quantized, 3);
+        const Renderer::Readback addresses = render(scene, s, false, quantized, 3);
+        EXPECT_EQ(texels.mean.rgba, addresses.mean.rgba) << (quantized ? "quantised nodes" : "float nodes");
+        // The comparison can tell images apart: another seed differs.
+        EXPECT_NE(texels.mean.rgba, render(scene, s, true, quantized, 4).mean.rgba);
+    }
+}
+
+TEST_F(TexelLoads, DecidedByTheTreeAndTheSwitch) {
+    const FlatScene flat = flattenScene(boxWithSphere());
+    IntegratorSettings s;
+    EXPECT_TRUE(computeFeatures(flat, s).texelLoads);
+    s.texelLoads = false;
+    EXPECT_FALSE(computeFeatures(flat, s).texelLoads);
+    // A tiny scene tests its triangles without the tree (all-triangles): nothing to gain there.
+    const FlatScene box = flattenScene(loadGltfFile(testDataDir() / "references" / "cbox-diffuse" / "scene.gltf"));
+    EXPECT_FALSE(computeFeatures(box, IntegratorSettings{}).texelLoads);
+    IntegratorSettings tree;
+    tree.alwaysTree = true;
+    EXPECT_TRUE(computeFeatures(box, tree).texelLoads);
+    // Spheres alone have no triangle tree.
+    Scene spheres;
+    spheres.materials.push_back(Material{});
+    spheres.spheres.push_back(Sphere{});
+    EXPECT_FALSE(computeFeatures(flattenScene(spheres), IntegratorSettings{}).texelLoads);
+}
+
+} // namespace
+} // namespace pt::test
