@@ -97,9 +97,9 @@ void addSceneOptions(CLI::App* cmd, pt::RenderOptions& o, SwitchWords& w) {
            "scene or face more ways than a 30-degree cone); default auto")
         ->check(CLI::IsMember({"auto", "on", "off"}));
     cmd->add_option("--bvh", w.bvh,
-           "Triangles: auto (a scene of at most 48 triangles and no instances tests every triangle against each "
-           "ray, read from a uniform buffer: faster on lavapipe than the tree) or always (the four-wide tree); "
-           "default auto; the same image either way")
+           "Triangles: always (the four-wide tree; the default) or auto (a scene of at most 48 triangles and no "
+           "instances tests every triangle against each ray from a uniform buffer instead: faster on lavapipe "
+           "before the tree read its nodes as texels, slower since); the same image either way")
         ->check(CLI::IsMember({"auto", "always"}));
     cmd->add_option("--texel-loads", w.texelLoads,
            "Triangles and tree nodes: auto (read through texel buffers on a CPU device such as lavapipe, one "

@@ -29,7 +29,7 @@ std::string IntegratorSettings::describe() const {
              : lightSelection == LightSelection::Power ? "off"
                                                        : "auto")
       << " seed=" << seed;
-    if (alwaysTree) s << " bvh=always";
+    if (!alwaysTree) s << " bvh=auto";
     if (sharedSamples) s << " shared-samples=on";
     // Where vertex merging may render it: its radius and how fast it shrinks change the image.
     if (!classic && (estimator == Estimator::Auto || estimator == Estimator::VertexMerging))

@@ -55,10 +55,13 @@ struct IntegratorSettings {
     float mergeRadius = 8.0f;
     float mergeAlpha = 0.65f;
     LightSelection lightSelection = LightSelection::Auto;
-    // `--bvh always`: the triangle tree even for a tiny scene, which otherwise (at most
-    // UNIFORM_TRIANGLES_MAX triangles, no instances) tests every triangle from a uniform buffer
-    // (src/flatten/feature_set.cpp, uniformTriangleCount). The same image either way.
-    bool alwaysTree = false;
+    // The triangle tree for every scene (`--bvh always`, the default). `--bvh auto` (false) traces
+    // a tiny scene (at most UNIFORM_TRIANGLES_MAX triangles, no instances) without it, every
+    // triangle from a uniform buffer (src/flatten/feature_set.cpp, uniformTriangleCount): faster on
+    // lavapipe when it came (2026-12-05), slower since the tree's least-cost collapse and its texel
+    // loads (the diffuse box: 0.80x the relMSE at equal time through the tree; bench/RESULTS.md,
+    // "Geometry read through texel buffers"). The same image either way.
+    bool alwaysTree = true;
     // `--shared-samples on`: the path tracer's pixels of one SIMD vector (8, spread over an 8x8
     // block) take the same random numbers, so their paths stay coherent. Each pixel's expected
     // error is unchanged and paths are 1.23-1.28x faster on lavapipe (relMSE 0.74-0.83x at equal

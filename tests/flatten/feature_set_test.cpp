@@ -28,22 +28,24 @@ TEST(FeatureTable, ConstantIdsAreUniqueAndClearOfTheWorkgroupSize) {
     for (const SpecializationConstant& c : constants) EXPECT_TRUE(constantIds.insert(c.id).second) << c.id;
 }
 
-// (Its 32 triangles are few enough to be tested without a tree: all-triangles; through the tree its
-// nodes and triangles are read as texels: texel-loads.)
+// (Through its tree, whose nodes and triangles are read as texels: texel-loads; with --bvh auto
+// its 32 triangles are few enough to be tested without a tree: all-triangles.)
 TEST(FeatureTable, TheCornellBoxNeedsTrianglesDiffuseAndEmitters) {
     const FlatScene box = flattenScene(loadDefaultScene());
     EXPECT_EQ(computeFeatures(box, IntegratorSettings{}).describe(),
-        "triangles diffuse emitters nee mis rr cosine-sampling sobol all-triangles");
+        "triangles diffuse emitters nee mis rr cosine-sampling sobol texel-loads");
     IntegratorSettings classic;
     classic.classic = true; // the course's ray tracer samples lights everywhere, no MIS or roulette
     EXPECT_EQ(computeFeatures(box, classic).describe(),
-        "classic triangles diffuse emitters nee cosine-sampling sobol all-triangles");
+        "classic triangles diffuse emitters nee cosine-sampling sobol texel-loads");
     IntegratorSettings plain;
     plain.nee = false; // MIS needs NEE
     plain.sampling = DirectionSampling::Uniform;
     plain.sampler = SamplerKind::Independent;
-    plain.alwaysTree = true;
     EXPECT_EQ(computeFeatures(box, plain).describe(), "triangles diffuse emitters rr uniform-sampling texel-loads");
+    plain.alwaysTree = false; // --bvh auto: no tree for a tiny scene, and no texels to read
+    EXPECT_EQ(computeFeatures(box, plain).describe(), "triangles diffuse emitters rr uniform-sampling all-triangles");
+    plain.alwaysTree = true;
     plain.texelLoads = false; // --texel-loads off: the same image through buffer addresses
     EXPECT_EQ(computeFeatures(box, plain).describe(), "triangles diffuse emitters rr uniform-sampling");
 }

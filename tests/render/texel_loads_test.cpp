@@ -36,7 +36,6 @@ Renderer::Readback render(const Scene& scene, IntegratorSettings s, bool texels,
 TEST_F(TexelLoads, TheSameImageAsBufferAddressesWithEitherNodeFormat) {
     const Scene scene = boxWithSphere();
     IntegratorSettings s;
-    s.alwaysTree = true;
     for (bool quantized : {false, true}) {
         const Renderer::Readback texels = render(scene, s, true, quantized, 3);
         const Renderer::Readback addresses = render(scene, s, false, quantized, 3);
@@ -52,12 +51,13 @@ TEST_F(TexelLoads, DecidedByTheTreeAndTheSwitch) {
     EXPECT_TRUE(computeFeatures(flat, s).texelLoads);
     s.texelLoads = false;
     EXPECT_FALSE(computeFeatures(flat, s).texelLoads);
-    // A tiny scene tests its triangles without the tree (all-triangles): nothing to gain there.
+    // A tiny scene traced without its tree (--bvh auto: all-triangles) reads no nodes, and its
+    // triangles at hits only: no texels there.
     const FlatScene box = flattenScene(loadGltfFile(testDataDir() / "references" / "cbox-diffuse" / "scene.gltf"));
-    EXPECT_FALSE(computeFeatures(box, IntegratorSettings{}).texelLoads);
-    IntegratorSettings tree;
-    tree.alwaysTree = true;
-    EXPECT_TRUE(computeFeatures(box, tree).texelLoads);
+    EXPECT_TRUE(computeFeatures(box, IntegratorSettings{}).texelLoads);
+    IntegratorSettings noTree;
+    noTree.alwaysTree = false;
+    EXPECT_FALSE(computeFeatures(box, noTree).texelLoads);
     // Spheres alone have no triangle tree.
     Scene spheres;
     spheres.materials.push_back(Material{});

@@ -1,5 +1,5 @@
-// Tiny scenes without a tree (UNIFORM_TRIANGLE_COUNT, shaders/geometry/traverse.glsl): which
-// scenes take it, and that it finds the very hits the tree finds, so the images are the same bit
+// Tiny scenes without a tree (UNIFORM_TRIANGLE_COUNT, shaders/geometry/traverse.glsl; `--bvh auto`,
+// no longer the default): which scenes take it, and that it finds the very hits the tree finds, so the images are the same bit
 // for bit, in the Cornell box and in the sealed room at scale 1000, whose 0.1-thick lid is a
 // sliver far from most rays, where rounding makes false hits that only a box test stops.
 #include "flatten/feature_set.h"
@@ -19,6 +19,8 @@ FeatureSet featuresOf(const Scene& scene, const IntegratorSettings& s) {
 TEST_F(UniformTriangles, TakenByScenesOfAtMost48TrianglesWithoutInstances) {
     const Scene box = loadGltfFile(testDataDir() / "references" / "cbox-diffuse" / "scene.gltf");
     IntegratorSettings s;
+    EXPECT_EQ(featuresOf(box, s).uniformTriangles, 0u); // the tree, unless asked (--bvh auto)
+    s.alwaysTree = false;
     EXPECT_EQ(featuresOf(box, s).uniformTriangles, 32u);
     IntegratorSettings tree = s;
     tree.alwaysTree = true;
@@ -39,6 +41,7 @@ TEST_F(UniformTriangles, TakenByScenesOfAtMost48TrianglesWithoutInstances) {
 
 // The same image with the tree and without, where every ray is traced by both.
 void expectTheSameImageAsTheTree(const Scene& scene, IntegratorSettings s, uint32_t spp, const char* what) {
+    s.alwaysTree = false;
     const FeatureSet without = featuresOf(scene, s);
     ASSERT_GT(without.uniformTriangles, 0u) << what;
     s.alwaysTree = true;
