@@ -216,8 +216,9 @@ uint traversalNodeVisits = 0u;
 // A tiny scene's triangles without a tree (UNIFORM_TRIANGLE_COUNT > 0): every ray tests every
 // triangle, in a loop unrolled at specialization, so each triangle's words are uniform-buffer
 // loads at constant offsets (one scalar load for all lanes) and the lanes of a SIMD vector never
-// diverge. For the 32 triangles of a Cornell box this is faster on lavapipe than the four-wide
-// tree, whose node loads are per-lane gathers (bench/RESULTS.md, "Tiny scenes without a tree").
+// diverge. For the 32 triangles of a Cornell box this was faster on lavapipe than the four-wide
+// tree when its nodes were gathered (bench/RESULTS.md, "Tiny scenes without a tree"); since they
+// are read as texels the tree is faster, and this path is taken only with `--bvh auto`.
 // Ties in t keep the lower index (the tree may keep either).
 bool testUniformTriangles(bool anyHit, Ray ray, WatertightRay wray, inout Hit hit) {
     bool found = false;

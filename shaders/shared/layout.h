@@ -90,7 +90,7 @@ using uint64_t = std::uint64_t;
 // that needs more (src/flatten/flat_scene.cpp), so the kernel never checks.
 #define TRAVERSAL_STACK_SIZE 96
 
-// Scenes of at most this many triangles (and no instances) may skip the tree: each ray tests
+// With `--bvh auto`, scenes of at most this many triangles (and no instances) skip the tree: each ray tests
 // every triangle, read from a uniform buffer at indices the compiler knows (shaders/geometry/
 // traverse.glsl, UNIFORM_TRIANGLE_COUNT), where lavapipe loads each word once for the whole
 // SIMD vector instead of gathering it lane by lane. The block is this size whatever the scene.

@@ -281,10 +281,11 @@ uint32_t nodeFormatOf(const FlatScene& scene) {
     return scene.quantizedNodes.empty() ? BVH_NODES_FLOAT : BVH_NODES_QUANTIZED;
 }
 
-// A tiny scene's triangles are all tested against each ray, from a uniform buffer, without the
-// tree: on lavapipe 1.10-1.13x the paths per second of the four-wide tree at 32 triangles (the
-// diffuse box), 0.73x at 82 (bench/RESULTS.md, "Tiny scenes without a tree"), hence
-// UNIFORM_TRIANGLES_MAX = 48.
+// With `--bvh auto` a tiny scene's triangles are all tested against each ray, from a uniform
+// buffer, without the tree: on lavapipe 1.10-1.13x the paths per second of the four-wide tree at
+// 32 triangles (the diffuse box), 0.73x at 82 (bench/RESULTS.md, "Tiny scenes without a tree"),
+// hence UNIFORM_TRIANGLES_MAX = 48. Since the tree's least-cost collapse and texel loads the tree
+// is faster there too, so it is no longer the default ("Geometry read through texel buffers").
 // Instanced meshes keep their trees (the ray changes space per instance).
 uint32_t uniformTriangleCount(const FlatScene& scene, const IntegratorSettings& s, const FeatureSet& f) {
     if (s.alwaysTree || scene.triangles.empty() || scene.triangles.size() > UNIFORM_TRIANGLES_MAX) return 0;
