@@ -3,6 +3,7 @@
 // for bit, with float nodes and with quantised ones.
 #include "flatten/feature_set.h"
 #include "scene/gltf/gltf_loader.h"
+#include "gpu/texel_view.h"
 #include "support/gpu_test_support.h"
 
 #include <limits>
@@ -63,6 +64,20 @@ TEST_F(TexelLoads, DecidedByTheTreeAndTheSwitch) {
     spheres.materials.push_back(Material{});
     spheres.spheres.push_back(Sphere{});
     EXPECT_FALSE(computeFeatures(flattenScene(spheres), IntegratorSettings{}).texelLoads);
+}
+
+// A view must be whole 16-byte texels within the device's limit; past it the scene keeps its
+// address loads (GpuScene makes no views, and the renderer turns the feature off).
+TEST_F(TexelLoads, ViewsFitTheDevicesLimitInWholeTexels) {
+    VulkanContext& ctx = sharedContext();
+    const VkDeviceSize limit = ctx.properties().limits.maxTexelBufferElements;
+    EXPECT_TRUE(TexelView::fits(ctx, 16));
+    EXPECT_TRUE(TexelView::fits(ctx, limit * 16));
+    EXPECT_FALSE(TexelView::fits(ctx, (limit + 1) * 16));
+    EXPECT_FALSE(TexelView::fits(ctx, 24)); // not whole texels
+    GpuBuffer buffer(ctx, 64, "texel view test");
+    EXPECT_THROW(TexelView(ctx, buffer, 128, "a view past its buffer"), std::runtime_error);
+    EXPECT_NE(TexelView(ctx, buffer, 64, "a view of the whole buffer").handle(), VK_NULL_HANDLE);
 }
 
 } // namespace
