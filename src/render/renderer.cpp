@@ -26,8 +26,8 @@ namespace {
 // tracing alone (the same image, noisier).
 FeatureSet supportedFeatures(const VulkanContext& context, FeatureSet features) {
     if (!context.info().int64Atomics) features.lightTracing = features.bdpt = features.merging = false;
-    // Texel buffers are measured faster on lavapipe only (a GPU loads a 16-byte word per thread
-    // through an address anyway); elsewhere the kernel keeps its address loads.
+    // Texel buffers are measured faster on lavapipe only (bench/RESULTS.md, "Geometry read through
+    // texel buffers"); not measured on a GPU, so there the kernel keeps its address loads.
     if (context.properties().deviceType != VK_PHYSICAL_DEVICE_TYPE_CPU) features.texelLoads = false;
     return features;
 }
