@@ -23,12 +23,14 @@ constexpr float kMergeKeepTarget = 4.0f;
 
 namespace {
 // Light tracing and BDPT splat with 64-bit atomics; a device without them renders by path
-// tracing alone (the same image, noisier).
-FeatureSet supportedFeatures(const VulkanContext& context, FeatureSet features) {
+// tracing alone (the same image, noisier). `texelViews`: whether the scene's arrays fit texel
+// views on this device (GpuScene::hasTexelViews; taken as yes before the scene is uploaded, which
+// texel loads do not size).
+FeatureSet supportedFeatures(const VulkanContext& context, FeatureSet features, bool texelViews = true) {
     if (!context.info().int64Atomics) features.lightTracing = features.bdpt = features.merging = false;
     // Texel buffers are measured faster on lavapipe only (bench/RESULTS.md, "Geometry read through
     // texel buffers"); not measured on a GPU, so there the kernel keeps its address loads.
-    if (context.properties().deviceType != VK_PHYSICAL_DEVICE_TYPE_CPU) features.texelLoads = false;
+    if (context.properties().deviceType != VK_PHYSICAL_DEVICE_TYPE_CPU || !texelViews) features.texelLoads = false;
     return features;
 }
 
@@ -73,7 +75,6 @@ Renderer::Renderer(VulkanContext& context, const FlatScene& scene, const Feature
     const std::optional<float> hitDistance = scene.cameraHitDistance;
     maxDepth_ = settings.maxDepth; // sizes merging's buffers, which filmBytes counts
     gpuScene_ = std::make_unique<GpuScene>(context, scene, sceneParams(settings), filmBytes());
-    if (!gpuScene_->hasTexelViews()) features_.texelLoads = false; // beyond the device's view limit
     mergeRadius_ = initialMergeRadius(settings, hitDistance);
     mergeAlpha_ = settings.mergeAlpha;
     createPipeline();
@@ -86,7 +87,6 @@ Renderer::Renderer(VulkanContext& context, FlatScene&& scene, const FeatureSet& 
     const std::optional<float> hitDistance = scene.cameraHitDistance;
     maxDepth_ = settings.maxDepth; // sizes merging's buffers, which filmBytes counts
     gpuScene_ = std::make_unique<GpuScene>(context, std::move(scene), sceneParams(settings), filmBytes());
-    if (!gpuScene_->hasTexelViews()) features_.texelLoads = false; // beyond the device's view limit
     mergeRadius_ = initialMergeRadius(settings, hitDistance);
     mergeAlpha_ = settings.mergeAlpha;
     createPipeline();
@@ -124,6 +124,7 @@ MergingBufferSizes mergingBufferSizes(int width, int height, uint32_t maxDepth) 
 }
 
 void Renderer::createPipeline() {
+    features_ = supportedFeatures(context_, features_, gpuScene_->hasTexelViews());
     const size_t pixels = size_t(film_.width) * film_.height;
     paramsAddress_ = gpuScene_->paramsAddress();
 
@@ -419,8 +420,7 @@ void Renderer::setIntegrator(const IntegratorSettings& settings, const FeatureSe
     params_.rrStartDepth = settings.rrStartDepth;
     params_.rrThreshold = settings.rrThreshold;
     params_.seed = settings.seed;
-    FeatureSet wanted = supportedFeatures(context_, features);
-    if (!gpuScene_->hasTexelViews()) wanted.texelLoads = false;
+    const FeatureSet wanted = supportedFeatures(context_, features, gpuScene_->hasTexelViews());
     const auto constants = wanted.constants(localSize_, localSize_);
     const auto current = features_.constants(localSize_, localSize_);
     const bool same = std::equal(constants.begin(), constants.end(), current.begin(), current.end(),
