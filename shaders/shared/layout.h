@@ -600,6 +600,9 @@ PT_CHECK_SIZE(GpuRenderPush, 112);
 #define TEST_MODE_LIGHT_CHOICE 10u
 #define TEST_MODE_LIGHT_SELECTION_PMF 11u
 #define TEST_MODE_SOBOL_POINTS 9u // outputs[i] = Sobol' sample i of pixel (0, 0) in dimensions 0-1 and 3-4, as floats
+// outputs[i] = the BSDF directions' 2D points of bounces 1 and 2 (one 4D point, common/rng.glsl)
+// of sample i of pixel (0, 0), as floats
+#define TEST_MODE_SOBOL_BOUNCE_PAIR 12u
 
 struct GpuTestRay {
     vec3 origin;

@@ -65,6 +65,11 @@ void main() {
         uvec2 a = sobolOwen2(i, sobolSeeds(pixelStream, 0u));
         uvec2 b = sobolOwen2(i, sobolSeeds(pixelStream, 3u));
         outputs.v[i] = vec4(uintToUnitFloat(a.x), uintToUnitFloat(a.y), uintToUnitFloat(b.x), uintToUnitFloat(b.y));
+    } else if (TEST_MODE == TEST_MODE_SOBOL_BOUNCE_PAIR) {
+        Rng pixelStream = rngCreate(uvec2(0u), i, push.seed);
+        uvec2 a = sobolPoint2(pixelStream, bounceDimension(1u, DIM_BSDF_DIRECTION));
+        uvec2 b = sobolPoint2(pixelStream, bounceDimension(2u, DIM_BSDF_DIRECTION));
+        outputs.v[i] = vec4(uintToUnitFloat(a.x), uintToUnitFloat(a.y), uintToUnitFloat(b.x), uintToUnitFloat(b.y));
     } else if (TEST_MODE == TEST_MODE_TEXTURE) {
         // Texture push.materialIndex at uv = inputs[i].xy (images) or point inputs[i].xyz.
         vec4 at = Vec4Ref(push.inputs).v[i];

@@ -1,5 +1,6 @@
 // The Owen-scrambled Sobol' sampler (shaders/common/sobol.glsl) run through the test kernel:
-// one pixel's stream of 2D points, in sample order, as a render draws them.
+// one pixel's stream of 2D points, in sample order, as a render draws them, and the 4D points
+// of consecutive bounces' directions (common/rng.glsl).
 #include "support/gpu_test_support.h"
 
 #include "shared/layout.h"
@@ -8,6 +9,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <map>
 #include <set>
 #include <vector>
 
@@ -91,6 +93,79 @@ TEST_F(SobolSampler, SeedsDecorrelateStreams) {
     size_t equal = 0;
     for (uint32_t i = 0; i < kPoints; ++i) equal += a[i].x == b[i].x;
     EXPECT_LT(equal, 16u);
+}
+
+std::vector<glm::vec4> bouncePairPoints(uint32_t seed) {
+    return runTestKernel(TEST_MODE_SOBOL_BOUNCE_PAIR, kPoints, nullptr, {}, {}, {0, 0, 1}, seed);
+}
+
+// Whether the first 2^k points are a (t, k, s)-net in the coordinates `dims` (indices into the
+// vec4): every elementary interval of volume 2^(t - k), 2^-a_j wide along dims[j] with the a_j
+// summing to k - t, holds exactly 2^t points.
+bool isNet(const std::vector<glm::vec4>& points, int k, int t, const std::vector<int>& dims) {
+    const uint32_t n = 1u << k;
+    std::vector<int> widths(dims.size(), 0);
+    // Every split of k - t bits over the dimensions, as an odometer over 0..k-t per dimension.
+    while (true) {
+        int sum = 0;
+        for (int w : widths) sum += w;
+        if (sum == k - t) {
+            std::map<uint64_t, uint32_t> cells;
+            for (uint32_t i = 0; i < n; ++i) {
+                uint64_t key = 0;
+                for (size_t j = 0; j < dims.size(); ++j)
+                    key = (key << 16) | static_cast<uint64_t>(std::ldexp(double(points[i][dims[j]]), widths[j]));
+                ++cells[key];
+            }
+            if (cells.size() != (size_t(1) << (k - t))) return false;
+            for (const auto& [cell, count] : cells)
+                if (count != (1u << t)) return false;
+        }
+        size_t j = 0;
+        while (j < widths.size() && ++widths[j] > k - t) widths[j++] = 0;
+        if (j == widths.size()) return true;
+    }
+}
+
+// The directions of bounces 1 and 2 are one 4D Sobol' point (common/rng.glsl): each power-of-two
+// prefix is a (0, k, 2)-net in the first direction, a net with t <= 2 in the second (Sobol'
+// dimensions 2-3), and a (3, k, 4)-net in all four coordinates, which padded (independent) pairs
+// are not: the same check fails on two unpaired streams.
+TEST_F(SobolSampler, ConsecutiveBouncesAreOne4DPoint) {
+    for (uint32_t seed : {1u, 77u}) {
+        const auto points = bouncePairPoints(seed);
+        for (int k : {4, 6, 8, 10}) {
+            EXPECT_TRUE(isNet(points, k, 0, {0, 1})) << "seed " << seed << ", 2^" << k;
+            EXPECT_TRUE(isNet(points, k, 2, {2, 3})) << "seed " << seed << ", 2^" << k;
+            EXPECT_TRUE(isNet(points, k, 3, {0, 1, 2, 3})) << "seed " << seed << ", 2^" << k;
+        }
+    }
+    const auto unpaired = sobolPoints(1);
+    EXPECT_TRUE(isNet(unpaired, 8, 0, {2, 3}));
+    EXPECT_FALSE(isNet(unpaired, 8, 3, {0, 1, 2, 3}));
+}
+
+// The pairing keeps what the other tests ask of every stream: uniform, and the two directions
+// uncorrelated.
+TEST_F(SobolSampler, PairedBouncesAreUniformAndUncorrelated) {
+    const auto points = bouncePairPoints(5);
+    std::vector<double> counts(32 * 32, 0.0);
+    double sxz = 0, sx = 0, sz = 0, sxx = 0, szz = 0;
+    for (const glm::vec4& p : points) {
+        for (int c = 0; c < 4; ++c) ASSERT_TRUE(p[c] >= 0.0f && p[c] < 1.0f) << p[c];
+        counts[int(p.w * 32) * 32 + int(p.z * 32)] += 1;
+        sxz += double(p.x) * p.z;
+        sx += p.x;
+        sz += p.z;
+        sxx += double(p.x) * p.x;
+        szz += double(p.z) * p.z;
+    }
+    const std::vector<double> expected(counts.size(), double(kPoints) / counts.size());
+    EXPECT_GT(chiSquarePValue(counts, expected), 1e-3);
+    const double n = kPoints;
+    const double correlation =
+        (sxz / n - sx / n * sz / n) / std::sqrt((sxx / n - sx / n * sx / n) * (szz / n - sz / n * sz / n));
+    EXPECT_LT(std::abs(correlation), 4.0 / std::sqrt(n)) << correlation;
 }
 
 } // namespace
