@@ -91,6 +91,44 @@ GpuBvh4Node loadTriangleTreeFloatNode(uint index) {
     return n;
 }
 
+// The sphere tree's nodes and the spheres, likewise (the same gain: 7 texels a float node or a
+// sphere where an address load gathers 14 words).
+layout(set = 0, binding = TEXEL_BINDING_SPHERE_NODES) uniform utextureBuffer sphereTreeTexels;
+layout(set = 0, binding = TEXEL_BINDING_SPHERES) uniform utextureBuffer sphereTexels;
+
+// Node `index` of the sphere tree (float nodes).
+GpuBvh4Node loadSphereTreeNode(uint index) {
+    if (!TEXEL_LOADS) return loadBvh4Node(scene.sphereNodes, index);
+    int first = int(index * BVH4_NODE_TEXELS);
+    GpuBvh4Node n;
+    n.loX = uintBitsToFloat(texelFetch(sphereTreeTexels, first));
+    n.hiX = uintBitsToFloat(texelFetch(sphereTreeTexels, first + 1));
+    n.loY = uintBitsToFloat(texelFetch(sphereTreeTexels, first + 2));
+    n.hiY = uintBitsToFloat(texelFetch(sphereTreeTexels, first + 3));
+    n.loZ = uintBitsToFloat(texelFetch(sphereTreeTexels, first + 4));
+    n.hiZ = uintBitsToFloat(texelFetch(sphereTreeTexels, first + 5));
+    n.child = texelFetch(sphereTreeTexels, first + 6);
+    return n;
+}
+
+// Sphere `index`. The traversal uses its world-to-object rows (and its motion, in scenes that
+// move): the compiler drops the fetches of the texels a caller leaves unused.
+GpuSphere loadSphere(uint index) {
+    if (!TEXEL_LOADS) return SphereRef(scene.spheres).v[index];
+    int first = int(index * SPHERE_TEXELS);
+    GpuSphere s;
+    for (int k = 0; k < 3; ++k) {
+        s.worldToObject[k] = uintBitsToFloat(texelFetch(sphereTexels, first + k));
+        s.objectToWorld[k] = uintBitsToFloat(texelFetch(sphereTexels, first + 3 + k));
+    }
+    uvec4 words = texelFetch(sphereTexels, first + 6);
+    s.materialIndex = words.x;
+    s.lightIndex = words.y;
+    s.motion = words.z;
+    s.pad1 = words.w;
+    return s;
+}
+
 // A quantised node's (GpuBvh4QNode) words: per axis the origin and scale, the child words, and
 // per axis the four children's low and high plane bytes. Only the triangle tree is quantised.
 struct QuantizedNodeWords {

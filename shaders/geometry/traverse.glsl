@@ -254,7 +254,7 @@ bool testLeaf(bool sphereTree, bool anyHit, Ray ray, WatertightRay wray, uint le
         vec2 bary = vec2(0.0);
         bool hitPrimitive;
         if (sphereTree) {
-            GpuSphere sphere = SphereRef(scene.spheres).v[i];
+            GpuSphere sphere = loadSphere(i);
             Ray r = ray;
             // A moving sphere: move the ray the other way (t is unchanged).
             if (HAS_MOTION && sphere.motion != NO_MOTION) r.origin -= motionOffset(sphere.motion);
@@ -322,8 +322,7 @@ bool traverseTree(
                 d = quantizedChildEntries(current, boxRay, hit.t, c);
                 orderChildren(d, c);
             } else {
-                GpuBvh4Node node =
-                    sphereTree ? loadBvh4Node(scene.sphereNodes, current) : loadTriangleTreeNode(current);
+                GpuBvh4Node node = sphereTree ? loadSphereTreeNode(current) : loadTriangleTreeNode(current);
                 orderedChildren(node, boxRay, hit.t, d, c);
             }
             if (d.w != FLOAT_MAX) PUSH_CHILD(c.w, d.w);

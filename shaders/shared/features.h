@@ -125,11 +125,13 @@
         v == BVH_NODES_QUANTIZED ? "quantized-bvh" : nullptr,                                                          \
         "BVH_NODES_*: how the triangle tree's nodes are stored (float, or quantised for big trees)")                   \
     /* Where a tree is traversed: measured faster on lavapipe (the 1 M-triangle mesh 1.16x, a box \
-       through its tree 1.09x) and level where a tiny scene skips it; left off on GPUs          \
-       (src/render/renderer.cpp, supportedFeatures). The image is the same either way. */                    \
+       through its tree 1.09x, course scenes with spheres 1.05-1.14x) and level where a tiny scene \
+       skips its triangle tree; left off on GPUs (src/render/renderer.cpp, supportedFeatures). The \
+       image is the same either way. */                    \
     PT_FEATURE(texelLoads, flag, TEXEL_LOADS, 47, false, false,                                                        \
-        s.texelLoads&& hasTriangleTree(scene) && f.uniformTriangles == 0, v ? "texel-loads" : nullptr,                 \
-        "the triangle tree's nodes and the triangles read through texel buffers, not buffer addresses")                \
+        s.texelLoads && ((hasTriangleTree(scene) && f.uniformTriangles == 0) || hasSphereTree(scene)),                 \
+        v ? "texel-loads" : nullptr,                                                                                   \
+        "the trees' nodes, the triangles and the spheres read through texel buffers, not buffer addresses")            \
     PT_FEATURE(countRays, flag, COUNT_RAYS, 28, false, false, false, v ? "ray-counts" : nullptr,                       \
         "count traced rays per pixel (pt bench; GpuRenderPush::rayCounts)")                                            \
     PT_FEATURE(forcedRandom, choice, FORCED_RANDOM, 30, FORCED_RANDOM_OFF, FORCED_RANDOM_OFF, FORCED_RANDOM_OFF,       \

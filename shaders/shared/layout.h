@@ -104,10 +104,13 @@ using uint64_t = std::uint64_t;
 // Pipelines without a scene's views bind small placeholders (src/gpu/compute_pipeline.cpp).
 #define TEXEL_BINDING_NODES 1
 #define TEXEL_BINDING_TRIANGLES 2
-#define TEXEL_BINDING_COUNT 2 // bindings 1 and 2
+#define TEXEL_BINDING_SPHERE_NODES 3
+#define TEXEL_BINDING_SPHERES 4
+#define TEXEL_BINDING_COUNT 4 // bindings 1 to 4
 #define TRIANGLE_TEXELS 3u    // GpuTriangle in 16-byte texels
 #define BVH4_QNODE_TEXELS 4u  // GpuBvh4QNode
 #define BVH4_NODE_TEXELS 7u   // GpuBvh4Node
+#define SPHERE_TEXELS 7u      // GpuSphere
 
 // Child words of GpuBvh4Node. An inner child is the index of its node (bit 31 clear); a leaf
 // has bit 31 set, its primitive count minus one in bits 27..30 and its first primitive (in the

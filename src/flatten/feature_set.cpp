@@ -276,6 +276,7 @@ bool lightTreeChosen(const FlatScene& scene, const IntegratorSettings& s, const 
 }
 
 bool hasTriangleTree(const FlatScene& scene) { return !scene.nodes.empty() || !scene.quantizedNodes.empty(); }
+bool hasSphereTree(const FlatScene& scene) { return !scene.sphereNodes.empty(); }
 
 uint32_t nodeFormatOf(const FlatScene& scene) {
     return scene.quantizedNodes.empty() ? BVH_NODES_FLOAT : BVH_NODES_QUANTIZED;

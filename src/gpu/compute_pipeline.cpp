@@ -89,8 +89,9 @@ void ComputePipeline::createDescriptors(const GpuBuffer* uniforms, const std::st
         bindings[b].descriptorCount = 1;
         bindings[b].stageFlags = VK_SHADER_STAGE_COMPUTE_BIT;
     }
-    static_assert(TEXEL_BINDING_NODES == 1 && TEXEL_BINDING_TRIANGLES == 2 && TEXEL_BINDING_COUNT == 2,
-        "the set's bindings are 0 (uniforms) and the texel buffers after it");
+    static_assert(TEXEL_BINDING_NODES == 1 && TEXEL_BINDING_TRIANGLES == 2 && TEXEL_BINDING_SPHERE_NODES == 3 &&
+                      TEXEL_BINDING_SPHERES == 4 && TEXEL_BINDING_COUNT == 4,
+        "the set's bindings are 0 (uniforms) and the texel buffers after it, in TexelBuffers' order");
     VkDescriptorSetLayoutCreateInfo setInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
     setInfo.bindingCount = 1 + TEXEL_BINDING_COUNT;
     setInfo.pBindings = bindings;
@@ -127,8 +128,9 @@ void ComputePipeline::createDescriptors(const GpuBuffer* uniforms, const std::st
 
 void ComputePipeline::setTexelBuffers(const TexelBuffers& views) {
     const VkBufferView placeholder = placeholderTexels_.handle();
-    const VkBufferView bound[TEXEL_BINDING_COUNT] = {
-        views.nodes ? views.nodes : placeholder, views.triangles ? views.triangles : placeholder};
+    const VkBufferView bound[TEXEL_BINDING_COUNT] = {views.nodes ? views.nodes : placeholder,
+        views.triangles ? views.triangles : placeholder, views.sphereNodes ? views.sphereNodes : placeholder,
+        views.spheres ? views.spheres : placeholder};
     VkWriteDescriptorSet writes[TEXEL_BINDING_COUNT]{};
     for (uint32_t i = 0; i < TEXEL_BINDING_COUNT; ++i) {
         writes[i].sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;

@@ -29,8 +29,10 @@ private:
 
 // The views a kernel's texel-buffer bindings take (TEXEL_BINDING_*); null: a placeholder.
 struct TexelBuffers {
-    VkBufferView nodes = VK_NULL_HANDLE;
+    VkBufferView nodes = VK_NULL_HANDLE; // the triangle tree's
     VkBufferView triangles = VK_NULL_HANDLE;
+    VkBufferView sphereNodes = VK_NULL_HANDLE;
+    VkBufferView spheres = VK_NULL_HANDLE;
 };
 
 } // namespace pt

@@ -107,9 +107,12 @@ void GpuScene::build(VulkanContext& context, const FlatScene& scene, FlatScene* 
     instances_ = makeBuffer(context, scene.instances, "instances");
     instanceNodes_ = makeBuffer(context, scene.instanceNodes, "instance bvh nodes");
     materials_ = makeBuffer(context, scene.materials, "materials");
-    if (TexelView::fits(context, nodes_.size()) && TexelView::fits(context, triangles_.size())) {
+    if (TexelView::fits(context, nodes_.size()) && TexelView::fits(context, triangles_.size()) &&
+        TexelView::fits(context, sphereNodes_.size()) && TexelView::fits(context, spheres_.size())) {
         nodeTexels_ = TexelView(context, nodes_, nodes_.size(), "bvh node texels");
         triangleTexels_ = TexelView(context, triangles_, triangles_.size(), "triangle texels");
+        sphereNodeTexels_ = TexelView(context, sphereNodes_, sphereNodes_.size(), "sphere bvh node texels");
+        sphereTexels_ = TexelView(context, spheres_, spheres_.size(), "sphere texels");
     }
     lights_ = makeBuffer(context, scene.lights.lights, "lights");
     lightCdf_ = makeBuffer(context, scene.lights.cdf, "light cdf");

@@ -25,9 +25,11 @@ public:
     // What the render pipeline binds at set 0, binding 0: the triangles again where the scene has
     // at most UNIFORM_TRIANGLES_MAX (shaders/common/buffers.glsl), else null.
     const GpuBuffer* uniformTriangles() const { return uniformTriangles_.size() ? &uniformTriangles_ : nullptr; }
-    // The triangle tree's nodes and the triangles as texel buffers (TEXEL_BINDING_*), where both
-    // fit the device's limit on a view; else null.
-    TexelBuffers texelBuffers() const { return {nodeTexels_.handle(), triangleTexels_.handle()}; }
+    // The trees' nodes, the triangles and the spheres as texel buffers (TEXEL_BINDING_*), where
+    // all four fit the device's limit on a view; else null.
+    TexelBuffers texelBuffers() const {
+        return {nodeTexels_.handle(), triangleTexels_.handle(), sphereNodeTexels_.handle(), sphereTexels_.handle()};
+    }
     bool hasTexelViews() const { return nodeTexels_.handle() != VK_NULL_HANDLE; }
     const GpuBuffer& accumulation() const { return accumulation_; }
     GpuBuffer& accumulation() { return accumulation_; }
@@ -40,7 +42,8 @@ private:
     GpuBuffer triangles_, shading_, nodes_, spheres_, sphereNodes_, instances_, instanceNodes_, materials_, lights_,
         lightCdf_, lightTreeNodes_, lightTreeTrails_, envTexels_, envMarginal_, envConditional_, textures_, texels_,
         motions_, tangents_, uniformTriangles_, accumulation_, params_;
-    TexelView nodeTexels_, triangleTexels_; // after the buffers: destroyed before them
+    // After the buffers: destroyed before them.
+    TexelView nodeTexels_, triangleTexels_, sphereNodeTexels_, sphereTexels_;
     float sceneRadius_ = 1.0f;
 };
 

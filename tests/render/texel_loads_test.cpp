@@ -1,6 +1,6 @@
-// The triangle tree and the triangles read through texel buffers (TEXEL_LOADS): taken on
+// The trees, the triangles and the spheres read through texel buffers (TEXEL_LOADS): taken on
 // lavapipe wherever there is a tree, and the image is the one the buffer-address loads give, bit
-// for bit, with float nodes and with quantised ones.
+// for bit, with float nodes and with quantised ones, with spheres too.
 #include "flatten/feature_set.h"
 #include "scene/gltf/gltf_loader.h"
 #include "gpu/texel_view.h"
@@ -59,11 +59,33 @@ TEST_F(TexelLoads, DecidedByTheTreeAndTheSwitch) {
     IntegratorSettings noTree;
     noTree.alwaysTree = false;
     EXPECT_FALSE(computeFeatures(box, noTree).texelLoads);
-    // Spheres alone have no triangle tree.
+    // Spheres alone have their own tree, read the same way.
     Scene spheres;
     spheres.materials.push_back(Material{});
     spheres.spheres.push_back(Sphere{});
-    EXPECT_FALSE(computeFeatures(flattenScene(spheres), IntegratorSettings{}).texelLoads);
+    EXPECT_TRUE(computeFeatures(flattenScene(spheres), IntegratorSettings{}).texelLoads);
+    // With --bvh auto a tiny scene's triangles skip their tree, but its spheres still have one.
+    Scene both = loadGltfFile(testDataDir() / "references" / "cbox-diffuse" / "scene.gltf");
+    both.spheres.push_back(Sphere{});
+    EXPECT_TRUE(computeFeatures(flattenScene(both), noTree).texelLoads);
+}
+
+// A box with ellipsoids (the sphere tree and the spheres through texel buffers too): the same
+// image as through buffer addresses, bit for bit.
+TEST_F(TexelLoads, SpheresGiveTheSameImageAsBufferAddresses) {
+    Scene scene = boxWithSphere();
+    for (int i = 0; i < 12; ++i) {
+        Sphere s;
+        s.objectToWorld = glm::mat4(glm::vec4(0.08f + 0.01f * i, 0, 0, 0), glm::vec4(0, 0.1f, 0, 0),
+            glm::vec4(0, 0, 0.12f, 0), glm::vec4(-0.6f + 0.1f * i, -0.8f + 0.05f * i, -0.2f, 1));
+        s.material = 0;
+        scene.spheres.push_back(s);
+    }
+    IntegratorSettings s;
+    const Renderer::Readback texels = render(scene, s, true, false, 3);
+    const Renderer::Readback addresses = render(scene, s, false, false, 3);
+    EXPECT_EQ(texels.mean.rgba, addresses.mean.rgba);
+    EXPECT_NE(texels.mean.rgba, render(scene, s, true, false, 4).mean.rgba);
 }
 
 // A view must be whole 16-byte texels within the device's limit; past it the scene keeps its

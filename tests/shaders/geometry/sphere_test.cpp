@@ -22,6 +22,22 @@ Sphere makeSphere(glm::vec3 centre, glm::vec3 radii, float angleDegrees, uint32_
     return s;
 }
 
+// The tree's hits against brute force's, ray by ray (t and primitive), with enough sphere hits
+// to mean something.
+void expectHitsMatch(const std::vector<glm::vec4>& bvh, const std::vector<glm::vec4>& brute, const char* what) {
+    int sphereHits = 0, mismatches = 0;
+    for (size_t i = 0; i < bvh.size(); ++i) {
+        ASSERT_NE(bvh[i].x, -2.0f) << what << ": closest-hit and any-hit disagree on ray " << i;
+        uint32_t pb, pf;
+        std::memcpy(&pb, &bvh[i].y, 4);
+        std::memcpy(&pf, &brute[i].y, 4);
+        if (bvh[i].x != brute[i].x || (bvh[i].x >= 0 && pb != pf)) ++mismatches;
+        if (bvh[i].x >= 0 && (pb & SPHERE_BIT)) ++sphereHits;
+    }
+    EXPECT_EQ(mismatches, 0) << what;
+    EXPECT_GT(sphereHits, 1000) << what;
+}
+
 TEST_F(Spheres, TraversalMatchesBruteForceWithTrianglesAndEllipsoids) {
     Scene scene;
     scene.materials.push_back(Material{});
@@ -41,19 +57,14 @@ TEST_F(Spheres, TraversalMatchesBruteForceWithTrianglesAndEllipsoids) {
         ray.tMax = 1e30f;
     }
     const auto bytes = std::as_bytes(std::span(rays));
-    auto bvh = runTestKernel(TEST_MODE_TRACE_BVH, static_cast<uint32_t>(rays.size()), &gpuScene, bytes);
     auto brute = runTestKernel(TEST_MODE_TRACE_BRUTE_FORCE, static_cast<uint32_t>(rays.size()), &gpuScene, bytes);
-    int sphereHits = 0, mismatches = 0;
-    for (size_t i = 0; i < rays.size(); ++i) {
-        ASSERT_NE(bvh[i].x, -2.0f) << "closest-hit and any-hit disagree on ray " << i;
-        uint32_t pb, pf;
-        std::memcpy(&pb, &bvh[i].y, 4);
-        std::memcpy(&pf, &brute[i].y, 4);
-        if (bvh[i].x != brute[i].x || (bvh[i].x >= 0 && pb != pf)) ++mismatches;
-        if (bvh[i].x >= 0 && (pb & SPHERE_BIT)) ++sphereHits;
+    // The trees and the spheres read through buffer addresses and through texel buffers.
+    for (bool texels : {false, true}) {
+        setTestKernelTexelLoads(texels);
+        auto bvh = runTestKernel(TEST_MODE_TRACE_BVH, static_cast<uint32_t>(rays.size()), &gpuScene, bytes);
+        setTestKernelTexelLoads(false);
+        expectHitsMatch(bvh, brute, texels ? "texel loads" : "address loads");
     }
-    EXPECT_EQ(mismatches, 0);
-    EXPECT_GT(sphereHits, 1000);
 }
 
 TEST_F(Spheres, CameraInsideAnEmissiveDiffuseSphereSeesTheAnalyticRadiance) {
