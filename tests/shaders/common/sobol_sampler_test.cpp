@@ -60,10 +60,9 @@ TEST_F(SobolSampler, NetCheckDetectsAPrefixThatIsNotANet) {
     EXPECT_GT(pointsSharingAnInterval(points, 8, false), 0u);
 }
 
-// Values in [0, 1), every 2D pair uniform (chi-square on a 32 x 32 grid), and the two pairs of
-// one sample uncorrelated with each other.
-TEST_F(SobolSampler, PointsAreUniformAndPairsUncorrelated) {
-    const auto points = sobolPoints(5);
+// Values in [0, 1), each of the two 2D pairs uniform (chi-square on a 32 x 32 grid), and the
+// pairs of one sample uncorrelated with each other.
+void expectUniformAndUncorrelated(const std::vector<glm::vec4>& points) {
     std::vector<double> counts(32 * 32, 0.0), countsSecond(32 * 32, 0.0);
     double sxz = 0, sx = 0, sz = 0, sxx = 0, szz = 0;
     for (const glm::vec4& p : points) {
@@ -76,16 +75,18 @@ TEST_F(SobolSampler, PointsAreUniformAndPairsUncorrelated) {
         sxx += double(p.x) * p.x;
         szz += double(p.z) * p.z;
     }
-    const std::vector<double> expected(counts.size(), double(kPoints) / counts.size());
+    const std::vector<double> expected(counts.size(), double(points.size()) / counts.size());
     const double pFirst = chiSquarePValue(counts, expected), pSecond = chiSquarePValue(countsSecond, expected);
     std::printf("[          ] chi-square p-values %.3g %.3g (stratified points give values near 1)\n", pFirst, pSecond);
     EXPECT_GT(pFirst, 1e-3);
     EXPECT_GT(pSecond, 1e-3);
-    const double n = kPoints;
+    const double n = double(points.size());
     const double correlation =
         (sxz / n - sx / n * sz / n) / std::sqrt((sxx / n - sx / n * sx / n) * (szz / n - sz / n * sz / n));
     EXPECT_LT(std::abs(correlation), 4.0 / std::sqrt(n)) << correlation;
 }
+
+TEST_F(SobolSampler, PointsAreUniformAndPairsUncorrelated) { expectUniformAndUncorrelated(sobolPoints(5)); }
 
 // Pixels get different scrambles: the same sample index in two pixels gives unrelated points.
 TEST_F(SobolSampler, SeedsDecorrelateStreams) {
@@ -147,26 +148,7 @@ TEST_F(SobolSampler, ConsecutiveBouncesAreOne4DPoint) {
 
 // The pairing keeps what the other tests ask of every stream: uniform, and the two directions
 // uncorrelated.
-TEST_F(SobolSampler, PairedBouncesAreUniformAndUncorrelated) {
-    const auto points = bouncePairPoints(5);
-    std::vector<double> counts(32 * 32, 0.0);
-    double sxz = 0, sx = 0, sz = 0, sxx = 0, szz = 0;
-    for (const glm::vec4& p : points) {
-        for (int c = 0; c < 4; ++c) ASSERT_TRUE(p[c] >= 0.0f && p[c] < 1.0f) << p[c];
-        counts[int(p.w * 32) * 32 + int(p.z * 32)] += 1;
-        sxz += double(p.x) * p.z;
-        sx += p.x;
-        sz += p.z;
-        sxx += double(p.x) * p.x;
-        szz += double(p.z) * p.z;
-    }
-    const std::vector<double> expected(counts.size(), double(kPoints) / counts.size());
-    EXPECT_GT(chiSquarePValue(counts, expected), 1e-3);
-    const double n = kPoints;
-    const double correlation =
-        (sxz / n - sx / n * sz / n) / std::sqrt((sxx / n - sx / n * sx / n) * (szz / n - sz / n * sz / n));
-    EXPECT_LT(std::abs(correlation), 4.0 / std::sqrt(n)) << correlation;
-}
+TEST_F(SobolSampler, PairedBouncesAreUniformAndUncorrelated) { expectUniformAndUncorrelated(bouncePairPoints(5)); }
 
 } // namespace
 } // namespace pt::test
