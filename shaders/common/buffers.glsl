@@ -77,18 +77,24 @@ uvec4 nodeTexel(uint index, uint texelsPerRecord, uint k) {
     return texelFetch(triangleTreeTexels, int(index * texelsPerRecord + k));
 }
 
+// Float node `index` (GpuBvh4Node, BVH4_NODE_TEXELS texels) of the tree in `texels`.
+GpuBvh4Node floatNodeOfTexels(utextureBuffer texels, uint index) {
+    int first = int(index * BVH4_NODE_TEXELS);
+    GpuBvh4Node n;
+    n.loX = uintBitsToFloat(texelFetch(texels, first));
+    n.hiX = uintBitsToFloat(texelFetch(texels, first + 1));
+    n.loY = uintBitsToFloat(texelFetch(texels, first + 2));
+    n.hiY = uintBitsToFloat(texelFetch(texels, first + 3));
+    n.loZ = uintBitsToFloat(texelFetch(texels, first + 4));
+    n.hiZ = uintBitsToFloat(texelFetch(texels, first + 5));
+    n.child = texelFetch(texels, first + 6);
+    return n;
+}
+
 // Node `index` of the triangle tree in float nodes (GpuBvh4Node).
 GpuBvh4Node loadTriangleTreeFloatNode(uint index) {
     if (!TEXEL_LOADS) return loadBvh4Node(scene.nodes, index);
-    GpuBvh4Node n;
-    n.loX = uintBitsToFloat(nodeTexel(index, BVH4_NODE_TEXELS, 0u));
-    n.hiX = uintBitsToFloat(nodeTexel(index, BVH4_NODE_TEXELS, 1u));
-    n.loY = uintBitsToFloat(nodeTexel(index, BVH4_NODE_TEXELS, 2u));
-    n.hiY = uintBitsToFloat(nodeTexel(index, BVH4_NODE_TEXELS, 3u));
-    n.loZ = uintBitsToFloat(nodeTexel(index, BVH4_NODE_TEXELS, 4u));
-    n.hiZ = uintBitsToFloat(nodeTexel(index, BVH4_NODE_TEXELS, 5u));
-    n.child = nodeTexel(index, BVH4_NODE_TEXELS, 6u);
-    return n;
+    return floatNodeOfTexels(triangleTreeTexels, index);
 }
 
 // The sphere tree's nodes and the spheres, likewise (the same gain: 7 texels a float node or a
@@ -99,16 +105,7 @@ layout(set = 0, binding = TEXEL_BINDING_SPHERES) uniform utextureBuffer sphereTe
 // Node `index` of the sphere tree (float nodes).
 GpuBvh4Node loadSphereTreeNode(uint index) {
     if (!TEXEL_LOADS) return loadBvh4Node(scene.sphereNodes, index);
-    int first = int(index * BVH4_NODE_TEXELS);
-    GpuBvh4Node n;
-    n.loX = uintBitsToFloat(texelFetch(sphereTreeTexels, first));
-    n.hiX = uintBitsToFloat(texelFetch(sphereTreeTexels, first + 1));
-    n.loY = uintBitsToFloat(texelFetch(sphereTreeTexels, first + 2));
-    n.hiY = uintBitsToFloat(texelFetch(sphereTreeTexels, first + 3));
-    n.loZ = uintBitsToFloat(texelFetch(sphereTreeTexels, first + 4));
-    n.hiZ = uintBitsToFloat(texelFetch(sphereTreeTexels, first + 5));
-    n.child = texelFetch(sphereTreeTexels, first + 6);
-    return n;
+    return floatNodeOfTexels(sphereTreeTexels, index);
 }
 
 // Sphere `index`. The traversal uses its world-to-object rows (and its motion, in scenes that
