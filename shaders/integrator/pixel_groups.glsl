@@ -29,12 +29,26 @@ const uint SHARED_GROUP_OF_OFFSET[64] = uint[64](4u, 1u, 2u, 5u, 3u, 6u, 7u, 0u,
     3u, 7u, 2u, 1u, 0u, 5u, 7u, 5u, 0u, 1u, 6u, 3u, 4u, 2u, 1u, 2u, 4u, 3u, 7u, 0u, 5u, 6u, 0u, 6u, 1u, 2u, 5u, 4u, 3u,
     7u, 2u, 3u, 5u, 0u, 1u, 7u, 6u, 4u, 5u, 0u, 7u, 6u, 4u, 2u, 1u, 3u);
 
+// The 8x8 block of the tile that this workgroup renders: workgroup l (row-major) takes block
+// (l * blockStride) mod blocks, a bijection (the stride is coprime with the count). Lavapipe
+// hands each of its threads one contiguous run of workgroups (a quarter of them with four
+// threads); in row-major order one thread got the ceiling, where adaptive sampling puts the most
+// samples, and the others idled at the end of every pass. Strided by about the golden section of
+// the count, every run is spread over the whole tile.
+uvec2 workgroupBlock(uint blockStride) {
+    uint blocksX = gl_NumWorkGroups.x, blocks = gl_NumWorkGroups.x * gl_NumWorkGroups.y;
+    uint linear = gl_WorkGroupID.y * blocksX + gl_WorkGroupID.x;
+    uint block = uint((uint64_t(linear) * uint64_t(blockStride)) % uint64_t(blocks));
+    return uvec2(block % blocksX, block / blocksX);
+}
+
 // The invocation's pixel relative to the tile's origin, for the renderer's 8x8 workgroups
 // (Renderer::localSize_).
-uvec2 invocationPixel() {
-    if (!SHARED_SAMPLES) return gl_GlobalInvocationID.xy;
+uvec2 invocationPixel(uint blockStride) {
+    uvec2 block = workgroupBlock(blockStride);
+    if (!SHARED_SAMPLES) return block * 8u + gl_LocalInvocationID.xy;
     uint offset = SHARED_GROUP_PIXELS[gl_LocalInvocationIndex];
-    return gl_WorkGroupID.xy * 8u + uvec2(offset & 7u, offset >> 3u);
+    return block * 8u + uvec2(offset & 7u, offset >> 3u);
 }
 
 // The key of a pixel's camera-path random numbers (rngCreate): the pixel, or with shared samples

@@ -20,7 +20,7 @@ layout(local_size_x_id = SPEC_LOCAL_SIZE_X, local_size_y_id = SPEC_LOCAL_SIZE_Y)
 layout(push_constant) uniform PushBlock { GpuRenderPush push; };
 
 void main() {
-    uvec2 local = invocationPixel();
+    uvec2 local = invocationPixel(push.blockStride);
     if (any(greaterThanEqual(local, push.tileSize))) return;
     bindScene(push.sceneParams);
     uvec2 pixel = push.tileOrigin + local;

@@ -579,8 +579,13 @@ struct GpuRenderPush {
     uint vcmPilotMask;
     float vcmPilotCell;
     float vcmKeepTarget;
+    // The order of the dispatch's workgroups over its 8x8 blocks: workgroup l (row-major) renders
+    // block (l * blockStride) mod blocks, a stride coprime with the block count near its golden
+    // section (render/workgroup_order.h), so that any run of consecutive workgroups is spread over
+    // the whole tile.
+    uint blockStride;
 };
-PT_CHECK_SIZE(GpuRenderPush, 112);
+PT_CHECK_SIZE(GpuRenderPush, 120);
 
 // ---- Test kernels (shaders/tests) ----
 #define TEST_MODE_COSINE_HEMISPHERE 0u // outputs[i] = (w, pdf); inputs: optional vec4[] of (u1, u2, _, _)

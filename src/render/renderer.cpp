@@ -1,4 +1,5 @@
 #include "render/renderer.h"
+#include "render/workgroup_order.h"
 
 #include "pt_copy_words_spv.h"           // generated: shaders/viewer/copy_words.comp
 #include "pt_render_bdpt_spv.h"          // generated: the same with -DPT_BDPT
@@ -189,10 +190,12 @@ void Renderer::dispatchTiles(VkCommandBuffer cmd, uint32_t tileSize, uint32_t fi
         push.sceneParams = paramsAddress_;
         push.tileOrigin = glm::uvec2(x, y);
         push.tileSize = glm::uvec2(std::min(tw, w - x), std::min(th, h - y));
+        const uint32_t groupsX = (push.tileSize.x + localSize_ - 1) / localSize_;
+        const uint32_t groupsY = (push.tileSize.y + localSize_ - 1) / localSize_;
+        push.blockStride = workgroupBlockStride(groupsX * groupsY);
         fill(push);
         pipeline_->bindAndPush(cmd, &push, sizeof(push));
-        vkCmdDispatch(
-            cmd, (push.tileSize.x + localSize_ - 1) / localSize_, (push.tileSize.y + localSize_ - 1) / localSize_, 1);
+        vkCmdDispatch(cmd, groupsX, groupsY, 1);
     }
 }
 
