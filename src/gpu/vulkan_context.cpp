@@ -51,13 +51,15 @@ void chooseLavapipeSetting(const char* variable, const std::string& value) {
     chosen += (chosen.empty() ? "" : " ") + std::string(variable) + "=" + value;
 }
 
-// Lavapipe runs a dispatch on one thread per core (LP_NUM_THREADS). Twice as many threads
-// traced 22-25% more paths per second in the glass box with adaptive sampling on a 2-core
-// machine (0.78x the error at equal time; the diffuse box level to +2%; bench/RESULTS.md,
-// "Lavapipe threads"). The gain follows how unevenly a pass's pixels cost, presumably because a
-// core whose thread has finished its share then works on another's (not checked in Mesa's
-// source). Only where the user has not chosen; other drivers ignore the variable. Before the
-// instance, whose creation starts the driver.
+// Lavapipe runs a dispatch on one thread per core (LP_NUM_THREADS), each thread taking one
+// contiguous run of the workgroups, fixed in advance (Mesa's lp_cs_tpool.c). In row order twice
+// as many threads traced 22-25% more paths per second in the glass box with adaptive sampling on
+// a 2-core machine (a core whose thread had finished its run then worked on another's;
+// bench/RESULTS.md, "Lavapipe threads"). Since the workgroups visit the image in a strided order
+// (render/workgroup_order.h) every run costs about the same and two threads a core are level with
+// one ("Workgroups in a strided order"); kept for what unevenness is left. Only where the user
+// has not chosen; other drivers ignore the variable. Before the instance, whose creation starts
+// the driver.
 void oversubscribeLavapipeThreads() {
     cpu_set_t set;
     CPU_ZERO(&set);
