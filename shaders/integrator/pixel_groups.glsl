@@ -15,6 +15,7 @@
 // (bench/RESULTS.md, "Shared samples").
 #ifndef PT_INTEGRATOR_PIXEL_GROUPS_GLSL
 #define PT_INTEGRATOR_PIXEL_GROUPS_GLSL
+#extension GL_EXT_shader_explicit_arithmetic_types_int64 : require // workgroupBlock
 #include "shared/features.glsl"
 
 // The groups of an 8x8 block: invocation i of the workgroup renders offset SHARED_GROUP_PIXELS[i]
