@@ -31,11 +31,8 @@ const uint SHARED_GROUP_OF_OFFSET[64] = uint[64](4u, 1u, 2u, 5u, 3u, 6u, 7u, 0u,
     7u, 2u, 3u, 5u, 0u, 1u, 7u, 6u, 4u, 5u, 0u, 7u, 6u, 4u, 2u, 1u, 3u);
 
 // The 8x8 block of the tile that this workgroup renders: workgroup l (row-major) takes block
-// (l * blockStride) mod blocks, a bijection (the stride is coprime with the count). Lavapipe
-// hands each of its threads one contiguous run of workgroups (a quarter of them with four
-// threads); in row-major order one thread got the ceiling, where adaptive sampling puts the most
-// samples, and the others idled at the end of every pass. Strided by about the golden section of
-// the count, every run is spread over the whole tile.
+// (l * blockStride) mod blocks, a bijection (the stride is coprime with the count), so that each
+// lavapipe thread's contiguous run of workgroups spans the whole tile (why: render/workgroup_order.h).
 uvec2 workgroupBlock(uint blockStride) {
     uint blocksX = gl_NumWorkGroups.x, blocks = gl_NumWorkGroups.x * gl_NumWorkGroups.y;
     uint linear = gl_WorkGroupID.y * blocksX + gl_WorkGroupID.x;
