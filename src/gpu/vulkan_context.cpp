@@ -73,8 +73,9 @@ void oversubscribeLavapipeThreads() {
 // +8-10%, the glass box and BDPT level; bench/RESULTS.md, "Lavapipe without AVX-512"). Why is not
 // known: the AVX-512 code loads through 512-bit gathers and may run the core at a lower clock.
 // Mesa reads GALLIUM_OVERRIDE_CPU_CAPS when the driver loads; "avx" clears AVX-512 and keeps AVX2
-// and FMA. Images do not change. AMD's AVX-512 CPUs were not measured, so they keep the driver's
-// choice; so does a user who set the variable.
+// and FMA. Images do not change. AMD's AVX-512 CPUs keep the driver's choice: there the AVX2 code
+// was 1.6-2x slower (Zen 4) or level (Zen 5; "On an AMD EPYC Zen 5"); so does a user who set the
+// variable.
 void preferLavapipeAvx2Code() {
 #if defined(__x86_64__) || defined(__i386__)
     __builtin_cpu_init();
