@@ -24,8 +24,7 @@ height=$6
 out=$7
 shift 7
 mkdir -p "$out"
-echo "CPU: $(sed -n 's/^model name[[:space:]]*: //p' /proc/cpuinfo | head -1), $(nproc) cores;" \
-  "$(grep -o -w -m1 -E 'avx512f|avx2' /proc/cpuinfo | sort -r | head -1)"
+echo "Machine: $(python3 "$(dirname "$0")/machine_info.py")"
 echo "| integrator | spp | M paths/s | relMSE | estimated relMSE |"
 echo "|---|---|---|---|---|"
 declare -A err

@@ -19,7 +19,7 @@ out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 
 echo "Device: $($pt devices | head -n 1)"
-echo "Machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs); load average: $(cut -d' ' -f1-3 /proc/loadavg)"
+echo "Machine: $(python3 bench/machine_info.py); load average: $(cut -d' ' -f1-3 /proc/loadavg)"
 echo
 echo "### BVH build (pt_bvh_bench, median of 5)"
 echo

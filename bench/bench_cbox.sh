@@ -15,7 +15,7 @@ trap 'rm -rf "$out"' EXIT
 
 device=$($pt devices | head -n 1)
 echo "Device: $device"
-echo "Machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs)"
+echo "Machine: $(python3 bench/machine_info.py)"
 echo
 echo "| scene | budget (s) | seconds | spp | M paths/s | relMSE |"
 echo "|---|---|---|---|---|---|"

@@ -53,7 +53,7 @@ for s in mesh rough; do
 done
 
 echo "Device: $($pt devices | head -n 1)"
-echo "Machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs)"
+echo "Machine: $(python3 bench/machine_info.py)"
 echo
 echo "| scene | settings | seed | spp | M paths/s | relMSE |"
 echo "|---|---|---|---|---|---|"

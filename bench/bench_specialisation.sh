@@ -18,7 +18,7 @@ scene=tests/references/cbox-diffuse
 drivers=("default:")
 [ -n "${MESA22_ICD:-}" ] && drivers+=("mesa22:$MESA22_ICD")
 
-echo "Machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs)"
+echo "Machine: $(python3 bench/machine_info.py)"
 echo
 echo "| driver | kernel | pipeline (s) | spp | M paths/s | relMSE |"
 echo "|---|---|---|---|---|---|"

@@ -39,7 +39,7 @@ render() { # binary cache-home output args...
 
 same() { "$equal" "$1" "$2" >/dev/null 2>&1 && echo yes || echo NO; }
 
-echo "Machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs); $("$pt" devices 2>/dev/null | grep -m1 -o 'Mesa [0-9.]*' || true)"
+echo "Machine: $(python3 bench/machine_info.py); $("$pt" devices 2>/dev/null | grep -m1 -o 'Mesa [0-9.]*' || true)"
 echo
 header="| scene | first: pipeline s / wall s | second: pipeline s / wall s | same image |"
 sep="|---|---|---|---|"

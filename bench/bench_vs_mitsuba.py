@@ -42,6 +42,8 @@ import sys
 import tempfile
 import time
 
+from machine_info import machine  # bench/machine_info.py
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.dirname(HERE)
 REFERENCES = os.path.join(REPO, "tests", "references")
@@ -64,18 +66,6 @@ def read_rgb(path):
 def relmse(x, ref):
     import numpy as np
     return float(np.mean((x - ref) ** 2 / (ref ** 2 + 0.01)))
-
-
-def machine():
-    model, flags = "?", set()
-    with open("/proc/cpuinfo") as f:
-        for line in f:
-            if line.startswith("model name") and model == "?":
-                model = line.split(":", 1)[1].strip()
-            elif line.startswith("flags") and not flags:
-                flags = set(line.split(":", 1)[1].split())
-    isa = "AVX-512" if "avx512f" in flags else "AVX2" if "avx2" in flags else "SSE4" if "sse4_2" in flags else "?"
-    return f"{os.cpu_count()} cores, {model}, {isa}"
 
 
 # Our own scenes, generated where missing: (folder in the cache, the command's arguments).

@@ -23,19 +23,9 @@ import json
 import os
 import time
 
+from machine_info import machine  # bench/machine_info.py
+
 LLVM19 = "/usr/lib/x86_64-linux-gnu/libLLVM.so.19.1"
-
-
-def machine():
-    model, flags = "?", set()
-    with open("/proc/cpuinfo") as f:
-        for line in f:
-            if line.startswith("model name") and model == "?":
-                model = line.split(":", 1)[1].strip()
-            elif line.startswith("flags") and not flags:
-                flags = set(line.split(":", 1)[1].split())
-    isa = "AVX-512" if "avx512f" in flags else "AVX2" if "avx2" in flags else "?"
-    return f"{os.cpu_count()} cores, {model}, {isa}"
 
 
 def write_rgb(path, rgb):
