@@ -44,6 +44,7 @@ struct BoxRay {
     vec3 origin;
     vec3 invDir;
     bvec3 parallel; // direction component (almost) zero: the slab is crossed never or always
+    bvec3 negative; // 1 / direction component below zero: a slab's high plane is its near one
     bool anyParallel;
     bool folded; // quantised nodes are tested by quantizedChildEntries
 };
@@ -55,6 +56,7 @@ BoxRay makeBoxRay(Ray ray) {
     r.anyParallel = any(r.parallel);
     vec3 tiny = mix(vec3(TINY_DIRECTION), vec3(-TINY_DIRECTION), lessThan(ray.direction, vec3(0.0)));
     r.invDir = vec3(1.0) / mix(ray.direction, tiny, r.parallel);
+    r.negative = lessThan(r.invDir, vec3(0.0));
     vec3 a = abs(r.invDir);
     bool quantized = NODE_FORMAT == BVH_NODES_QUANTIZED ||
                      (NODE_FORMAT == BVH_NODES_FROM_SCENE && scene.nodeFormat == BVH_NODES_QUANTIZED);
@@ -73,23 +75,29 @@ void parallelSlab(float origin, vec4 lo, vec4 hi, inout vec4 tNear, inout vec4 t
 
 // The slab test's end, shared by both node formats: from each child's slab intervals, its entry
 // distance (>= 0), or FLOAT_MAX where the ray misses it within (0, tMax) or the slot is unused
-// (so that misses sort last). `slack` widens every box by that distance at both ends.
+// (so that misses sort last). `slack` widens every box by that distance at both ends. The
+// distances are never NaN (finite planes and origin, a finite nonzero 1 / direction), so the
+// compare-and-select min and max serve.
 vec4 enteredChildren(
     vec4 nearX, vec4 farX, vec4 nearY, vec4 farY, vec4 nearZ, vec4 farZ, float tMax, float slack, uvec4 child) {
-    vec4 entry = max(max(max(nearX, nearY), nearZ) - slack, vec4(0.0));
-    vec4 exit = min(min(farX, farY), min(farZ, vec4(tMax))) * BOX_FAR_SCALE + slack;
+    vec4 entry = maxOfNumbers(maxOfNumbers(maxOfNumbers(nearX, nearY), nearZ) - slack, vec4(0.0));
+    vec4 exit = minOfNumbers(minOfNumbers(farX, farY), minOfNumbers(farZ, vec4(tMax))) * BOX_FAR_SCALE + slack;
     bvec4 hit = bvec4(uvec4(lessThanEqual(entry, exit)) & uvec4(notEqual(child, uvec4(BVH4_EMPTY))));
     return mix(vec4(FLOAT_MAX), entry, hit);
 }
 
-// Entry distances into a wide node's four child boxes (enteredChildren).
+// Entry distances into a wide node's four child boxes (enteredChildren). Each slab's near plane
+// is the low one where 1 / direction is positive, the high one where it is negative (Williams et
+// al., "An Efficient and Robust Ray-Box Intersection Algorithm", 2005): the same distances as the
+// min and max of both, bit for bit (rounding keeps the order of (plane - origin) * invDir), without
+// them.
 vec4 childEntries(GpuBvh4Node node, BoxRay r, float tMax) {
-    vec4 x0 = (node.loX - r.origin.x) * r.invDir.x, x1 = (node.hiX - r.origin.x) * r.invDir.x;
-    vec4 y0 = (node.loY - r.origin.y) * r.invDir.y, y1 = (node.hiY - r.origin.y) * r.invDir.y;
-    vec4 z0 = (node.loZ - r.origin.z) * r.invDir.z, z1 = (node.hiZ - r.origin.z) * r.invDir.z;
-    vec4 nearX = min(x0, x1), farX = max(x0, x1);
-    vec4 nearY = min(y0, y1), farY = max(y0, y1);
-    vec4 nearZ = min(z0, z1), farZ = max(z0, z1);
+    vec4 nearX = ((r.negative.x ? node.hiX : node.loX) - r.origin.x) * r.invDir.x;
+    vec4 farX = ((r.negative.x ? node.loX : node.hiX) - r.origin.x) * r.invDir.x;
+    vec4 nearY = ((r.negative.y ? node.hiY : node.loY) - r.origin.y) * r.invDir.y;
+    vec4 farY = ((r.negative.y ? node.loY : node.hiY) - r.origin.y) * r.invDir.y;
+    vec4 nearZ = ((r.negative.z ? node.hiZ : node.loZ) - r.origin.z) * r.invDir.z;
+    vec4 farZ = ((r.negative.z ? node.loZ : node.hiZ) - r.origin.z) * r.invDir.z;
     if (r.anyParallel) {
         if (r.parallel.x) parallelSlab(r.origin.x, node.loX, node.hiX, nearX, farX);
         if (r.parallel.y) parallelSlab(r.origin.y, node.loY, node.hiY, nearY, farY);
@@ -102,18 +110,22 @@ vec4 childEntries(GpuBvh4Node node, BoxRay r, float tMax) {
 // plane q of an axis lies at t = q * (scale / d) + (origin - o) / d, one fma a plane, where
 // decoding and then subtracting and scaling took three operations (the 1 M-triangle mesh: 3%
 // faster, the same image; bench/RESULTS.md). Exact planes (the encoder's origin is a multiple of
-// the scale) and QUANTIZED_SLACK keep it conservative. For r.folded rays only.
+// the scale) and QUANTIZED_SLACK keep it conservative. The near plane of each slab is chosen by
+// the direction's sign, as in childEntries. For r.folded rays only.
 vec4 quantizedChildEntries(uint index, BoxRay r, float tMax, out uvec4 child) {
     QuantizedNodeWords q = loadTriangleTreeQuantizedWords(index);
     child = q.child;
     vec3 s = q.scale * r.invDir, b = (q.origin - r.origin) * r.invDir;
-    vec4 x0 = planeSteps(q.lo.x) * s.x + b.x, x1 = planeSteps(q.hi.x) * s.x + b.x;
-    vec4 y0 = planeSteps(q.lo.y) * s.y + b.y, y1 = planeSteps(q.hi.y) * s.y + b.y;
-    vec4 z0 = planeSteps(q.lo.z) * s.z + b.z, z1 = planeSteps(q.hi.z) * s.z + b.z;
+    uvec3 nearBytes =
+        uvec3(r.negative.x ? q.hi.x : q.lo.x, r.negative.y ? q.hi.y : q.lo.y, r.negative.z ? q.hi.z : q.lo.z);
+    uvec3 farBytes =
+        uvec3(r.negative.x ? q.lo.x : q.hi.x, r.negative.y ? q.lo.y : q.hi.y, r.negative.z ? q.lo.z : q.hi.z);
+    vec4 nearX = planeSteps(nearBytes.x) * s.x + b.x, farX = planeSteps(farBytes.x) * s.x + b.x;
+    vec4 nearY = planeSteps(nearBytes.y) * s.y + b.y, farY = planeSteps(farBytes.y) * s.y + b.y;
+    vec4 nearZ = planeSteps(nearBytes.z) * s.z + b.z, farZ = planeSteps(farBytes.z) * s.z + b.z;
     vec3 absB = abs(b);
-    float slack = QUANTIZED_SLACK * max(max(absB.x, absB.y), absB.z);
-    return enteredChildren(
-        min(x0, x1), max(x0, x1), min(y0, y1), max(y0, y1), min(z0, z1), max(z0, z1), tMax, slack, child);
+    float slack = QUANTIZED_SLACK * maxOfNumbers(maxOfNumbers(absB.x, absB.y), absB.z);
+    return enteredChildren(nearX, farX, nearY, farY, nearZ, farZ, tMax, slack, child);
 }
 
 // Whether the ray enters the box within (0, tMax): one child's test of childEntries, with the
