@@ -8,7 +8,11 @@ user's second render sees them) and pt renders for the budget (`pt render --time
 only, pipeline creation excluded), one right after the other. Pairing them keeps the ratio
 honest while the machine's speed drifts (a shared host here changed speed by 30% within minutes).
 Both are scored by relMSE against the same reference, Mitsuba's brought to pt's exact time by
-relMSE ~ 1/t (unbiased Monte Carlo). The ratio printed is the median over the repeats.
+relMSE ~ 1/t (unbiased Monte Carlo). The ratio printed is the median over the repeats. Mitsuba
+runs at its own defaults but for the scene: Russian roulette from depth 5 (`--mitsuba-rr-depth`;
+the XML files say 1000, no roulette, as their references were rendered; without roulette Mitsuba
+needed 1.6x the time for the same error on the 1 M-triangle mesh, so the ratios printed before
+2026-12-07 flattered pt by up to that much).
 
 Scenes: cbox-diffuse and cbox-glass-mirror (tests/references); cbox-bumpy-sphere (the box with a
 1 M-triangle sphere, bench/make_mesh_scene.py, 128x128) and cbox-rough (rough gold, rough glass, a
@@ -105,14 +109,15 @@ def reference_of(name, directory):
     sys.exit(f"bench_vs_mitsuba: no reference for {name}")
 
 
-def mitsuba_worker(xml, reference, spp_list, seed):
-    """Runs as a child process: renders `xml` at each sample count, as JSON on stdout."""
+def mitsuba_worker(xml, reference, spp_list, seed, rr_depth):
+    """Runs as a child process: renders `xml` at each sample count, as JSON on stdout, with
+    Russian roulette from `rr_depth` (every scene's XML takes it as a parameter)."""
     os.environ.setdefault("DRJIT_LIBLLVM_PATH", LLVM19)  # LLVM 15 cannot lower Dr.Jit's fminimum
     import numpy as np
     import mitsuba as mi
     mi.set_variant("llvm_ad_rgb")
     ref = read_rgb(reference)
-    scene = mi.load_file(xml)
+    scene = mi.load_file(xml, rr_depth=rr_depth)
     np.array(mi.render(scene, spp=1, seed=12345))  # compile the kernel once: warm figures
     rows = []
     for k, spp in enumerate(spp_list):
@@ -124,10 +129,11 @@ def mitsuba_worker(xml, reference, spp_list, seed):
     json.dump(dict(version=mi.__version__, rows=rows), sys.stdout)
 
 
-def run_mitsuba(python, directory, reference, spp_list, seed):
+def run_mitsuba(python, directory, reference, spp_list, seed, rr_depth):
     out = subprocess.run([python, os.path.abspath(__file__), "--mitsuba-worker",
                           os.path.join(directory, "mitsuba", "scene.xml"), reference,
-                          ",".join(map(str, spp_list)), str(seed)], check=True, capture_output=True, text=True).stdout
+                          ",".join(map(str, spp_list)), str(seed), str(rr_depth)],
+                         check=True, capture_output=True, text=True).stdout
     return json.loads(out)
 
 
@@ -155,13 +161,16 @@ def main():
     ap.add_argument("--pt-args", action="append",
                     help="extra pt render arguments, e.g. '--sampler independent'; repeat for several "
                          "configurations (default: one, pt's defaults)")
+    ap.add_argument("--mitsuba-rr-depth", type=int, default=5,
+                    help="Mitsuba's Russian roulette from this depth (default 5, Mitsuba's own default; the "
+                         "scenes' XML files say 1000, no roulette, which their references were rendered with)")
     ap.add_argument("--json")
-    ap.add_argument("--mitsuba-worker", nargs=4, metavar=("XML", "REFERENCE", "SPP_LIST", "SEED"),
+    ap.add_argument("--mitsuba-worker", nargs=5, metavar=("XML", "REFERENCE", "SPP_LIST", "SEED", "RR_DEPTH"),
                     help=argparse.SUPPRESS)
     a = ap.parse_args()
     if a.mitsuba_worker:
-        xml, reference, spps, seed = a.mitsuba_worker
-        mitsuba_worker(xml, reference, [int(n) for n in spps.split(",")], int(seed))
+        xml, reference, spps, seed, rr_depth = a.mitsuba_worker
+        mitsuba_worker(xml, reference, [int(n) for n in spps.split(",")], int(seed), int(rr_depth))
         return
     python = os.environ.get("PT_MITSUBA_PYTHON", "/opt/mitsuba/bin/python")
     if not os.path.exists(python):
@@ -175,7 +184,7 @@ def main():
             directory = scene_dir(name)
             meta = json.load(open(os.path.join(directory, "meta.json")))
             reference, noise = reference_of(name, directory)
-            probe = run_mitsuba(python, directory, reference, [4, 16], 100)
+            probe = run_mitsuba(python, directory, reference, [4, 16], 100, a.mitsuba_rr_depth)
             version = probe["version"]
             per_second = probe["rows"][-1]["spp"] / probe["rows"][-1]["seconds"]
             noise_text = "?" if noise is None else "%.2g" % noise
@@ -184,7 +193,8 @@ def main():
             for repeat in range(a.repeats):
                 for budget in budgets:
                     spp = max(1, round(budget * per_second))
-                    theirs = run_mitsuba(python, directory, reference, [spp], 1000 * (repeat + 1))["rows"][0]
+                    theirs = run_mitsuba(python, directory, reference, [spp], 1000 * (repeat + 1),
+                                         a.mitsuba_rr_depth)["rows"][0]
                     per_second = theirs["spp"] / theirs["seconds"]  # follows the machine's drift
                     for config in configs:
                         ours = run_pt(a.pt, shlex.split(config), directory, reference, meta, budget, repeat, work)
@@ -203,7 +213,8 @@ def main():
                               f"spp {theirs['seconds']:.1f} s {theirs['mpaths']:.2f} M paths/s relMSE "
                               f"{theirs['relmse']:.4g} | ratio {row['ratio']:.2f}", flush=True)
     print()
-    print(f"pt render against Mitsuba 3 `path` (llvm_ad_rgb), same machine, paired runs ({machine()})")
+    print(f"pt render against Mitsuba 3 `path` (llvm_ad_rgb, rr_depth {a.mitsuba_rr_depth}), same machine, "
+          f"paired runs ({machine()})")
     print()
     print("| scene | pt settings | budget (s) | pt M paths/s | pt relMSE | Mitsuba M paths/s | Mitsuba relMSE "
           "| ratio (pt / Mitsuba relMSE), median | each pair | reference noise | ratio without it |")
