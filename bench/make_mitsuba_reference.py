@@ -27,6 +27,7 @@ import json
 import os
 import time
 
+from bench_vs_mitsuba import read_rgb  # bench/bench_vs_mitsuba.py
 from machine_info import machine  # bench/machine_info.py
 
 LLVM19 = "/usr/lib/x86_64-linux-gnu/libLLVM.so.19.1"
@@ -39,13 +40,6 @@ def write_rgb(path, rgb):
     channels = {"RGB": np.ascontiguousarray(rgb.astype(np.float32))}
     with OpenEXR.File(header, channels) as f:
         f.write(path)
-
-
-def read_rgb(path):
-    import numpy as np
-    import OpenEXR
-    with OpenEXR.File(path) as f:
-        return np.asarray(f.channels()["RGB"].pixels, dtype=np.float64)
 
 
 def mean_and_variance(total, total_squares, passes):
