@@ -33,8 +33,9 @@ struct RenderOptions {
     uint32_t passSpp = 0;         // 0: choose passes of about two seconds
     std::optional<bool> adaptive; // --adaptive: per-pixel sample counts (default: on, except for --samples parts)
     bool validation = false;
-    bool noPipelineCache = false;             // --no-pipeline-cache: nothing read from or written to the disk cache
-    bool allFeatures = false;                 // compile every feature into the kernel (benchmarking specialisation)
+    bool noPipelineCache = false;  // --no-pipeline-cache: nothing read from or written to the disk cache
+    bool measureTexelLoads = true; // --texel-loads auto: texel or address loads, whichever this machine runs faster
+    bool allFeatures = false;      // compile every feature into the kernel (benchmarking specialisation)
     Instancing instancing = Instancing::Auto; // --instances: meshes placed several times kept or copied
     bool quiet = false;
     bool varianceAov = false; // --variance: variance-of-the-mean channels in the EXR

@@ -236,6 +236,11 @@ int runRender(const RenderOptions& o) {
             cpuDevice && !chosen.empty() ? "; lavapipe settings pt chose (set them to choose yours): " : "",
             cpuDevice ? chosen.c_str() : "");
     }
+    // One measurement serves every job: the answer is the machine's, not the scene's.
+    IntegratorSettings loads = jobs.front().settings;
+    const std::string loadsNote = chooseGeometryLoads(context, o, loads);
+    if (!o.quiet && !loadsNote.empty()) std::fprintf(stderr, "pt: %s\n", loadsNote.c_str());
+    for (Job& job : jobs) job.settings.texelLoads = job.settings.texelLoads && loads.texelLoads;
     for (size_t i = 0; i < jobs.size(); ++i)
         if (const int status = renderJob(context, scene, flat, i + 1 == jobs.size(), jobs[i], o, reference,
                 errorLog.is_open() ? &errorLog : nullptr))

@@ -2,6 +2,7 @@
 
 #include "image/image_io.h"
 #include "render/renderer.h"
+#include "render/texel_load_choice.h"
 #include "scene/scene_loader.h"
 #include "image/texture_image.h"
 
@@ -377,6 +378,14 @@ std::string describeIntegrator(const Job& job) {
     if (!job.maxDepthReason.empty() && at != std::string::npos)
         text.insert(at + key.size(), " (" + job.maxDepthReason + ")");
     return text;
+}
+
+std::string chooseGeometryLoads(VulkanContext& context, const RenderOptions& o, IntegratorSettings& settings) {
+    if (!o.measureTexelLoads || !settings.texelLoads) return {};
+    const std::optional<TexelLoadChoice> choice = chooseTexelLoads(context);
+    if (!choice) return {};
+    settings.texelLoads = choice->texelLoads;
+    return describeTexelLoadChoice(*choice);
 }
 
 } // namespace pt

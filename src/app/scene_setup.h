@@ -4,6 +4,7 @@
 // (size, integrator settings, sample target, tone mapping, output file).
 #include "app/options.h"
 #include "flatten/flat_scene.h"
+#include "gpu/vulkan_context.h"
 #include "image/atomic_file.h" // prepareOutputDirectory
 #include "render/job.h"
 #include "scene/scene.h"
@@ -54,6 +55,11 @@ struct DepthChoice {
     std::string reason; // for the log line; empty when the command line chose
 };
 DepthChoice chooseMaxDepth(const Scene& scene, const Camera& camera, const RenderOptions& o, bool course);
+// --texel-loads auto on a CPU device: settings.texelLoads off where this machine was measured to
+// render faster through buffer addresses (render/texel_load_choice.h). Returns the log line, empty
+// where nothing was chosen.
+std::string chooseGeometryLoads(VulkanContext& context, const RenderOptions& o, IntegratorSettings& settings);
+
 // IntegratorSettings::describe() with the depth's reason after max-depth, for the log line.
 std::string describeIntegrator(const Job& job);
 

@@ -66,6 +66,8 @@ int runView(const ViewOptions& v) {
         std::fprintf(stderr, "pt: view: %s: %zu triangles, %zu spheres, %zu lights; device %s (%s)\n",
             scene.source.c_str(), flat.triangles.size(), flat.spheres.size(), flat.lights.lights.size(),
             context->info().name.c_str(), context->info().driver.c_str());
+        const std::string loadsNote = chooseGeometryLoads(*context, o, config.job.settings);
+        if (!loadsNote.empty()) std::fprintf(stderr, "pt: view: %s\n", loadsNote.c_str());
         // --integrator auto decides as pt render does (the probe needs the device).
         const std::string autoNote = measureForAutoIntegrator(
             *context, flat, config.job.settings, config.job.camera, config.job.width, config.job.height);

@@ -68,9 +68,10 @@ struct IntegratorSettings {
     // time), but the group's noise is correlated: the error of the image averaged over 8x8 blocks
     // is 1.8-4x higher (bench/RESULTS.md, "Shared samples"). Off by default for that reason.
     bool sharedSamples = false;
-    // `--texel-loads off`: the triangle tree's nodes and the triangles read through buffer
-    // addresses even where texel buffers would be used (TEXEL_LOADS, shared/features.h), to
-    // measure what they save. The same image either way.
+    // false (`--texel-loads off`, or `auto` where this machine was measured faster so,
+    // render/texel_load_choice.h): the trees' nodes and the triangles read through buffer
+    // addresses even where texel buffers could be used (TEXEL_LOADS, shared/features.h). The
+    // same image either way.
     bool texelLoads = true;
 
     std::string describe() const;

@@ -1,4 +1,6 @@
 #include "render/renderer.h"
+
+#include "base/hash.h"
 #include "render/workgroup_order.h"
 
 #include "pt_copy_words_spv.h"           // generated: shaders/viewer/copy_words.comp
@@ -42,6 +44,12 @@ std::span<const uint32_t> renderKernel(const FeatureSet& features) {
     return std::span<const uint32_t>(pt_render_spv);
 }
 } // namespace
+
+uint64_t renderKernelFingerprint() {
+    uint64_t hash = fnv1a64(pt_render_spv, sizeof pt_render_spv);
+    hash = fnv1a64(pt_render_light_tracing_spv, sizeof pt_render_light_tracing_spv, hash);
+    return fnv1a64(pt_render_bdpt_spv, sizeof pt_render_bdpt_spv, hash);
+}
 
 void validateImageSize(int width, int height) {
     if (width < 1 || height < 1 || width > kMaxImageSide || height > kMaxImageSide ||

@@ -29,6 +29,10 @@ struct FilmSettings {
 constexpr int kMaxImageSide = 16384;
 constexpr int64_t kMaxImagePixels = int64_t(1) << 26;
 
+// A hash of the render kernels' SPIR-V: answers measured with one build's kernels
+// (render/texel_load_choice.h) are not reused with another's.
+uint64_t renderKernelFingerprint();
+
 class Renderer {
 public:
     Renderer(VulkanContext& context, const FlatScene& scene, const FeatureSet& features,

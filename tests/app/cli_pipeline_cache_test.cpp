@@ -1,6 +1,7 @@
 // The pipeline cache across processes: the first render fills it, the second uses it, both make
 // the same image; a damaged entry is replaced without changing the image; --no-pipeline-cache
-// writes nothing; a cache folder that cannot be made costs one warning, not the render.
+// writes nothing; a cache folder that cannot be made costs one warning, not the render; the
+// measured choice of texel loads is remembered there.
 #include "cli_fixture.h"
 #include "image/image_io.h"
 
@@ -10,8 +11,11 @@ namespace pt::test {
 namespace {
 
 std::vector<std::string> renderArgs(const fs::path& exr) {
-    // path: one kernel (`auto` first measures with a kernel of its own; CliTest.AutoIntegrator...).
-    return {"render", "-o", exr.string(), "--spp", "4", "--width", "24", "--height", "24", "--integrator", "path"};
+    // path: one kernel (`auto` first measures with a kernel of its own; CliTest.AutoIntegrator...);
+    // texel loads on: `auto` would first measure them with two kernels of its own (and remember the
+    // answer there too; TexelLoadChoice.*, CliTest.TexelLoadsMeasuredOnceAndRemembered).
+    return {"render", "-o", exr.string(), "--spp", "4", "--width", "24", "--height", "24", "--integrator", "path",
+        "--texel-loads", "on"};
 }
 
 std::vector<fs::path> entries(const fs::path& dir, const std::string& prefix) {
@@ -78,6 +82,24 @@ TEST_F(CliTest, UnwritablePipelineCacheCostsOneWarning) {
     EXPECT_NE(warning, std::string::npos) << r;
     EXPECT_EQ(r.err.find("pt: warning: pipeline cache:", warning + 1), std::string::npos) << r;
     EXPECT_TRUE(fs::exists(dir_ / "a.exr"));
+}
+
+TEST_F(CliTest, TexelLoadsMeasuredOnceAndRemembered) {
+    const std::map<std::string, std::string> env = {{"XDG_CACHE_HOME", (dir_ / "cache").string()}};
+    auto args = renderArgs(dir_ / "a.exr");
+    args.resize(args.size() - 2); // the default, auto
+    const PtRun first = run(args, env);
+    EXPECT_EXIT_STATUS(first, 0);
+    EXPECT_NE(first.err.find("pt: geometry loads: "), std::string::npos) << first;
+    EXPECT_NE(first.err.find("(measured now on this machine"), std::string::npos) << first;
+    EXPECT_EQ(entries(dir_ / "cache" / "pt", "texel-loads").size(), 1u) << first;
+    const PtRun second = run(args, env);
+    EXPECT_NE(second.err.find("(measured earlier on this machine"), std::string::npos) << second;
+    // Without a cache folder nothing is measured: texel loads, as before.
+    args.push_back("--no-pipeline-cache");
+    const PtRun third = run(args, env);
+    EXPECT_EQ(third.err.find("geometry loads"), std::string::npos) << third;
+    EXPECT_NE(third.err.find("texel-loads"), std::string::npos) << third; // in the kernel's features
 }
 
 } // namespace

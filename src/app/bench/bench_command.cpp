@@ -125,7 +125,7 @@ int runBench(const BenchOptions& b) {
     if (cameras.size() > 1)
         std::fprintf(stderr, "pt: bench: the scene has %zu cameras; using the first (%s); pick one with --camera\n",
             cameras.size(), cameras[0].name.c_str());
-    const Job job = makeJob(scene, cameras[0], o, false, course);
+    Job job = makeJob(scene, cameras[0], o, false, course);
 
     const fs::path dir = b.outputDir;
     std::error_code ec;
@@ -140,6 +140,8 @@ int runBench(const BenchOptions& b) {
     FlatScene flat = flattenWithNotes(scene, o);
     VulkanContext context(contextOptionsFor(o));
     const std::string device = context.info().name + " (" + context.info().driver + ")";
+    const std::string loadsNote = chooseGeometryLoads(context, o, job.settings);
+    if (!loadsNote.empty()) std::fprintf(stderr, "pt: bench: %s\n", loadsNote.c_str());
     const Image reference =
         given ? *given : renderReference(context, flat, job, scene, b.referenceSpp, dir / "reference.exr");
 

@@ -1,0 +1,71 @@
+// --texel-loads auto: on a CPU device the faster of texel and address loads is measured once and
+// remembered in the pipeline cache's folder; a damaged answer is measured again; without the folder
+// nothing is chosen (texel loads stay on).
+#include "gpu/shader_cache_directory.h"
+#include "render/texel_load_choice.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <optional>
+#include <unistd.h>
+
+namespace pt::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct TempFolder {
+    fs::path path = fs::temp_directory_path() / ("pt-texel-choice-" + std::to_string(::getpid()));
+    TempFolder() { fs::create_directories(path); }
+    ~TempFolder() {
+        std::error_code ec;
+        fs::remove_all(path, ec);
+    }
+};
+
+ContextOptions optionsWithCache(const fs::path& folder) {
+    ContextOptions o;
+    o.validation = true;
+    o.pipelineCacheDirectory = folder;
+    return o;
+}
+
+TEST(TexelLoadChoice, MeasuredOnceThenRememberedAndMeasuredAgainWhenDamaged) {
+    TempFolder folder;
+    VulkanContext context(optionsWithCache(folder.path));
+    ASSERT_EQ(context.properties().deviceType, VK_PHYSICAL_DEVICE_TYPE_CPU) << "the suite runs on lavapipe";
+
+    const std::optional<TexelLoadChoice> first = chooseTexelLoads(context);
+    ASSERT_TRUE(first.has_value());
+    EXPECT_TRUE(first->measuredNow);
+    EXPECT_GT(first->texelSeconds, 0.0);
+    EXPECT_GT(first->addressSeconds, 0.0);
+    EXPECT_EQ(first->texelLoads, first->texelSeconds <= first->addressSeconds) << "the faster one is chosen";
+
+    const std::optional<TexelLoadChoice> second = chooseTexelLoads(context);
+    ASSERT_TRUE(second.has_value());
+    EXPECT_FALSE(second->measuredNow) << "the answer is read back, not measured again";
+    EXPECT_EQ(second->texelLoads, first->texelLoads);
+    EXPECT_DOUBLE_EQ(second->texelSeconds, first->texelSeconds);
+    EXPECT_DOUBLE_EQ(second->addressSeconds, first->addressSeconds);
+    EXPECT_NE(describeTexelLoadChoice(*second).find("measured earlier"), std::string::npos);
+
+    // A damaged file reads as absent: measured again.
+    const fs::path file = ShaderCacheDirectory(folder.path).fileOf("texel-loads");
+    ASSERT_TRUE(fs::exists(file));
+    std::ofstream(file, std::ios::binary | std::ios::trunc) << "not an answer";
+    const std::optional<TexelLoadChoice> third = chooseTexelLoads(context);
+    ASSERT_TRUE(third.has_value());
+    EXPECT_TRUE(third->measuredNow);
+    EXPECT_EQ(context.validationMessageCount(), 0u) << context.firstValidationMessage();
+}
+
+TEST(TexelLoadChoice, NothingChosenWithoutACacheFolder) {
+    VulkanContext context(optionsWithCache({}));
+    EXPECT_FALSE(chooseTexelLoads(context).has_value());
+}
+
+} // namespace
+} // namespace pt::test
