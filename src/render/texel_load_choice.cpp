@@ -49,7 +49,8 @@ uint64_t choiceKey(const VulkanContext& context) {
     key = fnv1a64(&p.driverVersion, sizeof p.driverVersion, key);
     key = fnv1a64(p.pipelineCacheUUID, VK_UUID_SIZE, key);
     std::string text = cpuIdentity() + "\n" + context.info().name + "\n" + context.info().driver + "\n";
-    for (const char* variable : {"LP_NUM_THREADS", "GALLIUM_OVERRIDE_CPU_CAPS", "LP_NATIVE_VECTOR_WIDTH", "GALLIVM_PERF"})
+    for (const char* variable :
+        {"LP_NUM_THREADS", "GALLIUM_OVERRIDE_CPU_CAPS", "LP_NATIVE_VECTOR_WIDTH", "GALLIVM_PERF"})
         if (const char* value = std::getenv(variable)) text += std::string(variable) + "=" + value + "\n";
     key = fnv1a64(text.data(), text.size(), key);
     const uint64_t kernels = renderKernelFingerprint();
@@ -97,8 +98,8 @@ std::optional<TexelLoadChoice> measure(VulkanContext& context) {
 // The remembered answer: a version, the choice and both times, as text.
 std::string encode(const TexelLoadChoice& c) {
     char text[96];
-    std::snprintf(text, sizeof text, "%u %d %.9g %.9g", kChoiceVersion, c.texelLoads ? 1 : 0, c.texelSeconds,
-        c.addressSeconds);
+    std::snprintf(
+        text, sizeof text, "%u %d %.9g %.9g", kChoiceVersion, c.texelLoads ? 1 : 0, c.texelSeconds, c.addressSeconds);
     return text;
 }
 
