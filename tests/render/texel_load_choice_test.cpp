@@ -3,27 +3,18 @@
 // nothing is chosen (texel loads stay on).
 #include "gpu/shader_cache_directory.h"
 #include "render/texel_load_choice.h"
+#include "support/test_directory.h"
 
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <fstream>
 #include <optional>
-#include <unistd.h>
 
 namespace pt::test {
 namespace {
 
 namespace fs = std::filesystem;
-
-struct TempFolder {
-    fs::path path = fs::temp_directory_path() / ("pt-texel-choice-" + std::to_string(::getpid()));
-    TempFolder() { fs::create_directories(path); }
-    ~TempFolder() {
-        std::error_code ec;
-        fs::remove_all(path, ec);
-    }
-};
 
 ContextOptions optionsWithCache(const fs::path& folder) {
     ContextOptions o;
@@ -33,8 +24,8 @@ ContextOptions optionsWithCache(const fs::path& folder) {
 }
 
 TEST(TexelLoadChoice, MeasuredOnceThenRememberedAndMeasuredAgainWhenDamaged) {
-    TempFolder folder;
-    VulkanContext context(optionsWithCache(folder.path));
+    const fs::path folder = freshTestDirectory("texel_choice");
+    VulkanContext context(optionsWithCache(folder));
     ASSERT_EQ(context.properties().deviceType, VK_PHYSICAL_DEVICE_TYPE_CPU) << "the suite runs on lavapipe";
 
     const std::optional<TexelLoadChoice> first = chooseTexelLoads(context);
@@ -53,13 +44,15 @@ TEST(TexelLoadChoice, MeasuredOnceThenRememberedAndMeasuredAgainWhenDamaged) {
     EXPECT_NE(describeTexelLoadChoice(*second).find("measured earlier"), std::string::npos);
 
     // A damaged file reads as absent: measured again.
-    const fs::path file = ShaderCacheDirectory(folder.path).fileOf("texel-loads");
+    const fs::path file = ShaderCacheDirectory(folder).fileOf("texel-loads");
     ASSERT_TRUE(fs::exists(file));
     std::ofstream(file, std::ios::binary | std::ios::trunc) << "not an answer";
     const std::optional<TexelLoadChoice> third = chooseTexelLoads(context);
     ASSERT_TRUE(third.has_value());
     EXPECT_TRUE(third->measuredNow);
     EXPECT_EQ(context.validationMessageCount(), 0u) << context.firstValidationMessage();
+    std::error_code ec;
+    fs::remove_all(folder, ec);
 }
 
 TEST(TexelLoadChoice, NothingChosenWithoutACacheFolder) {
