@@ -91,7 +91,7 @@ protected:
         return loadDefaultScene(); // the diffuse Cornell box: a small kernel, quick to build
     }
     std::unique_ptr<Renderer> makeRenderer() {
-        return std::make_unique<Renderer>(sharedContext(), flat_, computeFeatures(flat_, settings_), settings_,
+        return std::make_unique<Renderer>(sharedContext(), flat_, suiteFeatures(flat_, settings_), settings_,
             scene_.cameras.at(0), FilmSettings{24, 20, scene_.background});
     }
     Scene scene_;

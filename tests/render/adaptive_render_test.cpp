@@ -24,7 +24,7 @@ protected:
         settings_.maxDepth = 8;
     }
     std::unique_ptr<Renderer> makeRenderer(int size) {
-        return std::make_unique<Renderer>(sharedContext(), flat_, computeFeatures(flat_, settings_), settings_,
+        return std::make_unique<Renderer>(sharedContext(), flat_, suiteFeatures(flat_, settings_), settings_,
             scene_.cameras.at(0), FilmSettings{size, size, scene_.background});
     }
     ProgressiveResult renderAdaptively(Renderer& renderer, uint32_t spp, uint32_t passSpp = 0, uint32_t tile = 0) {

@@ -34,8 +34,8 @@ TEST_F(MemoryFlatness, ResidentSetStaysFlatOverManyPasses) {
     settings.maxDepth = 4;
     Camera camera; // the sample has no camera: look at its panels (around the origin) from +z
     camera.position = glm::vec3(0.0f, 0.0f, 30.0f);
-    Renderer renderer(sharedContext(), flat, computeFeatures(flat, settings), settings, camera,
-        FilmSettings{24, 24, scene.background});
+    Renderer renderer(
+        sharedContext(), flat, suiteFeatures(flat, settings), settings, camera, FilmSettings{24, 24, scene.background});
     const auto dir = std::filesystem::temp_directory_path() / ("pt_memory_" + std::to_string(::getpid()));
     std::filesystem::create_directories(dir);
     Checkpointer checkpointer(dir / "ckpt.exr", 0.0, {}, 0.0);

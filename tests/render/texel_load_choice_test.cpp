@@ -3,6 +3,8 @@
 // nothing is chosen (texel loads stay on).
 #include "gpu/shader_cache_directory.h"
 #include "render/texel_load_choice.h"
+#include "scene/scene_loader.h"
+#include "support/gpu_test_support.h"
 #include "support/test_directory.h"
 
 #include <gtest/gtest.h>
@@ -58,6 +60,18 @@ TEST(TexelLoadChoice, MeasuredOnceThenRememberedAndMeasuredAgainWhenDamaged) {
 TEST(TexelLoadChoice, NothingChosenWithoutACacheFolder) {
     VulkanContext context(optionsWithCache({}));
     EXPECT_FALSE(chooseTexelLoads(context).has_value());
+}
+
+// The suite's own choice (suiteTexelLoads): made by the first test process that renders (the fixture
+// GpuSuite.GeometryLoadsChosen runs this test before the others) and read back by every later one
+// from the tests' pipeline-cache folder.
+TEST(TexelLoadChoice, TheSuitesChoiceIsMadeOnceForAllItsProcesses) {
+    const bool texel = suiteTexelLoads();
+    const std::optional<TexelLoadChoice> again = chooseTexelLoads(sharedContext());
+    ASSERT_TRUE(again.has_value()) << "lavapipe with the tests' pipeline-cache folder has a choice to make";
+    EXPECT_FALSE(again->measuredNow) << "remembered for the suite's other processes";
+    EXPECT_EQ(again->texelLoads, texel);
+    EXPECT_EQ(suiteFeatures(flattenScene(loadScene("")), IntegratorSettings{}).texelLoads, texel);
 }
 
 } // namespace

@@ -3,13 +3,16 @@
 #include "gpu/compute_pipeline.h"
 #include "pt_test_kernels_spv.h"
 #include "flatten/feature_set.h"
+#include "render/texel_load_choice.h"
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <map>
 #include <memory>
 #include <numeric>
+#include <optional>
 
 namespace pt::test {
 
@@ -127,6 +130,22 @@ Mesh makeQuad(glm::vec3 corner, glm::vec3 edgeU, glm::vec3 edgeV, uint32_t mater
     return m;
 }
 
+bool suiteTexelLoads() {
+    // Nothing chosen (no texel views, or not a CPU device): the renderer decides as it would.
+    static const bool texel = [] {
+        const std::optional<TexelLoadChoice> choice = chooseTexelLoads(sharedContext());
+        if (choice) std::printf("%s\n", describeTexelLoadChoice(*choice).c_str());
+        return !choice || choice->texelLoads;
+    }();
+    return texel;
+}
+
+FeatureSet suiteFeatures(const FlatScene& flat, const IntegratorSettings& settings) {
+    FeatureSet features = computeFeatures(flat, settings);
+    features.texelLoads = features.texelLoads && suiteTexelLoads();
+    return features;
+}
+
 IntegratorSettings independentSettings() {
     IntegratorSettings s;
     s.sampler = SamplerKind::Independent;
@@ -136,7 +155,7 @@ IntegratorSettings independentSettings() {
 Renderer::Readback renderScene(const Scene& scene, const IntegratorSettings& settings, const Camera& camera, int width,
     int height, uint32_t spp, uint32_t passSpp, uint32_t tileSize, const BvhBuildOptions& bvh) {
     FlatScene flat = flattenScene(scene, bvh);
-    Renderer renderer(sharedContext(), flat, computeFeatures(flat, settings), settings, camera,
+    Renderer renderer(sharedContext(), flat, suiteFeatures(flat, settings), settings, camera,
         FilmSettings{width, height, scene.background});
     const uint32_t pass = passSpp ? passSpp : spp;
     while (renderer.samplesPerPixel() < spp)
@@ -147,7 +166,10 @@ Renderer::Readback renderScene(const Scene& scene, const IntegratorSettings& set
 Renderer::Readback renderSceneWith(const Scene& scene, const IntegratorSettings& settings, const FeatureSet& features,
     const Camera& camera, int width, int height, uint32_t spp) {
     FlatScene flat = flattenScene(scene);
-    Renderer renderer(sharedContext(), flat, features, settings, camera, FilmSettings{width, height, scene.background});
+    FeatureSet withSuiteLoads = features;
+    withSuiteLoads.texelLoads = features.texelLoads && suiteTexelLoads();
+    Renderer renderer(
+        sharedContext(), flat, withSuiteLoads, settings, camera, FilmSettings{width, height, scene.background});
     renderer.addSamples(spp, 0);
     return renderer.read();
 }

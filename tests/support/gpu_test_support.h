@@ -3,6 +3,7 @@
 // the validation layer on, the GLSL test kernel runner, small procedural scenes, and a
 // one-call render.
 #include "gpu/vulkan_context.h"
+#include "flatten/feature_set.h"
 #include "flatten/flat_scene.h"
 #include "render/gpu_scene.h"
 #include "flatten/integrator_settings.h"
@@ -52,12 +53,23 @@ Mesh makeQuad(glm::vec3 corner, glm::vec3 edgeU, glm::vec3 edgeV, uint32_t mater
 // (tests/shaders/integrator/sobol_reference_test.cpp).
 IntegratorSettings independentSettings();
 
+// Whether the suite's renders read the geometry through texel buffers: this machine's faster loads,
+// measured once for the whole suite (the fixture test GpuSuite.GeometryLoadsChosen) and
+// remembered in the tests' pipeline-cache folder, as `--texel-loads auto` does for users. Both
+// give the same image (TexelLoads.*, which choose explicitly), so this only decides the suite's time:
+// on a Zen 4 where addresses were faster, texel loads took 1.2-1.35x as long in render-heavy tests.
+bool suiteTexelLoads();
+
+// computeFeatures with the suite's geometry loads: what the tests' renderers are specialised to.
+FeatureSet suiteFeatures(const FlatScene& flat, const IntegratorSettings& settings);
+
 // Renders `scene` from `camera` with the kernel specialised for it and returns the sums read back.
 // `bvh` says how it is flattened (instances kept or copied, node format).
 Renderer::Readback renderScene(const Scene& scene, const IntegratorSettings& settings, const Camera& camera, int width,
     int height, uint32_t spp, uint32_t passSpp = 0, uint32_t tileSize = 0, const BvhBuildOptions& bvh = {});
 
-// The same with the kernel specialised as `features` says (tests that change what the scene decides).
+// The same with the kernel specialised as `features` says (tests that change what the scene decides;
+// the geometry loads still the suite's).
 Renderer::Readback renderSceneWith(const Scene& scene, const IntegratorSettings& settings, const FeatureSet& features,
     const Camera& camera, int width, int height, uint32_t spp);
 

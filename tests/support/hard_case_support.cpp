@@ -11,7 +11,7 @@ namespace pt::test {
 Renderer::Readback renderForced(const Scene& scene, const IntegratorSettings& settings, const Camera& camera, int width,
     int height, uint32_t spp, uint32_t forcedRandom) {
     FlatScene flat = flattenScene(scene);
-    FeatureSet features = computeFeatures(flat, settings);
+    FeatureSet features = suiteFeatures(flat, settings);
     features.forcedRandom = forcedRandom;
     Renderer renderer(sharedContext(), flat, features, settings, camera, FilmSettings{width, height, scene.background});
     renderer.addSamples(spp);

@@ -171,7 +171,7 @@ TEST_F(Furnace, VertexMergingConvergesToTheAnalyticRadiance) {
         s.seed = 1000u;
         FlatScene flat = flattenScene(scene);
         Renderer renderer(
-            sharedContext(), flat, computeFeatures(flat, s), s, camera, FilmSettings{40, 40, scene.background});
+            sharedContext(), flat, suiteFeatures(flat, s), s, camera, FilmSettings{40, 40, scene.background});
         std::vector<double> means; // of each round alone
         double before = 0;         // the sum of the rounds' means so far
         for (int k = 1; k <= kRounds; ++k) {

@@ -39,7 +39,7 @@ IntegratorSettings vcmSettings(uint32_t maxDepth, float radius) {
 BlockStats blocksOverRounds(
     const Scene& scene, const IntegratorSettings& s, int width, int height, int rounds, int blockSize) {
     FlatScene flat = flattenScene(scene);
-    Renderer renderer(sharedContext(), flat, computeFeatures(flat, s), s, scene.cameras.at(0),
+    Renderer renderer(sharedContext(), flat, suiteFeatures(flat, s), s, scene.cameras.at(0),
         FilmSettings{width, height, scene.background});
     std::vector<BlockStats> each;
     std::vector<float> before; // the sums of the rounds so far, per channel
