@@ -1,5 +1,6 @@
 #include "gpu/compute_pipeline.h"
 
+#include "base/hash.h"
 #include "gpu/vulkan_error.h"
 #include "shared/layout.h"
 
@@ -8,79 +9,10 @@
 
 namespace pt {
 
-ComputePipeline::ComputePipeline(VulkanContext& context, std::span<const uint32_t> spirv, uint32_t pushConstantBytes,
-    const std::vector<SpecializationConstant>& constants, const char* name, const GpuBuffer* uniforms)
-    : context_(context) {
-    auto start = std::chrono::steady_clock::now();
-    const std::string what = std::string("creating the '") + name + "' compute pipeline";
-    if (pushConstantBytes > context.properties().limits.maxPushConstantsSize)
-        throw std::runtime_error(what + ": the device allows only " +
-                                 std::to_string(context.properties().limits.maxPushConstantsSize) +
-                                 " bytes of push constants");
+namespace {
 
-    PipelineCache& cache = context.pipelineCache();
-    const SpecializedKernel kernel = cache.specialize(spirv, constants, name);
-    specializedFromCache_ = kernel.fromCache;
-    VkShaderModuleCreateInfo moduleInfo{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
-    moduleInfo.codeSize = kernel.spirv.size() * sizeof(uint32_t);
-    moduleInfo.pCode = kernel.spirv.data();
-    VkShaderModule module = VK_NULL_HANDLE;
-    vkCheck(vkCreateShaderModule(context.device(), &moduleInfo, nullptr, &module), what.c_str());
-
-    try {
-        createDescriptors(uniforms, what);
-    } catch (...) {
-        vkDestroyShaderModule(context.device(), module, nullptr);
-        throw;
-    }
-    VkPushConstantRange range{VK_SHADER_STAGE_COMPUTE_BIT, 0, pushConstantBytes};
-    VkPipelineLayoutCreateInfo layoutInfo{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
-    layoutInfo.setLayoutCount = 1;
-    layoutInfo.pSetLayouts = &setLayout_;
-    layoutInfo.pushConstantRangeCount = 1;
-    layoutInfo.pPushConstantRanges = &range;
-    VkResult result = vkCreatePipelineLayout(context.device(), &layoutInfo, nullptr, &layout_);
-    if (result != VK_SUCCESS) {
-        vkDestroyShaderModule(context.device(), module, nullptr);
-        vkDestroyDescriptorPool(context.device(), pool_, nullptr);
-        vkDestroyDescriptorSetLayout(context.device(), setLayout_, nullptr);
-        throw VulkanError(result, what);
-    }
-
-    VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
-    info.stage.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
-    info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
-    info.stage.module = module;
-    info.stage.pName = "main";
-    info.layout = layout_;
-    result = vkCreateComputePipelines(context.device(), cache.handle(), 1, &info, nullptr, &pipeline_);
-    vkDestroyShaderModule(context.device(), module, nullptr);
-    if (result != VK_SUCCESS) {
-        vkDestroyPipelineLayout(context.device(), layout_, nullptr);
-        vkDestroyDescriptorPool(context.device(), pool_, nullptr);
-        vkDestroyDescriptorSetLayout(context.device(), setLayout_, nullptr);
-        throw VulkanError(result, what);
-    }
-    cache.save();
-    creationSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-VkDeviceSize ComputePipeline::uniformBlockBytes() {
-    return VkDeviceSize(UNIFORM_TRIANGLES_MAX) * UNIFORM_TRIANGLE_VEC4S * 16;
-}
-
-// The set layout (the uniform block and the texel buffers), a pool of one set and the set
-// itself, pointing at `uniforms` or at a zero-filled buffer of the pipeline's own, and at
-// placeholder texels until setTexelBuffers.
-void ComputePipeline::createDescriptors(const GpuBuffer* uniforms, const std::string& what) {
-    if (!uniforms) {
-        ownUniforms_ = std::make_unique<GpuBuffer>(context_, uniformBlockBytes(), "uniforms");
-        ownUniforms_->fillZero();
-        uniforms = ownUniforms_.get();
-    }
-    if (uniforms->size() < uniformBlockBytes())
-        throw std::runtime_error(what + ": the uniform buffer is smaller than the kernel's block");
-    placeholderTexels_ = TexelView(context_, *uniforms, uniformBlockBytes(), what.c_str());
+// The set layout every pipeline here has: the uniform block at binding 0 and the texel buffers after it.
+VkDescriptorSetLayout createSetLayout(VkDevice device, const std::string& what) {
     VkDescriptorSetLayoutBinding bindings[1 + TEXEL_BINDING_COUNT]{};
     for (uint32_t b = 0; b < 1 + TEXEL_BINDING_COUNT; ++b) {
         bindings[b].binding = b;
@@ -95,7 +27,88 @@ void ComputePipeline::createDescriptors(const GpuBuffer* uniforms, const std::st
     VkDescriptorSetLayoutCreateInfo setInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
     setInfo.bindingCount = 1 + TEXEL_BINDING_COUNT;
     setInfo.pBindings = bindings;
-    vkCheck(vkCreateDescriptorSetLayout(context_.device(), &setInfo, nullptr, &setLayout_), what.c_str());
+    VkDescriptorSetLayout setLayout = VK_NULL_HANDLE;
+    vkCheck(vkCreateDescriptorSetLayout(device, &setInfo, nullptr, &setLayout), what.c_str());
+    return setLayout;
+}
+
+// The driver's compile of `spirv` (with its layouts).
+std::shared_ptr<const CompiledKernel> compileKernel(
+    VulkanContext& context, std::span<const uint32_t> spirv, uint32_t pushConstantBytes, const std::string& what) {
+    const VkDevice device = context.device();
+    auto kernel = std::make_shared<CompiledKernel>(device); // destroys what was made if a step throws
+    kernel->setLayout = createSetLayout(device, what);
+    VkPushConstantRange range{VK_SHADER_STAGE_COMPUTE_BIT, 0, pushConstantBytes};
+    VkPipelineLayoutCreateInfo layoutInfo{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+    layoutInfo.setLayoutCount = 1;
+    layoutInfo.pSetLayouts = &kernel->setLayout;
+    layoutInfo.pushConstantRangeCount = 1;
+    layoutInfo.pPushConstantRanges = &range;
+    vkCheck(vkCreatePipelineLayout(device, &layoutInfo, nullptr, &kernel->layout), what.c_str());
+
+    VkShaderModuleCreateInfo moduleInfo{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
+    moduleInfo.codeSize = spirv.size_bytes();
+    moduleInfo.pCode = spirv.data();
+    VkShaderModule module = VK_NULL_HANDLE;
+    vkCheck(vkCreateShaderModule(device, &moduleInfo, nullptr, &module), what.c_str());
+    VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
+    info.stage.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
+    info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
+    info.stage.module = module;
+    info.stage.pName = "main";
+    info.layout = kernel->layout;
+    const VkResult result =
+        vkCreateComputePipelines(device, context.pipelineCache().handle(), 1, &info, nullptr, &kernel->pipeline);
+    vkDestroyShaderModule(device, module, nullptr);
+    if (result != VK_SUCCESS) {
+        kernel->pipeline = VK_NULL_HANDLE;
+        throw VulkanError(result, what);
+    }
+    return kernel;
+}
+
+} // namespace
+
+ComputePipeline::ComputePipeline(VulkanContext& context, std::span<const uint32_t> spirv, uint32_t pushConstantBytes,
+    const std::vector<SpecializationConstant>& constants, const char* name, const GpuBuffer* uniforms)
+    : context_(context) {
+    auto start = std::chrono::steady_clock::now();
+    const std::string what = std::string("creating the '") + name + "' compute pipeline";
+    if (pushConstantBytes > context.properties().limits.maxPushConstantsSize)
+        throw std::runtime_error(what + ": the device allows only " +
+                                 std::to_string(context.properties().limits.maxPushConstantsSize) +
+                                 " bytes of push constants");
+
+    PipelineCache& cache = context.pipelineCache();
+    const SpecializedKernel specialized = cache.specialize(spirv, constants, name);
+    specializedFromCache_ = specialized.fromCache;
+    const uint64_t key = fnv1a64(&pushConstantBytes, sizeof pushConstantBytes, specialized.key);
+    kernel_ = cache.recentKernels().find(key);
+    compiledBefore_ = kernel_ != nullptr;
+    if (!kernel_) {
+        kernel_ = compileKernel(context, specialized.spirv, pushConstantBytes, what);
+        cache.recentKernels().keep(key, kernel_);
+        cache.save();
+    }
+    createDescriptors(uniforms, what);
+    creationSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+VkDeviceSize ComputePipeline::uniformBlockBytes() {
+    return VkDeviceSize(UNIFORM_TRIANGLES_MAX) * UNIFORM_TRIANGLE_VEC4S * 16;
+}
+
+// A pool of one set and the set itself (of the kernel's set layout), pointing at `uniforms` or at a zero-filled buffer of the pipeline's own, and at
+// placeholder texels until setTexelBuffers.
+void ComputePipeline::createDescriptors(const GpuBuffer* uniforms, const std::string& what) {
+    if (!uniforms) {
+        ownUniforms_ = std::make_unique<GpuBuffer>(context_, uniformBlockBytes(), "uniforms");
+        ownUniforms_->fillZero();
+        uniforms = ownUniforms_.get();
+    }
+    if (uniforms->size() < uniformBlockBytes())
+        throw std::runtime_error(what + ": the uniform buffer is smaller than the kernel's block");
+    placeholderTexels_ = TexelView(context_, *uniforms, uniformBlockBytes(), what.c_str());
     VkDescriptorPoolSize poolSizes[2] = {
         {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1}, {VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, TEXEL_BINDING_COUNT}};
     VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
@@ -107,12 +120,12 @@ void ComputePipeline::createDescriptors(const GpuBuffer* uniforms, const std::st
         VkDescriptorSetAllocateInfo allocInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
         allocInfo.descriptorPool = pool_;
         allocInfo.descriptorSetCount = 1;
-        allocInfo.pSetLayouts = &setLayout_;
+        allocInfo.pSetLayouts = &kernel_->setLayout;
         result = vkAllocateDescriptorSets(context_.device(), &allocInfo, &set_);
     }
     if (result != VK_SUCCESS) {
-        vkDestroyDescriptorPool(context_.device(), pool_, nullptr);
-        vkDestroyDescriptorSetLayout(context_.device(), setLayout_, nullptr);
+        if (pool_) vkDestroyDescriptorPool(context_.device(), pool_, nullptr);
+        pool_ = VK_NULL_HANDLE;
         throw VulkanError(result, what);
     }
     VkDescriptorBufferInfo bufferInfo{uniforms->handle(), 0, uniformBlockBytes()};
@@ -144,16 +157,13 @@ void ComputePipeline::setTexelBuffers(const TexelBuffers& views) {
 }
 
 ComputePipeline::~ComputePipeline() {
-    if (pipeline_) vkDestroyPipeline(context_.device(), pipeline_, nullptr);
-    if (layout_) vkDestroyPipelineLayout(context_.device(), layout_, nullptr);
     if (pool_) vkDestroyDescriptorPool(context_.device(), pool_, nullptr);
-    if (setLayout_) vkDestroyDescriptorSetLayout(context_.device(), setLayout_, nullptr);
 }
 
 void ComputePipeline::bindAndPush(VkCommandBuffer cmd, const void* pushData, uint32_t bytes) const {
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_);
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 1, &set_, 0, nullptr);
-    vkCmdPushConstants(cmd, layout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, bytes, pushData);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, kernel_->pipeline);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, kernel_->layout, 0, 1, &set_, 0, nullptr);
+    vkCmdPushConstants(cmd, kernel_->layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, bytes, pushData);
 }
 
 } // namespace pt

@@ -63,6 +63,7 @@ SpecializedKernel PipelineCache::specialize(
     std::span<const uint32_t> spirv, std::span<const SpecializationConstant> constants, const char* name) {
     SpecializedKernel kernel;
     const uint64_t key = spirvKey(spirv, constants);
+    kernel.key = key;
     if (auto known = specializedInProcess_.find(key); known != specializedInProcess_.end()) {
         kernel.spirv = known->second;
         kernel.fromCache = true;

@@ -4,8 +4,11 @@
 //    kept on disk by the hash of the input module and the constants, so later processes skip
 //    the specialisation too;
 //  - the driver's VkPipelineCache, loaded from disk at start and written back when it grew
-//    (GPU drivers keep compiled code there; lavapipe's is empty, which the disk copy shows).
+//    (GPU drivers keep compiled code there; lavapipe's is empty, which the disk copy shows);
+//  - the kernels compiled most recently in this process (gpu/compiled_kernel.h), which lavapipe
+//    would otherwise compile again for each pipeline.
 // With no directory everything works the same but nothing persists (--no-pipeline-cache).
+#include "gpu/compiled_kernel.h"
 #include "gpu/shader_cache_directory.h"
 #include "gpu/spirv_specialization.h"
 
@@ -21,6 +24,7 @@ namespace pt {
 struct SpecializedKernel {
     std::vector<uint32_t> spirv;
     bool fromCache = false; // made earlier (in this process or, through the disk, another)
+    uint64_t key = 0;       // of the module and the constants it was made from
 };
 
 class PipelineCache {
@@ -39,6 +43,9 @@ public:
     SpecializedKernel specialize(
         std::span<const uint32_t> spirv, std::span<const SpecializationConstant> constants, const char* name);
 
+    // The kernels compiled lately, by the key of their SpecializedKernel and push-constant size.
+    RecentKernels& recentKernels() { return recent_; }
+
     // Writes the driver's cache to disk if it holds more than what was loaded, merged with what
     // other processes wrote meanwhile. Called after each pipeline is created.
     void save();
@@ -53,6 +60,9 @@ private:
     uint64_t driverKey_ = 0;
     std::unordered_map<uint64_t, std::vector<uint32_t>> specializedInProcess_;
     size_t savedDriverBytes_ = 0;
+    // Eight: the most kernels a scene's work switches between (a path tracer and BDPT kernel of
+    // each kind a test renders, the viewer's switches and back).
+    RecentKernels recent_{8};
 };
 
 } // namespace pt

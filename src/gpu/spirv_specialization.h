@@ -15,6 +15,7 @@ namespace pt {
 struct SpecializationConstant {
     uint32_t id;
     uint32_t value; // booleans are 0 or 1, as VkBool32
+    bool operator==(const SpecializationConstant&) const = default;
 };
 
 // Bumped whenever specializeSpirv's output may change for the same input, so that cached results

@@ -98,8 +98,11 @@ public:
     int height() const { return film_.height; }
     // Creation plus the driver's compile at the first dispatch (primePipeline).
     double pipelineSeconds() const { return pipeline_->creationSeconds() + primeSeconds_; }
-    // "cached" when the specialised kernel was made before (this process or an earlier one).
-    const char* pipelineSource() const { return pipeline_->specializedFromCache() ? "cached" : "specialised"; }
+    // "reused" when this process compiled the kernel before (gpu/compiled_kernel.h), "cached"
+    // when the specialised kernel was made before (this process or an earlier one).
+    const char* pipelineSource() const {
+        return pipeline_->compiledBefore() ? "reused" : pipeline_->specializedFromCache() ? "cached" : "specialised";
+    }
 
     // Reads the sums back: the mean image, per-pixel variance of that mean, non-finite samples dropped.
     using Readback = AccumulatedImage;
