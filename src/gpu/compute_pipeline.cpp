@@ -98,8 +98,8 @@ VkDeviceSize ComputePipeline::uniformBlockBytes() {
     return VkDeviceSize(UNIFORM_TRIANGLES_MAX) * UNIFORM_TRIANGLE_VEC4S * 16;
 }
 
-// A pool of one set and the set itself (of the kernel's set layout), pointing at `uniforms` or at a zero-filled buffer of the pipeline's own, and at
-// placeholder texels until setTexelBuffers.
+// A pool of one set and the set itself (of the kernel's set layout), pointing at `uniforms` or
+// at a zero-filled buffer of the pipeline's own, and at placeholder texels until setTexelBuffers.
 void ComputePipeline::createDescriptors(const GpuBuffer* uniforms, const std::string& what) {
     if (!uniforms) {
         ownUniforms_ = std::make_unique<GpuBuffer>(context_, uniformBlockBytes(), "uniforms");

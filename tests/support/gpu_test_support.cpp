@@ -140,10 +140,15 @@ bool suiteTexelLoads() {
     return texel;
 }
 
-FeatureSet suiteFeatures(const FlatScene& flat, const IntegratorSettings& settings) {
-    FeatureSet features = computeFeatures(flat, settings);
+namespace {
+FeatureSet withSuiteLoads(FeatureSet features) {
     features.texelLoads = features.texelLoads && suiteTexelLoads();
     return features;
+}
+} // namespace
+
+FeatureSet suiteFeatures(const FlatScene& flat, const IntegratorSettings& settings) {
+    return withSuiteLoads(computeFeatures(flat, settings));
 }
 
 IntegratorSettings independentSettings() {
@@ -166,10 +171,8 @@ Renderer::Readback renderScene(const Scene& scene, const IntegratorSettings& set
 Renderer::Readback renderSceneWith(const Scene& scene, const IntegratorSettings& settings, const FeatureSet& features,
     const Camera& camera, int width, int height, uint32_t spp) {
     FlatScene flat = flattenScene(scene);
-    FeatureSet withSuiteLoads = features;
-    withSuiteLoads.texelLoads = features.texelLoads && suiteTexelLoads();
-    Renderer renderer(
-        sharedContext(), flat, withSuiteLoads, settings, camera, FilmSettings{width, height, scene.background});
+    Renderer renderer(sharedContext(), flat, withSuiteLoads(features), settings, camera,
+        FilmSettings{width, height, scene.background});
     renderer.addSamples(spp, 0);
     return renderer.read();
 }
